@@ -1,0 +1,138 @@
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "cli/commands.hpp"
+#include "cli/progress_bar.hpp"
+#include "core/errors.hpp"
+#include "output/legacy_output.hpp"
+#include "spec/spec_loader.hpp"
+
+namespace dem::cli {
+namespace {
+
+struct RunArgs {
+  std::string spec;
+  std::string out;
+  int threads = -1;
+  bool quiet = false;
+};
+
+// Returns false (after saying why) when the arguments are wrong.
+bool parse_run_args(const std::vector<std::string>& args, RunArgs& out) {
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    auto value = [&](const char* name) -> const std::string* {
+      if (k + 1 >= args.size()) {
+        std::fprintf(stderr, "dem run: %s needs a value\n", name);
+        return nullptr;
+      }
+      return &args[++k];
+    };
+    if (a == "--out") {
+      const std::string* v = value("--out");
+      if (!v) return false;
+      out.out = *v;
+    } else if (a == "--threads") {
+      const std::string* v = value("--threads");
+      if (!v) return false;
+      try {
+        out.threads = std::stoi(*v);
+      } catch (...) {
+        out.threads = -2;
+      }
+      if (out.threads < 0) {
+        std::fprintf(stderr, "dem run: --threads must be a whole number >= 0 (got \"%s\")\n", v->c_str());
+        return false;
+      }
+    } else if (a == "--quiet") {
+      out.quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "dem run: unknown option %s\n", a.c_str());
+      return false;
+    } else if (out.spec.empty()) {
+      out.spec = a;
+    } else {
+      std::fprintf(stderr, "dem run: only one spec file, got \"%s\" and \"%s\"\n", out.spec.c_str(), a.c_str());
+      return false;
+    }
+  }
+  if (out.spec.empty() || out.out.empty()) {
+    std::fprintf(stderr, "usage: dem run SPEC.json --out DIR [--threads N] [--quiet]\n");
+    return false;
+  }
+  return true;
+}
+
+Scene load(const std::string& path) { return spec::to_scene(spec::read_json_file(path)); }
+
+}  // namespace
+
+int validate_command(const std::vector<std::string>& args) {
+  if (args.size() != 1) {
+    std::fprintf(stderr, "usage: dem validate SPEC.json\n");
+    return 2;
+  }
+  try {
+    const Scene scene = load(args[0]);
+    Simulation sim(scene);  // also checks what needs the scene assembled (the time step)
+    std::printf("%s: valid; %zu particles, %zu walls; %s; %lld steps\n", args[0].c_str(), scene.particles.size(),
+                scene.walls.size(), sim.time_step().describe().c_str(), static_cast<long long>(sim.total_steps()));
+    return 0;
+  } catch (const spec::SpecError& e) {
+    std::fprintf(stderr, "%s: invalid spec:\n", args[0].c_str());
+    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "%s: invalid spec:\n  %s\n", args[0].c_str(), e.what());
+  }
+  return 1;
+}
+
+int run_command(const std::vector<std::string>& args) {
+  RunArgs a;
+  if (!parse_run_args(args, a)) return 2;
+  try {
+    Scene scene = load(a.spec);
+    if (a.threads >= 0) scene.numerics.threads = a.threads;
+    Simulation sim(std::move(scene));
+    std::filesystem::create_directories(a.out);
+    std::printf("%s: %zu particles, %zu walls, %lld steps; %s\n", a.spec.c_str(), sim.particles().size(),
+                sim.state().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
+    std::fflush(stdout);
+
+    std::vector<std::unique_ptr<Observer>> writers;
+    const std::filesystem::path dir(a.out);
+    if (sim.scene().outputs.animation)
+      writers.push_back(std::make_unique<AnimationWriter>((dir / "ANIMATION_3D.dat").string(), sim));
+    if (sim.scene().outputs.force_chains)
+      writers.push_back(std::make_unique<ForceChainWriter>((dir / "ForceChain_3D.dat").string()));
+    std::vector<Observer*> observers;
+    for (auto& w : writers) observers.push_back(w.get());
+
+    RunOptions options;
+    if (!a.quiet) options.on_progress = make_progress_printer(isatty(STDERR_FILENO));
+    const RunOutcome outcome = run(sim, observers, options);
+    if (!outcome.ok) {
+      std::fprintf(stderr, "dem run: %s\n(the files in %s hold every frame written before the stop)\n",
+                   outcome.error.c_str(), a.out.c_str());
+      return 1;
+    }
+    const double rate = static_cast<double>(sim.particles().size()) * static_cast<double>(outcome.steps) /
+                        std::max(outcome.loop_seconds, 1e-9);
+    std::printf("done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d\n",
+                static_cast<long long>(outcome.steps), sim.particles().size(), outcome.loop_seconds, rate,
+                sim.neighbor_builds());
+    return 0;
+  } catch (const spec::SpecError& e) {
+    std::fprintf(stderr, "%s: invalid spec:\n", a.spec.c_str());
+    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dem run: %s\n", e.what());
+  }
+  return 1;
+}
+
+}  // namespace dem::cli

@@ -1,0 +1,186 @@
+// The contact laws as small evaluator types, combined at compile time into one ContactLaw that the
+// force loops inline (the scene picks the combination once: sim/kernel_select.cpp).
+//
+// Conventions: body i and body j (j may be a wall), n the unit normal pointing from j to i,
+// delta > 0 the overlap, v the velocity of i's contact point relative to j's, force = on body i.
+//
+// Velocities: velocity Verlet evaluates forces at the full step but only knows the half-step
+// velocity there. Springs move with the half-step velocity (exact for the displacement); the normal
+// dashpot uses the velocity predicted at the full step, v(n+1/2) + dt/2 a(n), because the half-step
+// lag adds dissipation of relative size zeta*omega*dt (3.5% of e at e = 0.1 with 50 steps per
+// contact, against 0.1% with the prediction; see docs/physics.md).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "contact/pair_params.hpp"
+#include "core/vec.hpp"
+
+namespace dem {
+
+struct ContactInput {
+  Vec3 n;
+  double delta;
+  Vec3 v_rel;       // contact-point relative velocity at the half step (moves the springs)
+  double vn_now;    // normal relative velocity predicted at the full step (normal damping)
+  double onset;     // share of the step's force window inside the contact (boundary_share)
+  Vec3 w_rel;       // w_i - w_j
+  double m_eff;     // 1/m* = 1/m_i + 1/m_j
+  double r_eff;     // 1/R* = 1/r_i + 1/r_j
+  double i_roll;    // rolling inertia of Ai et al. (2011) eq. 13: 1/I_r = sum 1/(I + m r^2)
+  double dt;
+};
+
+struct ContactHistory {
+  Vec3* shear;      // tangential spring displacement (Mindlin or linear)
+  Vec3* roll;       // rolling spring moment (EPSD only)
+};
+
+struct ContactOutput {
+  Vec3 force;       // on i
+  Vec3 shear_force; // tangential part of force (lever torque: -r_i n x fs on i, -r_j n x fs on j)
+  Vec3 roll_moment; // on i (j gets the opposite)
+  double fn;        // normal force magnitude (>= 0 unless tension is allowed)
+};
+
+// Contact boundaries: a dashpot force jumps at first touch (from 0 to C_n v) and, when tension is
+// allowed, at parting. The force of a step acts over the window [t - dt/2, t + dt/2] of its two
+// half kicks. When the overlap is smaller than one step of relative motion, the contact began within
+// the last step or ends within the next one, s*dt from t with s = delta / (|v_n| dt); it then covers
+// 1/2 + s of the window, and the dashpot force is scaled by that share. Without it a first-order
+// impulse error C_n |v_n| dt (1/2 - s) remains at each boundary (up to 2% in e at 50 steps per
+// contact, depending on where the steps fall).
+inline double boundary_share(double delta, double vn, double dt) {
+  const double travel = std::abs(vn) * dt;
+  return delta < travel ? 0.5 + delta / travel : 1.0;
+}
+
+struct NormalResponse {
+  double fn;         // normal force, positive = repulsive
+  double kn_tangent; // dFn/d(delta), for the rolling spring
+  double kt;         // tangential stiffness
+  double ct;         // tangential damping
+};
+
+// Linear spring-dashpot: F_n = K_n x_n - C_n xdot_n, K_s = rns K_n, C_s = rzs C_n
+// (PDEM-EGD manual eqs. 1-7; C_n = 2 zeta sqrt(m* K_n) with m* the reduced mass).
+struct LinearNormal {
+  static NormalResponse evaluate(const PairParams& p, double delta, double vn, double onset, double m_eff, double) {
+    const double cn = 2 * p.zeta * std::sqrt(m_eff * p.kn);
+    return {p.kn * delta - onset * cn * vn, p.kn, p.kt_ratio * p.kn, p.ct_ratio * cn};
+  }
+  static double elastic_energy(const PairParams& p, double delta, double) { return 0.5 * p.kn * delta * delta; }
+};
+
+// Hertz-Mindlin: F_n = 4/3 E* sqrt(R* d) d, k_t = 8 G* sqrt(R* d) (Mindlin & Deresiewicz 1953, no-slip
+// limit), damping proportional to d^(1/4) (Tsuji et al. 1992) with the number eta solved for e exactly.
+struct HertzNormal {
+  static NormalResponse evaluate(const PairParams& p, double delta, double vn, double onset, double m_eff,
+                                 double r_eff) {
+    const double sqrt_rd = std::sqrt(r_eff * delta);
+    const double f_elastic = (4.0 / 3.0) * p.e_star * sqrt_rd * delta;
+    const double cn = p.eta * std::sqrt(m_eff * (4.0 / 3.0) * p.e_star * sqrt_rd);
+    const double kt = 8 * p.g_star * sqrt_rd;
+    const double ct = p.eta * std::sqrt((2.0 / 3.0) * kt * m_eff);  // LIGGGHTS' gamma_t with beta -> eta
+    return {f_elastic - onset * cn * vn, 2 * p.e_star * sqrt_rd, kt, ct};
+  }
+  static double elastic_energy(const PairParams& p, double delta, double r_eff) {
+    return (8.0 / 15.0) * p.e_star * std::sqrt(r_eff) * delta * delta * std::sqrt(delta);
+  }
+};
+
+// Turns a stored vector into the current tangent plane, keeping its length (LAMMPS' gran/history practice).
+inline void rotate_into_plane(Vec3& stored, const Vec3& n) {
+  const double before = stored.squaredNorm();
+  if (before == 0) return;
+  stored -= n.dot(stored) * n;
+  const double after = stored.squaredNorm();
+  if (after > 0) stored *= std::sqrt(before / after);
+}
+
+// Tangential spring with history and the Mohr-Coulomb limit |F_s| <= mu F_n (the seeds' eqs. 2-3).
+struct FrictionalTangent {
+  static Vec3 evaluate(const PairParams& p, const NormalResponse& nr, double fn, const Vec3& n,
+                       const Vec3& v_t, double dt, Vec3& shear) {
+    rotate_into_plane(shear, n);
+    shear += v_t * dt;
+    Vec3 fs = -nr.kt * shear - nr.ct * v_t;
+    const double limit = p.mu * fn;
+    const double fs2 = fs.squaredNorm();
+    if (fs2 > limit * limit) {
+      fs *= limit / std::sqrt(fs2);
+      // keep the spring at the length that gives the sliding force (so unloading starts from it)
+      shear = nr.kt > 0 ? Vec3(-(fs + nr.ct * v_t) / nr.kt) : Vec3::Zero();
+    }
+    return fs;
+  }
+};
+
+struct NoRolling {
+  static Vec3 evaluate(const PairParams&, const NormalResponse&, double, const ContactInput&, Vec3*) {
+    return Vec3::Zero();
+  }
+};
+
+// Constant directional torque (Ai et al. 2011, model A): M = -mu_r R* F_n w_r / |w_r|. The torque is
+// capped at the one that stops the relative rolling within this step, so a body at rest does not
+// chatter (the model itself is undefined at w_r = 0).
+struct CdtRolling {
+  static Vec3 evaluate(const PairParams& p, const NormalResponse&, double fn, const ContactInput& c, Vec3*) {
+    Vec3 wr = c.w_rel - c.n.dot(c.w_rel) * c.n;
+    const double w = wr.norm();
+    if (w == 0) return Vec3::Zero();
+    const double moment = std::min(p.mu_r * c.r_eff * fn, c.i_roll * w / c.dt);
+    return -moment / w * wr;
+  }
+};
+
+// Elastic-plastic spring-dashpot (Ai et al. 2011, model C, eqs. 11-16): k_r = 2.25 k_n mu_r^2 R*^2,
+// spring moment limited to mu_r R* F_n, viscous part C_r = 2 eta_r sqrt(I_r k_r) while not sliding.
+struct EpsdRolling {
+  static Vec3 evaluate(const PairParams& p, const NormalResponse& nr, double fn, const ContactInput& c,
+                       Vec3* spring) {
+    Vec3& mk = *spring;
+    const Vec3 wr = c.w_rel - c.n.dot(c.w_rel) * c.n;
+    const double kr = 2.25 * nr.kn_tangent * p.mu_r * p.mu_r * c.r_eff * c.r_eff;
+    rotate_into_plane(mk, c.n);
+    mk -= kr * c.dt * wr;
+    const double limit = p.mu_r * c.r_eff * std::max(fn, 0.0);
+    const double m2 = mk.squaredNorm();
+    if (m2 >= limit * limit) {
+      if (m2 > 0) mk *= limit / std::sqrt(m2);
+      return mk;  // fully mobilised: no damping (f = 0 of Ai et al.)
+    }
+    const double cr = 2 * p.rolling_damping * std::sqrt(c.i_roll * kr);
+    return mk - cr * wr;
+  }
+};
+
+template <class Normal, bool NoTensile, bool Friction, class Rolling>
+struct ContactLaw {
+  static constexpr bool kRolling = !std::is_same_v<Rolling, NoRolling>;
+  static constexpr bool kRollingSpring = std::is_same_v<Rolling, EpsdRolling>;
+  using NormalLaw = Normal;
+
+  static ContactOutput evaluate(const PairParams& p, const ContactInput& c, const ContactHistory& h) {
+    const double vn = c.v_rel.dot(c.n);
+    const NormalResponse nr = Normal::evaluate(p, c.delta, c.vn_now, c.onset, c.m_eff, c.r_eff);
+    const double fn = NoTensile ? std::max(nr.fn, 0.0) : nr.fn;
+    ContactOutput out;
+    out.fn = fn;
+    if constexpr (Friction) {
+      const Vec3 v_t = c.v_rel - vn * c.n;
+      out.shear_force = FrictionalTangent::evaluate(p, nr, std::max(fn, 0.0), c.n, v_t, c.dt, *h.shear);
+    } else {
+      out.shear_force.setZero();
+    }
+    out.force = fn * c.n + out.shear_force;
+    if constexpr (kRolling) out.roll_moment = Rolling::evaluate(p, nr, fn, c, h.roll);
+    else out.roll_moment.setZero();
+    return out;
+  }
+};
+
+}  // namespace dem

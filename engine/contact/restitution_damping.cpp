@@ -1,0 +1,77 @@
+#include "contact/restitution_damping.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+namespace dem {
+namespace {
+
+// Integrates x'' = -force(x, x') from x = 0, x' = 1 until the bodies part (x back to 0) and returns
+// the rebound speed. The force is the repulsive contact force; clamped at zero if asked.
+double dimensionless_rebound(const std::function<double(double, double)>& force, bool no_tensile) {
+  auto accel = [&](double x, double xd) {
+    double f = force(std::max(x, 0.0), xd);
+    if (no_tensile) f = std::max(f, 0.0);
+    return -f;
+  };
+  const double h = 1e-3;  // 1/3000 of the dimensionless contact time: e to ~1e-7 (RK4)
+  double x = 0, xd = 1;
+  for (int step = 0; step < 400'000; ++step) {
+    // RK4 on (x, x')
+    const double k1x = xd, k1v = accel(x, xd);
+    const double k2x = xd + 0.5 * h * k1v, k2v = accel(x + 0.5 * h * k1x, xd + 0.5 * h * k1v);
+    const double k3x = xd + 0.5 * h * k2v, k3v = accel(x + 0.5 * h * k2x, xd + 0.5 * h * k2v);
+    const double k4x = xd + h * k3v, k4v = accel(x + h * k3x, xd + h * k3v);
+    const double xn = x + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+    const double vn = xd + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    if (xn <= 0) {
+      const double s = x / (x - xn);  // interpolate the rebound speed at the crossing
+      return -(xd + s * (vn - xd));
+    }
+    x = xn;
+    xd = vn;
+  }
+  return 0;  // overdamped: the bodies never part
+}
+
+double invert_decreasing(const std::function<double(double)>& e_of, double e, double hi) {
+  if (e >= 1) return 0;
+  double lo = 0;
+  while (e_of(hi) > e) hi *= 2;
+  for (int it = 0; it < 45; ++it) {  // bracket / 2^45: far below the 1e-7 integration error
+    const double mid = 0.5 * (lo + hi);
+    if (e_of(mid) > e) lo = mid; else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+double linear_restitution(double zeta, bool no_tensile_force) {
+  return dimensionless_rebound([zeta](double x, double xd) { return x + 2 * zeta * xd; },
+                               no_tensile_force);
+}
+
+double hertz_restitution(double eta, bool no_tensile_force) {
+  return dimensionless_rebound(
+      [eta](double x, double xd) { return x * std::sqrt(x) + eta * std::sqrt(std::sqrt(x)) * xd; },
+      no_tensile_force);
+}
+
+double linear_damping_ratio(double e, bool no_tensile_force) {
+  if (!no_tensile_force) {
+    // the seeds' eq. 6 (exact for the linear law when tension is allowed)
+    const double l = std::log(e);
+    return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+  }
+  return invert_decreasing([](double z) { return linear_restitution(z, true); }, e, 1.0);
+}
+
+double hertz_damping_number(double e, bool no_tensile_force) {
+  return invert_decreasing([no_tensile_force](double eta) { return hertz_restitution(eta, no_tensile_force); },
+                           e, 2.0);
+}
+
+}  // namespace dem

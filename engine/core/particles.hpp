@@ -1,0 +1,52 @@
+// Per-particle state, one contiguous array per quantity (the hot loops read a few of them at a time).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/vec.hpp"
+
+namespace dem {
+
+struct Particles {
+  std::vector<Vec3> x;  // position
+  std::vector<Vec3> v;  // velocity
+  std::vector<Vec3> w;  // angular velocity
+  std::vector<Vec3> f;  // force of the current step
+  std::vector<Vec3> t;  // torque of the current step
+  std::vector<double> radius;
+  std::vector<double> mass;
+  std::vector<double> inv_mass;     // 0 for a fixed particle
+  std::vector<double> inv_inertia;  // 0 for a fixed particle
+  std::vector<int> material;
+  std::vector<int> id;              // index in the scene (files and observers use it)
+
+  std::size_t size() const { return x.size(); }
+
+  // Reorders every array so that new index k holds old index new_to_old[k].
+  void permute(const std::vector<int>& new_to_old);
+};
+
+// Applies new_to_old to one array (used for per-particle history kept outside Particles too).
+template <class T>
+void permute_array(std::vector<T>& values, const std::vector<int>& new_to_old) {
+  std::vector<T> out(values.size());
+  for (std::size_t k = 0; k < new_to_old.size(); ++k) out[k] = values[new_to_old[k]];
+  values.swap(out);
+}
+
+inline void Particles::permute(const std::vector<int>& new_to_old) {
+  permute_array(x, new_to_old);
+  permute_array(v, new_to_old);
+  permute_array(w, new_to_old);
+  permute_array(f, new_to_old);
+  permute_array(t, new_to_old);
+  permute_array(radius, new_to_old);
+  permute_array(mass, new_to_old);
+  permute_array(inv_mass, new_to_old);
+  permute_array(inv_inertia, new_to_old);
+  permute_array(material, new_to_old);
+  permute_array(id, new_to_old);
+}
+
+}  // namespace dem

@@ -1,0 +1,523 @@
+// Writers and readers of ANIMATION_3D.dat and ForceChain_3D.dat (docs/formats.md, sections 3 and 4).
+#include "legacy/legacy_formats.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <system_error>
+#include <utility>
+
+namespace dem::legacy {
+namespace {
+
+constexpr std::string_view animation_header = "3DA:";
+constexpr std::string_view force_chain_header = "3DF:";
+constexpr std::string_view plate_word = "rplate";
+constexpr std::string_view triangle_word = "tri";
+
+// ---------------------------------------------------------------------------------------------
+// Writing
+
+// How one real is printed: the text printf gives for "%.<precision>e" or "%.<precision>f".
+// std::to_chars produces exactly that text, is much faster than printf and, unlike printf, can
+// never print a decimal comma because of the process's locale.
+struct RealStyle {
+  std::chars_format format;
+  int precision;
+};
+
+constexpr RealStyle scientific{std::chars_format::scientific, 6};
+
+constexpr RealStyle fixed(int decimals) { return {std::chars_format::fixed, decimals}; }
+
+// One frame's text, built in memory so that it reaches the file in a single fwrite: a viewer
+// following a running job never sees a frame we only half wrote.
+class FrameText {
+ public:
+  // A scientific particle line is about 150 characters: one allocation for the whole frame.
+  explicit FrameText(std::size_t line_count) { text_.reserve(line_count * 160 + 64); }
+
+  void word(std::string_view value) {
+    separate();
+    text_.append(value);
+  }
+
+  void integer(long long value) {
+    separate();
+    char digits[32];
+    const auto result = std::to_chars(digits, digits + sizeof digits, value);
+    text_.append(digits, result.ptr);
+  }
+
+  void real(double value, RealStyle style) {
+    separate();
+    // Large enough for "%.6f" of the largest double (309 integer digits).
+    char digits[400];
+    const auto result = std::to_chars(digits, digits + sizeof digits, value, style.format, style.precision);
+    text_.append(digits, result.ptr);
+  }
+
+  void reals(const Vec3& value, RealStyle style) {
+    for (int axis = 0; axis < 3; ++axis) real(value[axis], style);
+  }
+
+  void end_line() {
+    text_.push_back('\n');
+    at_line_start_ = true;
+  }
+
+  void write_to(std::FILE* out) const { std::fwrite(text_.data(), 1, text_.size(), out); }
+
+ private:
+  // Single spaces between values, none at the end of a line.
+  void separate() {
+    if (!at_line_start_) text_.push_back(' ');
+    at_line_start_ = false;
+  }
+
+  std::string text_;
+  bool at_line_start_ = true;
+};
+
+struct AnimationStyles {
+  RealStyle domain;
+  RealStyle scalar;
+  RealStyle corner;  // plate and triangle corners
+  RealStyle position;
+  RealStyle diameter;
+  RealStyle velocity;
+  RealStyle angular_velocity;
+};
+
+AnimationStyles animation_styles(NumberFormat format) {
+  if (format == NumberFormat::Scientific) {
+    return {scientific, scientific, scientific, scientific, scientific, scientific, scientific};
+  }
+  // The widths of BallastDEM's sample frame (manual figure 3.5).
+  return {fixed(3), fixed(4), fixed(3), fixed(2), fixed(4), fixed(2), fixed(2)};
+}
+
+RealStyle force_style(NumberFormat format) {
+  // PDEM-EGD's sample (manual section 3.2 item 6) prints forces with two decimals.
+  return format == NumberFormat::Scientific ? scientific : fixed(2);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading: lines and tokens
+
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+// Reads the input line by line and splits each line into whitespace-separated tokens.
+// std::getline scans the stream buffer directly, so this costs little more than the copy.
+class TokenLines {
+ public:
+  explicit TokenLines(std::istream& in) : in_(in) {}
+
+  // Moves to the next line that holds tokens. Returns false at the end of the input, and also for a
+  // last line without '\n': every writer ends its lines with '\n', so such a line is one a writer
+  // was stopped in the middle of, and its last number may be cut short ("3.25" read as "3.2").
+  bool next() {
+    while (std::getline(in_, line_)) {
+      ++line_number_;
+      const bool has_line_end = !in_.eof();
+      split_line();
+      if (tokens_.empty()) continue;
+      if (!has_line_end) {
+        unfinished_last_line_ = true;
+        return false;
+      }
+      return true;
+    }
+    return false;
+  }
+
+  const std::vector<std::string_view>& tokens() const { return tokens_; }
+  std::string_view token(std::size_t index) const { return tokens_[index]; }
+  std::size_t token_count() const { return tokens_.size(); }
+
+  // The current line's number (1-based, blank lines counted); at the end, the last line read.
+  std::int64_t line_number() const { return line_number_; }
+
+  bool unfinished_last_line() const { return unfinished_last_line_; }
+
+ private:
+  void split_line() {
+    tokens_.clear();
+    const std::string_view text = line_;
+    std::size_t position = 0;
+    while (position < text.size()) {
+      while (position < text.size() && is_blank(text[position])) ++position;
+      const std::size_t start = position;
+      while (position < text.size() && !is_blank(text[position])) ++position;
+      if (position > start) tokens_.push_back(text.substr(start, position - start));
+    }
+  }
+
+  std::istream& in_;
+  std::string line_;
+  std::vector<std::string_view> tokens_;
+  std::int64_t line_number_ = 0;
+  bool unfinished_last_line_ = false;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Reading: numbers
+
+// Integers in id, step and count columns. Old programs sometimes wrote them as reals ("3.0",
+// "1.0E3"): those are accepted when their value is integral.
+std::optional<std::int64_t> parse_integer(std::string_view token) {
+  std::string_view digits = token;
+  if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
+  std::int64_t value = 0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (error == std::errc{} && end == digits.data() + digits.size()) return value;
+
+  const std::optional<double> real = parse_fortran_real(token);
+  if (!real || *real != std::trunc(*real)) return std::nullopt;
+  constexpr double two_to_63 = 9223372036854775808.0;  // exact in a double
+  if (!(*real >= -two_to_63 && *real < two_to_63)) return std::nullopt;
+  return static_cast<std::int64_t>(*real);
+}
+
+// Keeps error messages readable when a line holds binary junk or one enormous token.
+std::string quoted(std::string_view token) {
+  constexpr std::size_t shown = 40;
+  if (token.size() <= shown) return "'" + std::string(token) + "'";
+  return "'" + std::string(token.substr(0, shown)) + "...'";
+}
+
+std::string line_prefix(std::int64_t line_number) { return "line " + std::to_string(line_number) + ": "; }
+
+// Converts the current line's tokens to values, keeping the first problem met. After a problem the
+// getters return 0, so a caller converts a whole line and checks ok() once.
+class LineValues {
+ public:
+  explicit LineValues(const TokenLines& lines) : lines_(lines) {}
+
+  double real(std::size_t column) {
+    const std::optional<double> value = parse_fortran_real(lines_.token(column));
+    if (!value) return fail(column, "is not a number");
+    return *value;
+  }
+
+  Vec3 vec3(std::size_t first_column) {
+    return {real(first_column), real(first_column + 1), real(first_column + 2)};
+  }
+
+  std::int64_t integer64(std::size_t column) {
+    const std::optional<std::int64_t> value = parse_integer(lines_.token(column));
+    if (!value) return fail(column, "is not an integer");
+    return *value;
+  }
+
+  int integer(std::size_t column) {
+    const std::int64_t value = integer64(column);
+    if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
+      return fail(column, "is out of the range of an int");
+    }
+    return static_cast<int>(value);
+  }
+
+  // A number of lines that follow; capped at INT_MAX because ids are ints.
+  std::size_t count(std::size_t column) {
+    const int value = integer(column);
+    if (value < 0) {
+      fail(column, "is a negative count");
+      return 0;
+    }
+    return static_cast<std::size_t>(value);
+  }
+
+  bool ok() const { return problem_.empty(); }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  int fail(std::size_t column, std::string_view what) {
+    if (problem_.empty()) {
+      problem_ = line_prefix(lines_.line_number()) + "column " + std::to_string(column + 1) + " (" +
+                 quoted(lines_.token(column)) + ") " + std::string(what);
+    }
+    return 0;
+  }
+
+  const TokenLines& lines_;
+  std::string problem_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Reading: frames
+
+// Why a frame could not be read.
+struct Stop {
+  bool truncated = false;
+  std::string problem;
+};
+
+Stop malformed(std::string problem) { return {false, std::move(problem)}; }
+
+// What line a frame expects next, for messages: "particle line 12 of 400".
+struct Expected {
+  std::string_view name;    // "particle line"
+  std::string_view layout;  // "id x y z D vx vy vz nc wx wy wz part"
+  std::size_t columns;
+  std::size_t index = 0;  // 1-based index among repeated lines; 0 for a line that occurs once
+  std::size_t total = 0;
+
+  std::string describe() const {
+    std::string text(name);
+    if (index > 0) text += " " + std::to_string(index) + " of " + std::to_string(total);
+    return text;
+  }
+};
+
+// Reads the lines of one frame after its header, with messages that say where the frame began.
+class FrameLines {
+ public:
+  FrameLines(TokenLines& lines, std::string_view header) : lines_(lines), header_(header), first_line_(lines.line_number()) {}
+
+  // Moves to the next line and checks its column count; on failure, says why in a Stop.
+  std::optional<Stop> next(const Expected& expected) {
+    if (!lines_.next()) return ended(expected);
+    if (lines_.token_count() == expected.columns) return std::nullopt;
+    if (lines_.token(0) == header_) {
+      return malformed(line_prefix(lines_.line_number()) + "a new frame starts here, but the frame that starts at line " +
+                       std::to_string(first_line_) + " is incomplete: its " + expected.describe() + " is missing");
+    }
+    return malformed(line_prefix(lines_.line_number()) + "expected " + std::to_string(expected.columns) +
+                     " values on the " + expected.describe() + " (" + std::string(expected.layout) + "), found " +
+                     std::to_string(lines_.token_count()));
+  }
+
+  // Checks the word in a column (the "rplate" of a plate line).
+  std::optional<Stop> check_word(std::size_t column, std::string_view word) const {
+    if (lines_.token(column) == word) return std::nullopt;
+    return malformed(line_prefix(lines_.line_number()) + "column " + std::to_string(column + 1) + " is " +
+                     quoted(lines_.token(column)) + ", expected '" + std::string(word) + "'");
+  }
+
+  LineValues values() const { return LineValues(lines_); }
+
+ private:
+  Stop ended(const Expected& expected) const {
+    std::string problem = "the file ends inside the frame that starts at line " + std::to_string(first_line_) + ": its " +
+                          expected.describe() + " is missing";
+    if (lines_.unfinished_last_line()) {
+      problem += "; the last line (line " + std::to_string(lines_.line_number()) +
+                 ") has no line end, the writer was stopped while writing it";
+    } else {
+      problem += " (the last line is line " + std::to_string(lines_.line_number()) + ")";
+    }
+    return {true, std::move(problem)};
+  }
+
+  TokenLines& lines_;
+  std::string_view header_;
+  std::int64_t first_line_;
+};
+
+std::optional<Stop> check_frame_header(const TokenLines& lines, std::string_view header, std::size_t columns,
+                                       std::string_view layout) {
+  if (lines.token(0) == header && lines.token_count() == columns) return std::nullopt;
+  return malformed(line_prefix(lines.line_number()) + "expected the frame header '" + std::string(layout) + "', found " +
+                   quoted(lines.token(0)) + (lines.token_count() > 1 ? " and more" : ""));
+}
+
+// Reads frames until the input ends or a frame cannot be read. `read_frame` reads one frame whose
+// header line is the current line.
+template <class Frame, class ReadFrame>
+ReadResult<Frame> read_frames(std::istream& in, ReadFrame read_frame) {
+  ReadResult<Frame> result;
+  TokenLines lines(in);
+  while (lines.next()) {
+    Frame frame;
+    if (std::optional<Stop> stop = read_frame(lines, frame)) {
+      result.truncated = stop->truncated;
+      result.problem = std::move(stop->problem);
+      return result;
+    }
+    result.frames.push_back(std::move(frame));
+  }
+  if (lines.unfinished_last_line()) {
+    result.truncated = true;
+    result.problem = "the file ends inside a frame header: the last line (line " + std::to_string(lines.line_number()) +
+                     ") has no line end, the writer was stopped while writing it";
+  }
+  return result;
+}
+
+// Reserving from a count read in the file: a corrupt count must not allocate gigabytes up front.
+std::size_t safe_reserve(std::size_t count) { return std::min<std::size_t>(count, std::size_t{1} << 20); }
+
+// ---------------------------------------------------------------------------------------------
+// ANIMATION_3D.dat
+
+constexpr std::string_view plate_layout = "id rplate x1 y1 z1 x2 y2 z2 x3 y3 z3 x4 y4 z4";
+constexpr std::string_view triangle_layout = "id tri x1 y1 z1 x2 y2 z2 x3 y3 z3";
+constexpr std::string_view particle_layout = "id x y z D vx vy vz nc wx wy wz part";
+
+std::optional<Stop> read_animation_frame(TokenLines& lines, AnimationFrame& frame) {
+  if (auto stop = check_frame_header(lines, animation_header, 1, animation_header)) return stop;
+  FrameLines frame_lines(lines, animation_header);
+
+  if (auto stop = frame_lines.next({"domain line", "xmin xmax ymin ymax zmin zmax", 6})) return stop;
+  LineValues domain = frame_lines.values();
+  for (std::size_t k = 0; k < frame.domain.size(); ++k) frame.domain[k] = domain.real(k);
+  if (!domain.ok()) return malformed(domain.problem());
+
+  if (auto stop = frame_lines.next({"scalar line", "s1 s2 s3 s4", 4})) return stop;
+  LineValues scalars = frame_lines.values();
+  for (std::size_t k = 0; k < frame.scalars.size(); ++k) frame.scalars[k] = scalars.real(k);
+  if (!scalars.ok()) return malformed(scalars.problem());
+
+  if (auto stop = frame_lines.next({"triangle count line", "NT", 1})) return stop;
+  LineValues triangle_count_values = frame_lines.values();
+  const std::size_t triangle_count = triangle_count_values.count(0);
+  if (!triangle_count_values.ok()) return malformed(triangle_count_values.problem());
+
+  if (auto stop = frame_lines.next({"count line", "step NP NW", 3})) return stop;
+  LineValues counts = frame_lines.values();
+  frame.step = counts.integer64(0);
+  const std::size_t particle_count = counts.count(1);
+  const std::size_t plate_count = counts.count(2);
+  if (!counts.ok()) return malformed(counts.problem());
+
+  frame.plates.reserve(safe_reserve(plate_count));
+  for (std::size_t k = 0; k < plate_count; ++k) {
+    if (auto stop = frame_lines.next({"plate line", plate_layout, 14, k + 1, plate_count})) return stop;
+    if (auto stop = frame_lines.check_word(1, plate_word)) return stop;
+    LineValues values = frame_lines.values();
+    AnimationPlate& plate = frame.plates.emplace_back();
+    plate.id = values.integer(0);
+    for (std::size_t corner = 0; corner < 4; ++corner) plate.corners[corner] = values.vec3(2 + 3 * corner);
+    if (!values.ok()) return malformed(values.problem());
+  }
+
+  frame.triangles.reserve(safe_reserve(triangle_count));
+  for (std::size_t k = 0; k < triangle_count; ++k) {
+    if (auto stop = frame_lines.next({"triangle line", triangle_layout, 11, k + 1, triangle_count})) return stop;
+    if (auto stop = frame_lines.check_word(1, triangle_word)) return stop;
+    LineValues values = frame_lines.values();
+    AnimationTriangle& triangle = frame.triangles.emplace_back();
+    triangle.id = values.integer(0);
+    for (std::size_t corner = 0; corner < 3; ++corner) triangle.corners[corner] = values.vec3(2 + 3 * corner);
+    if (!values.ok()) return malformed(values.problem());
+  }
+
+  frame.particles.reserve(safe_reserve(particle_count));
+  for (std::size_t k = 0; k < particle_count; ++k) {
+    if (auto stop = frame_lines.next({"particle line", particle_layout, 13, k + 1, particle_count})) return stop;
+    LineValues values = frame_lines.values();
+    AnimationParticle& particle = frame.particles.emplace_back();
+    particle.id = values.integer(0);
+    particle.position = values.vec3(1);
+    particle.diameter = values.real(4);
+    particle.velocity = values.vec3(5);
+    particle.contacts = values.integer(8);
+    particle.angular_velocity = values.vec3(9);
+    particle.part = values.integer(12);
+    if (!values.ok()) return malformed(values.problem());
+  }
+  return std::nullopt;
+}
+
+// ---------------------------------------------------------------------------------------------
+// ForceChain_3D.dat
+
+constexpr std::string_view chain_layout = "i i-1 j Fn Ft";
+
+std::optional<Stop> read_force_chain_frame(TokenLines& lines, ForceChainFrame& frame) {
+  if (auto stop = check_frame_header(lines, force_chain_header, 3, "3DF: step NC")) return stop;
+  LineValues header = LineValues(lines);
+  frame.step = header.integer64(1);
+  const std::size_t chain_count = header.count(2);
+  if (!header.ok()) return malformed(header.problem());
+
+  FrameLines frame_lines(lines, force_chain_header);
+  frame.chains.reserve(safe_reserve(chain_count));
+  for (std::size_t k = 0; k < chain_count; ++k) {
+    if (auto stop = frame_lines.next({"chain line", chain_layout, 5, k + 1, chain_count})) return stop;
+    LineValues values = frame_lines.values();
+    ForceChain& chain = frame.chains.emplace_back();
+    chain.i = values.integer(0);
+    // Column 2 repeats i - 1 (a 0-based copy of i in the legacy writer); it carries nothing new.
+    chain.j = values.integer(2);
+    chain.normal_force = values.real(3);
+    chain.tangential_force = values.real(4);
+    if (!values.ok()) return malformed(values.problem());
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+void write_animation_frame(std::FILE* out, const AnimationFrame& frame, NumberFormat format) {
+  const AnimationStyles styles = animation_styles(format);
+  FrameText text(5 + frame.plates.size() + frame.triangles.size() + frame.particles.size());
+
+  text.word(animation_header);
+  text.end_line();
+  for (double value : frame.domain) text.real(value, styles.domain);
+  text.end_line();
+  for (double value : frame.scalars) text.real(value, styles.scalar);
+  text.end_line();
+  text.integer(static_cast<long long>(frame.triangles.size()));
+  text.end_line();
+  text.integer(frame.step);
+  text.integer(static_cast<long long>(frame.particles.size()));
+  text.integer(static_cast<long long>(frame.plates.size()));
+  text.end_line();
+
+  for (const AnimationPlate& plate : frame.plates) {
+    text.integer(plate.id);
+    text.word(plate_word);
+    for (const Vec3& corner : plate.corners) text.reals(corner, styles.corner);
+    text.end_line();
+  }
+  for (const AnimationTriangle& triangle : frame.triangles) {
+    text.integer(triangle.id);
+    text.word(triangle_word);
+    for (const Vec3& corner : triangle.corners) text.reals(corner, styles.corner);
+    text.end_line();
+  }
+  for (const AnimationParticle& particle : frame.particles) {
+    text.integer(particle.id);
+    text.reals(particle.position, styles.position);
+    text.real(particle.diameter, styles.diameter);
+    text.reals(particle.velocity, styles.velocity);
+    text.integer(particle.contacts);
+    text.reals(particle.angular_velocity, styles.angular_velocity);
+    text.integer(particle.part);
+    text.end_line();
+  }
+  text.write_to(out);
+}
+
+void write_force_chain_frame(std::FILE* out, const ForceChainFrame& frame, NumberFormat format) {
+  const RealStyle style = force_style(format);
+  FrameText text(1 + frame.chains.size());
+
+  text.word(force_chain_header);
+  text.integer(frame.step);
+  text.integer(static_cast<long long>(frame.chains.size()));
+  text.end_line();
+  for (const ForceChain& chain : frame.chains) {
+    text.integer(chain.i);
+    text.integer(static_cast<long long>(chain.i) - 1);
+    text.integer(chain.j);
+    text.real(chain.normal_force, style);
+    text.real(chain.tangential_force, style);
+    text.end_line();
+  }
+  text.write_to(out);
+}
+
+ReadResult<AnimationFrame> read_animation(std::istream& in) {
+  return read_frames<AnimationFrame>(in, read_animation_frame);
+}
+
+ReadResult<ForceChainFrame> read_force_chains(std::istream& in) {
+  return read_frames<ForceChainFrame>(in, read_force_chain_frame);
+}
+
+}  // namespace dem::legacy

@@ -1,0 +1,133 @@
+#include "neighbor/neighbor_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "neighbor/cell_grid.hpp"
+
+namespace dem {
+namespace {
+
+struct SizeLevel {
+  double r_max = 0;
+  std::vector<int> members;
+};
+
+// Radii within a factor 2 share a level.
+std::vector<SizeLevel> size_levels(const std::vector<double>& radius) {
+  const double r_min = *std::min_element(radius.begin(), radius.end());
+  std::vector<SizeLevel> levels;
+  for (std::size_t i = 0; i < radius.size(); ++i) {
+    const int level = r_min > 0 ? std::max(0, static_cast<int>(std::floor(std::log2(radius[i] / r_min)))) : 0;
+    if (level >= static_cast<int>(levels.size())) levels.resize(level + 1);
+    levels[level].members.push_back(static_cast<int>(i));
+    levels[level].r_max = std::max(levels[level].r_max, radius[i]);
+  }
+  levels.erase(std::remove_if(levels.begin(), levels.end(), [](const SizeLevel& l) { return l.members.empty(); }),
+               levels.end());
+  return levels;
+}
+
+void bounding_box(const std::vector<Vec3>& x, Vec3& lo, Vec3& hi) {
+  lo = hi = x[0];
+  for (const Vec3& p : x) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+}
+
+// Index of `j` in the sorted row of `i` of `list`, or -1.
+int find_pair(const NeighborList& list, int i, int j) {
+  if (i < 0 || i + 1 >= static_cast<int>(list.row_start.size())) return -1;
+  const auto begin = list.partner.begin() + list.row_start[i];
+  const auto end = list.partner.begin() + list.row_start[i + 1];
+  const auto it = std::lower_bound(begin, end, j);
+  return (it != end && *it == j) ? static_cast<int>(it - list.partner.begin()) : -1;
+}
+
+}  // namespace
+
+void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options, const NeighborList& previous,
+                         const std::vector<int>& new_to_old, NeighborList& next) {
+  const int n = static_cast<int>(p.size());
+  next.row_start.assign(n + 1, 0);
+  next.partner.clear();
+  if (n == 0) return;
+
+  Vec3 lo, hi;
+  bounding_box(p.x, lo, hi);
+  std::vector<SizeLevel> levels = size_levels(p.radius);
+  std::vector<CellGrid> grids;
+  for (const SizeLevel& level : levels) {
+    grids.emplace_back(lo, hi, 2 * level.r_max + options.skin, 4 * level.members.size() + 64);
+    grids.back().fill(p.x, level.members);
+  }
+
+  // Rows are found in fixed blocks (independent of the thread count) and joined in block order.
+  constexpr int kBlock = 512;
+  const int blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::vector<int>> block_partners(blocks);
+#pragma omp parallel for schedule(dynamic)
+  for (int b = 0; b < blocks; ++b) {
+    std::vector<int>& out = block_partners[b];
+    std::vector<int> row;
+    for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      row.clear();
+      const Vec3 xi = p.x[i];
+      const double ri = p.radius[i];
+      for (std::size_t l = 0; l < grids.size(); ++l) {
+        grids[l].for_each_near(xi, ri + levels[l].r_max + options.skin, [&](int j) {
+          if (j <= i) return;
+          const double cut = ri + p.radius[j] + options.skin;
+          if ((p.x[j] - xi).squaredNorm() < cut * cut) row.push_back(j);
+        });
+      }
+      std::sort(row.begin(), row.end());
+      next.row_start[i + 1] = static_cast<int>(row.size());
+      out.insert(out.end(), row.begin(), row.end());
+    }
+  }
+  for (int i = 0; i < n; ++i) next.row_start[i + 1] += next.row_start[i];
+  next.partner.resize(next.row_start[n]);
+  for (int b = 0; b < blocks; ++b)
+    std::copy(block_partners[b].begin(), block_partners[b].end(), next.partner.begin() + next.row_start[b * kBlock]);
+
+  // Carry the history of pairs that were already listed.
+  const std::size_t pairs = next.partner.size();
+  next.shear.assign(pairs, Vec3::Zero());
+  if (options.keep_rolling_history) next.roll.assign(pairs, Vec3::Zero());
+  else next.roll.clear();
+  if (previous.partner.empty()) return;
+  const bool keep_roll = options.keep_rolling_history && !previous.roll.empty();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const int oi = new_to_old.empty() ? i : new_to_old[i];
+    for (int k = next.row_start[i]; k < next.row_start[i + 1]; ++k) {
+      const int oj = new_to_old.empty() ? next.partner[k] : new_to_old[next.partner[k]];
+      const int old = oi < oj ? find_pair(previous, oi, oj) : find_pair(previous, oj, oi);
+      if (old < 0) continue;
+      const double sign = oi < oj ? 1.0 : -1.0;
+      next.shear[k] = sign * previous.shear[old];
+      if (keep_roll) next.roll[k] = sign * previous.roll[old];
+    }
+  }
+}
+
+std::vector<int> spatial_order(const Particles& p, double cell_size) {
+  const int n = static_cast<int>(p.size());
+  std::vector<int> order(n);
+  if (n == 0) return order;
+  Vec3 lo, hi;
+  bounding_box(p.x, lo, hi);
+  CellGrid grid(lo, hi, cell_size, static_cast<std::size_t>(n) + 64);
+  std::vector<int> cell(n);
+  for (int i = 0; i < n; ++i) {
+    const auto c = grid.cell_of(p.x[i]);
+    cell[i] = grid.linear(c[0], c[1], c[2]);
+    order[i] = i;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return cell[a] < cell[b]; });
+  return order;
+}
+
+}  // namespace dem

@@ -1,0 +1,41 @@
+// Verlet neighbour list: for each particle i the particles j > i closer than r_i + r_j + skin, in
+// compressed rows, with the contact history of each pair stored beside it.
+//
+// Search: one cell grid per size level (radii within a factor 2), so a 10:1 size ratio does not
+// make small particles scan cells sized for the large ones. Each particle scans every level with
+// the reach r_i + r_max(level) + skin and keeps j > i. Rows are sorted, so the list, and everything
+// computed from it, is the same whatever the number of threads.
+#pragma once
+
+#include <vector>
+
+#include "core/particles.hpp"
+
+namespace dem {
+
+struct NeighborList {
+  std::vector<int> row_start;  // size n + 1
+  std::vector<int> partner;    // j of each pair, ascending within a row
+  std::vector<Vec3> shear;     // tangential spring per pair
+  std::vector<Vec3> roll;      // rolling spring per pair (empty unless the rolling law has one)
+
+  std::size_t pair_count() const { return partner.size(); }
+  int row_of_pair_start(int i) const { return row_start[i]; }
+};
+
+struct NeighborBuildOptions {
+  double skin = 0;
+  bool keep_rolling_history = false;
+};
+
+// Builds `next` from the particles; history is carried over from `previous` (whose indices are old
+// indices: new index k was old index new_to_old[k]; pass an empty map when nothing was re-sorted).
+// When the roles of a pair swap (old j < old i), its stored vectors change sign.
+void build_neighbor_list(const Particles& particles, const NeighborBuildOptions& options,
+                         const NeighborList& previous, const std::vector<int>& new_to_old,
+                         NeighborList& next);
+
+// A permutation (new_to_old) that orders particles along a cell grid, for memory locality.
+std::vector<int> spatial_order(const Particles& particles, double cell_size);
+
+}  // namespace dem

@@ -1,0 +1,52 @@
+// Observers that write the legacy files (docs/formats.md) into a run folder as the run goes:
+// every frame is written whole and flushed, so the file is readable up to its last frame even if
+// the process is killed.
+#pragma once
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "legacy/legacy_formats.hpp"
+#include "sim/runner.hpp"
+
+namespace dem {
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+// Opens `path` for writing; throws std::runtime_error naming the path and the system's reason.
+FilePtr open_for_writing(const std::string& path);
+
+// ANIMATION_3D.dat: particles (and plates) in the scene's file length unit.
+class AnimationWriter final : public Observer {
+ public:
+  AnimationWriter(const std::string& path, const Simulation& sim);
+  void frame(const Simulation& sim) override;
+
+  // The frame the writer would write now (exposed for the server's frame stream and for tests).
+  static legacy::AnimationFrame make_frame(const Simulation& sim, const std::array<double, 6>& domain);
+
+ private:
+  FilePtr file_;
+  std::array<double, 6> domain_{};
+};
+
+// ForceChain_3D.dat: particle-particle contacts, i < j by 1-based particle id, sorted by i.
+class ForceChainWriter final : public Observer {
+ public:
+  explicit ForceChainWriter(const std::string& path);
+  void frame(const Simulation& sim) override;
+
+  static legacy::ForceChainFrame make_frame(const Simulation& sim);
+
+ private:
+  FilePtr file_;
+};
+
+// The domain box written in each frame header: the scene's, or the initial extent of the bodies.
+std::array<double, 6> frame_domain(const Simulation& sim);
+
+}  // namespace dem

@@ -1,0 +1,31 @@
+// The force loop, written once and instantiated per contact law (sim/kernel_select.cpp picks one).
+#pragma once
+
+#include <memory>
+
+#include "core/scene.hpp"
+#include "sim/state.hpp"
+
+namespace dem {
+
+struct ContactSummary {
+  double max_overlap_fraction = 0;  // overlap / smaller radius
+  int worst_particle = -1;          // index of the particle with that overlap
+  double elastic_energy = 0;        // stored in the normal springs
+  std::size_t contacts = 0;
+};
+
+class ForceKernel {
+ public:
+  virtual ~ForceKernel() = default;
+  // Computes forces and torques of every particle from the current positions and velocities,
+  // updating the contact history, then completes the velocity update (the second half kick).
+  virtual void compute_and_kick(SimState& state) = 0;
+  // Overlaps and stored elastic energy of the current contacts, for the stability guard.
+  virtual ContactSummary summarize(const SimState& state) const = 0;
+  virtual bool has_rolling_spring() const = 0;
+};
+
+std::unique_ptr<ForceKernel> select_kernel(const Scene& scene, bool has_walls);
+
+}  // namespace dem

@@ -1,0 +1,58 @@
+#include "sim/runner.hpp"
+
+#include <chrono>
+
+#include "core/errors.hpp"
+#include "sim/stability_guard.hpp"
+
+namespace dem {
+
+RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const RunOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  RunOutcome outcome;
+  const std::int64_t total = sim.total_steps();
+  const std::int64_t every = sim.scene().outputs.every_steps;
+  const int check_every = std::max(1, sim.scene().numerics.check_interval);
+  const StabilityGuard guard(sim);
+  auto frame = [&] {
+    for (Observer* o : observers) o->frame(sim);
+  };
+  const auto start = Clock::now();
+  auto last_report = start;
+  std::int64_t steps_at_report = sim.step_count();
+  try {
+    guard.check(sim);
+    frame();
+    while (sim.step_count() < total) {
+      if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+        outcome.cancelled = true;
+        outcome.ok = false;
+        outcome.error = "cancelled";
+        break;
+      }
+      sim.step();
+      const std::int64_t s = sim.step_count();
+      if (s % check_every == 0 || s == total) guard.check(sim);
+      if ((every > 0 && s % every == 0) || s == total) frame();
+      if (options.on_progress) {
+        const auto now = Clock::now();
+        const double since = std::chrono::duration<double>(now - last_report).count();
+        if (since >= options.progress_seconds || s == total) {
+          const double rate = static_cast<double>(s - steps_at_report) / std::max(since, 1e-9);
+          options.on_progress({s, total, rate, rate > 0 ? static_cast<double>(total - s) / rate : 0});
+          last_report = now;
+          steps_at_report = s;
+        }
+      }
+    }
+  } catch (const InstabilityError& e) {
+    outcome.ok = false;
+    outcome.error = e.what();
+  }
+  outcome.steps = sim.step_count();
+  outcome.loop_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  for (Observer* o : observers) o->finish(sim, outcome);
+  return outcome;
+}
+
+}  // namespace dem

@@ -1,0 +1,45 @@
+// Runs a simulation to its end, calling observers between steps (never inside the force loop).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sim/simulation.hpp"
+
+namespace dem {
+
+struct RunOutcome {
+  bool ok = true;
+  bool cancelled = false;
+  std::string error;  // set when !ok
+  std::int64_t steps = 0;
+  double loop_seconds = 0;  // wall time of the stepping loop, observers included
+};
+
+// Observers see the simulation at frame times: the first step, every outputs.every_steps, the last.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void frame(const Simulation& sim) = 0;
+  virtual void finish(const Simulation&, const RunOutcome&) {}
+};
+
+struct Progress {
+  std::int64_t step;
+  std::int64_t total;
+  double steps_per_second;
+  double seconds_left;
+};
+
+struct RunOptions {
+  std::function<void(const Progress&)> on_progress;  // called about every progress_seconds
+  double progress_seconds = 0.5;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const RunOptions& options = {});
+
+}  // namespace dem

@@ -1,0 +1,77 @@
+#include "sim/stability_guard.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/errors.hpp"
+
+namespace dem {
+namespace {
+
+std::string where(const Simulation& sim, int index) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "at step %lld (t = %.6e s), particle %d", static_cast<long long>(sim.step_count()),
+                sim.time(), sim.particles().id[index] + 1);
+  return buf;
+}
+
+}  // namespace
+
+StabilityGuard::StabilityGuard(const Simulation& sim) {
+  const ContactSummary contacts = sim.contact_summary();
+  initial_energy_ = mechanical_energy(sim, contacts);
+  // What could legitimately move around: the kinetic and elastic energy now, and the potential
+  // energy of a fall across the whole particle cloud.
+  const Particles& p = sim.particles();
+  double mass = 0;
+  Vec3 lo = Vec3::Constant(1e300), hi = -lo;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    mass += p.mass[i];
+    lo = lo.cwiseMin(p.x[i]);
+    hi = hi.cwiseMax(p.x[i]);
+  }
+  const double height = p.size() > 0 ? (hi - lo).norm() + 2 * p.radius[0] : 0;
+  energy_scale_ = sim.kinetic_energy() + contacts.elastic_energy + mass * sim.state().gravity.norm() * height;
+}
+
+double StabilityGuard::mechanical_energy(const Simulation& sim, const ContactSummary& contacts) const {
+  return sim.kinetic_energy() + sim.gravitational_energy() + contacts.elastic_energy;
+}
+
+void StabilityGuard::check(const Simulation& sim) const {
+  const Particles& p = sim.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.x[i].allFinite() || !p.v[i].allFinite() || !p.w[i].allFinite()) {
+      throw InstabilityError("unstable: position or velocity is not a number " + where(sim, static_cast<int>(i)) +
+                             "; likely cause: the time step is too large for the contact stiffness (" +
+                             sim.time_step().describe() + ")");
+    }
+  }
+  const ContactSummary contacts = sim.contact_summary();
+  const double limit = sim.scene().numerics.max_overlap_fraction;
+  if (contacts.max_overlap_fraction > limit) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "unstable: overlap of %.3g times the radius (limit %.3g) ",
+                  contacts.max_overlap_fraction, limit);
+    throw InstabilityError(buf + where(sim, contacts.worst_particle) +
+                           "; likely cause: the contact stiffness is too low for the load, or the time step "
+                           "too large (" + sim.time_step().describe() + ")");
+  }
+  // Damping and friction only take energy out; allow for integration error and unseen springs.
+  const double energy = mechanical_energy(sim, contacts);
+  if (energy > initial_energy_ + 0.05 * energy_scale_ + 1e-300) {
+    // name the fastest particle: that is where the energy went
+    std::size_t fastest = 0;
+    for (std::size_t i = 1; i < p.size(); ++i)
+      if (p.v[i].squaredNorm() > p.v[fastest].squaredNorm()) fastest = i;
+    char buf[240];
+    std::snprintf(buf, sizeof buf, "unstable: mechanical energy grew from %.6e J to %.6e J with no source ",
+                  initial_energy_, energy);
+    throw InstabilityError(buf + where(sim, static_cast<int>(fastest)) +
+                           " (the fastest); likely cause: the time step is too large for the contact stiffness (" +
+                           sim.time_step().describe() + ")");
+  }
+}
+
+}  // namespace dem

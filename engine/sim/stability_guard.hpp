@@ -1,0 +1,23 @@
+// Stops a run that has gone unstable, with a message a user can act on: a NaN, an overlap beyond a
+// fraction of the radius, or mechanical energy growing with nothing to feed it.
+#pragma once
+
+#include "sim/simulation.hpp"
+
+namespace dem {
+
+class StabilityGuard {
+ public:
+  explicit StabilityGuard(const Simulation& sim);
+  // Throws InstabilityError naming the step, the particle (its scene id, 1-based as in the files)
+  // and the likely cause.
+  void check(const Simulation& sim) const;
+
+ private:
+  double mechanical_energy(const Simulation& sim, const ContactSummary& contacts) const;
+
+  double initial_energy_ = 0;
+  double energy_scale_ = 0;
+};
+
+}  // namespace dem

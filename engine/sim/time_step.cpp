@@ -1,0 +1,130 @@
+#include "sim/time_step.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <set>
+
+#include "core/errors.hpp"
+
+namespace dem {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Smallest {
+  double mass = kInf;
+  double radius = kInf;
+};
+
+// Linear: T = pi / sqrt(K_n/m* (1 - zeta^2)) (the seeds' eq. 7 with m* the reduced mass). Past
+// zeta = 0.5 (e < 0.2 with tension; the no-tension fit reaches zeta > 1) the dashpot, not the spring,
+// sets the time scale: T = pi / (omega sqrt(3/4) 2 zeta), which joins eq. 7 at zeta = 0.5.
+double linear_contact_time(const PairParams& p, double m_eff) {
+  if (p.kn <= 0) return kInf;
+  const double omega = std::sqrt(p.kn / m_eff);
+  if (p.zeta <= 0.5) return std::numbers::pi / (omega * std::sqrt(1 - p.zeta * p.zeta));
+  return std::numbers::pi / (omega * std::sqrt(0.75) * 2 * p.zeta);
+}
+
+// Hertz: t_c = 2.9432 alpha_max / V, alpha_max = (15 m* V^2 / (16 sqrt(R*) E*))^(2/5) (validation.md 1).
+// A damping number eta > 1 (e < 0.4 without tension) makes the dashpot the faster process: the time
+// scale shrinks by eta, as the linear one does by 2 zeta.
+double hertz_contact_time(const PairParams& p, double m_eff, double r_eff, double v) {
+  if (p.e_star <= 0) return kInf;
+  const double alpha = std::pow(15 * m_eff * v * v / (16 * std::sqrt(r_eff) * p.e_star), 0.4);
+  return 2.9432 * alpha / v / std::max(1.0, p.eta);
+}
+
+// A characteristic impact speed: twice the fastest initial particle, or a fall across the scene.
+double reference_speed(const Scene& scene) {
+  double v0 = 0;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;
+  for (const ParticleInit& p : scene.particles) {
+    v0 = std::max(v0, p.velocity.norm());
+    lo = lo.cwiseMin(p.position);
+    hi = hi.cwiseMax(p.position);
+  }
+  double fall = 0;
+  const double g = scene.gravity.norm();
+  if (g > 0 && !scene.particles.empty()) fall = std::sqrt(2 * g * std::abs((hi - lo).dot(scene.gravity / g)) + 1e-300);
+  return std::max({2 * v0, fall, 0.1});
+}
+
+}  // namespace
+
+std::string TimeStepReport::describe() const {
+  char buf[320];
+  std::snprintf(buf, sizeof buf, "dt = %.6e s (%s); shortest contact time %.6e s", dt,
+                automatic ? "automatic" : "given", contact_time);
+  std::string s = buf;
+  if (rayleigh_time > 0) {
+    std::snprintf(buf, sizeof buf, " at %.3g m/s; Rayleigh time %.6e s", reference_speed, rayleigh_time);
+    s += buf;
+  }
+  std::snprintf(buf, sizeof buf, "; stable limit %.6e s", stable_limit);
+  return s + buf;
+}
+
+TimeStepReport choose_time_step(const Scene& scene, const PairTable& table) {
+  const int materials = static_cast<int>(scene.materials.size());
+  std::vector<Smallest> smallest(materials);
+  for (const ParticleInit& p : scene.particles) {
+    const double m = scene.materials[p.material].density * 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
+    smallest[p.material].mass = std::min(smallest[p.material].mass, m);
+    smallest[p.material].radius = std::min(smallest[p.material].radius, p.radius);
+  }
+  std::set<int> wall_materials;
+  for (const WallInit& w : scene.walls) wall_materials.insert(w.material);
+
+  TimeStepReport r;
+  const bool hertz = scene.contact.normal == NormalModel::Hertz;
+  if (hertz) r.reference_speed = reference_speed(scene);
+  double t_min = kInf, rayleigh_min = kInf;
+  for (int a = 0; a < materials; ++a) {
+    if (smallest[a].mass == kInf) continue;
+    auto consider = [&](const PairParams& p, double m_eff, double r_eff) {
+      t_min = std::min(t_min, hertz ? hertz_contact_time(p, m_eff, r_eff, r.reference_speed)
+                                    : linear_contact_time(p, m_eff));
+    };
+    for (int b = 0; b < materials; ++b) {
+      if (smallest[b].mass == kInf) continue;
+      const Smallest& sa = smallest[a];
+      const Smallest& sb = smallest[b];
+      consider(table(a, b), sa.mass * sb.mass / (sa.mass + sb.mass), sa.radius * sb.radius / (sa.radius + sb.radius));
+    }
+    for (int w : wall_materials) consider(table(a, w), smallest[a].mass, smallest[a].radius);
+    if (hertz) {
+      const Material& m = scene.materials[a];
+      const double shear_modulus = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
+      rayleigh_min = std::min(rayleigh_min, std::numbers::pi * smallest[a].radius * std::sqrt(m.density / shear_modulus) /
+                                                (0.1631 * m.poisson_ratio + 0.8766));
+    }
+  }
+  if (t_min == kInf) t_min = 1.0;  // nothing can touch: any step resolves the free flight
+  r.contact_time = t_min;
+  r.rayleigh_time = hertz ? rayleigh_min : 0;
+  // Fewer than 10 steps per contact does not resolve it; past ~t_c/3 velocity Verlet is unstable.
+  r.stable_limit = hertz ? std::min(t_min / 10, rayleigh_min) : t_min / 10;
+  const double automatic = hertz ? std::min(scene.time.dt_fraction * t_min, 0.2 * rayleigh_min)
+                                 : scene.time.dt_fraction * t_min;
+  if (scene.time.dt > 0) {
+    r.automatic = false;
+    r.dt = scene.time.dt;
+    if (r.dt > r.stable_limit && !scene.time.allow_unstable_dt) {
+      char buf[400];
+      std::snprintf(buf, sizeof buf,
+                    "time.dt: %.6e s is above the stable limit %.6e s (shortest contact time %.6e s / 10); "
+                    "use a smaller dt, leave dt at 0 for an automatic one, or set time.allowUnstableDt",
+                    r.dt, r.stable_limit, t_min);
+      throw SceneError(buf);
+    }
+  } else {
+    r.dt = automatic;
+  }
+  return r;
+}
+
+}  // namespace dem

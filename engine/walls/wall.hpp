@@ -1,0 +1,32 @@
+// Analytic walls: infinite planes (one-sided) and planar quadrilateral plates (two-sided, the seeds'
+// rplate), with the closest-point query the contact loop needs.
+#pragma once
+
+#include <array>
+
+#include "core/scene.hpp"
+
+namespace dem {
+
+struct Wall {
+  enum class Kind { Plane, Plate };
+  Kind kind = Kind::Plane;
+  int material = 0;
+  Vec3 point = Vec3::Zero();   // plane: a point; plate: corner 1
+  Vec3 normal = Vec3::UnitZ(); // unit
+  std::array<Vec3, 4> corners; // plate only, counter-clockwise about `normal`
+
+  static Wall from(const WallInit& init);
+
+  // For a sphere at x of radius r: true if it overlaps the wall; then n (unit, wall -> sphere) and
+  // the overlap delta. A sphere behind a plane still touches it (pushed back out along the normal).
+  bool contact(const Vec3& x, double r, Vec3& n, double& delta) const;
+
+  // Distance from x to the wall's solid (negative behind a plane), for candidate lists.
+  double distance(const Vec3& x) const;
+
+ private:
+  Vec3 closest_on_plate(const Vec3& x) const;
+};
+
+}  // namespace dem

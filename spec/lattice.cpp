@@ -1,0 +1,58 @@
+#include "spec/lattice.hpp"
+
+#include <array>
+#include <cmath>
+
+namespace dem::spec {
+namespace {
+
+bool inside(const Vec3& c, const Vec3& lo, const Vec3& hi, double r) {
+  const double eps = 1e-12 * (hi - lo).norm();
+  for (int d = 0; d < 3; ++d)
+    if (c[d] - r < lo[d] - eps || c[d] + r > hi[d] + eps) return false;
+  return true;
+}
+
+int cells(double length, double step) { return static_cast<int>(std::floor(length / step)) + 2; }
+
+}  // namespace
+
+std::vector<Vec3> lattice_sites(LatticeKind kind, const Vec3& lo, const Vec3& hi, double radius, double spacing) {
+  const double s = spacing * 2 * radius;  // nearest-neighbour distance
+  const Vec3 start = lo + Vec3::Constant(radius);
+  const Vec3 extent = hi - lo;
+  std::vector<Vec3> out;
+  if (kind == LatticeKind::Cubic) {
+    for (int k = 0; k < cells(extent.z(), s); ++k)
+      for (int j = 0; j < cells(extent.y(), s); ++j)
+        for (int i = 0; i < cells(extent.x(), s); ++i) {
+          const Vec3 c = start + s * Vec3(i, j, k);
+          if (inside(c, lo, hi, radius)) out.push_back(c);
+        }
+  } else if (kind == LatticeKind::Fcc) {
+    // cubic cell of side a = sqrt(2) s with four sites; taken in half-cell layers so the order is by z
+    const double a = std::sqrt(2.0) * s;
+    const double h = a / 2;
+    for (int k = 0; k < cells(extent.z(), h); ++k)
+      for (int j = 0; j < cells(extent.y(), h); ++j)
+        for (int i = 0; i < cells(extent.x(), h); ++i) {
+          if ((i + j + k) % 2 != 0) continue;  // fcc sites are the even points of the half-cell grid
+          const Vec3 c = start + h * Vec3(i, j, k);
+          if (inside(c, lo, hi, radius)) out.push_back(c);
+        }
+  } else {
+    // hexagonal close packing: triangular layers, ABAB stacked at s sqrt(2/3)
+    const double row = s * std::sqrt(3.0) / 2, layer = s * std::sqrt(2.0 / 3.0);
+    for (int k = 0; k < cells(extent.z(), layer); ++k) {
+      const Vec3 shift = (k % 2) ? Vec3(s / 2, s / (2 * std::sqrt(3.0)), 0) : Vec3::Zero();
+      for (int j = 0; j < cells(extent.y(), row); ++j)
+        for (int i = 0; i < cells(extent.x(), s); ++i) {
+          const Vec3 c = start + shift + Vec3(s * (i + 0.5 * (j % 2)), row * j, layer * k);
+          if (inside(c, lo, hi, radius)) out.push_back(c);
+        }
+    }
+  }
+  return out;
+}
+
+}  // namespace dem::spec

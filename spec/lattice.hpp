@@ -1,0 +1,15 @@
+// Particle centres on a lattice filling a box: every sphere lies wholly inside it.
+#pragma once
+
+#include <vector>
+
+#include "core/vec.hpp"
+
+namespace dem::spec {
+
+enum class LatticeKind { Cubic, Fcc, Hex };
+
+// spacing: nearest-neighbour distance over the diameter. Order: z layers, then y rows, then x.
+std::vector<Vec3> lattice_sites(LatticeKind kind, const Vec3& lo, const Vec3& hi, double radius, double spacing);
+
+}  // namespace dem::spec

@@ -1,0 +1,367 @@
+#include "spec/spec_loader.hpp"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "spec/lattice.hpp"
+
+namespace dem::spec {
+namespace {
+
+std::string join(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const std::string& l : lines) s += (s.empty() ? "" : "\n") + l;
+  return s;
+}
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+std::string at(const std::string& path, int index) { return path + "[" + std::to_string(index) + "]"; }
+
+Vec3 vec(const api::Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+// Collects problems, each "path: what is wrong (got value; allowed range)".
+class Checker {
+ public:
+  void fail(const std::string& path, const std::string& what) { problems.push_back(path + ": " + what); }
+
+  void positive(const std::string& path, double v) {
+    if (!(v > 0) || !std::isfinite(v)) fail(path, "must be a positive number (got " + num(v) + ")");
+  }
+  void non_negative(const std::string& path, double v) {
+    if (!(v >= 0) || !std::isfinite(v)) fail(path, "must be >= 0 (got " + num(v) + ")");
+  }
+  void in_range(const std::string& path, double v, double lo, double hi, bool lo_open, bool hi_open) {
+    const bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+    if (!ok)
+      fail(path, "must be in " + std::string(lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]") +
+                     " (got " + num(v) + ")");
+  }
+  void finite(const std::string& path, const api::Vec3& v) {
+    if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z())) fail(path, "must be finite");
+  }
+
+  std::vector<std::string> problems;
+};
+
+double length_unit(const std::string& name, Checker& check) {
+  if (name.empty() || name == "m") return 1.0;
+  if (name == "cm") return 1e-2;
+  if (name == "mm") return 1e-3;
+  check.fail("outputs.lengthUnit", "must be \"m\", \"cm\" or \"mm\" (got \"" + name + "\")");
+  return 1.0;
+}
+
+void check_plate(const std::array<Vec3, 4>& c, const std::string& path, Checker& check) {
+  const double size = std::max((c[2] - c[0]).norm(), (c[3] - c[1]).norm());
+  Vec3 normal = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) normal += c[k].cross(c[(k + 1) % 4]);
+  if (!(size > 0) || normal.norm() < 1e-12 * size * size) {
+    check.fail(path, "the four corners do not span an area (degenerate plate)");
+    return;
+  }
+  normal.normalize();
+  for (int k = 0; k < 4; ++k) {
+    if (std::abs((c[k] - c[0]).dot(normal)) > 1e-6 * size) {
+      check.fail(path + ".c" + std::to_string(k + 1), "the plate's corners are not in one plane");
+      return;
+    }
+    if ((c[(k + 1) % 4] - c[k]).cross(c[(k + 2) % 4] - c[(k + 1) % 4]).dot(normal) <= 0) {
+      check.fail(path, "the corners must go once around a convex quadrilateral, in order");
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+SpecError::SpecError(std::vector<std::string> problems)
+    : std::runtime_error(join(problems)), problems_(std::move(problems)) {}
+
+api::JobSpec parse_json(const std::string& text) {
+  api::JobSpec spec;
+  google::protobuf::util::JsonParseOptions options;
+  options.ignore_unknown_fields = false;
+  const auto status = google::protobuf::util::JsonStringToMessage(text, &spec, options);
+  if (!status.ok()) throw SpecError({"spec: " + std::string(status.message())});
+  return spec;
+}
+
+api::JobSpec parse_binary(const std::string& bytes) {
+  api::JobSpec spec;
+  if (!spec.ParseFromString(bytes)) throw SpecError({"spec: not a valid protobuf JobSpec message"});
+  return spec;
+}
+
+api::JobSpec read_json_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SpecError({path + ": cannot open the spec file"});
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    return parse_json(text.str());
+  } catch (const SpecError& e) {
+    throw SpecError({path + ": " + e.what()});
+  }
+}
+
+Scene to_scene(const api::JobSpec& spec) {
+  Checker check;
+  Scene scene;
+  scene.name = spec.name();
+
+  // contact model
+  const auto& c = spec.contact();
+  scene.contact.normal = c.normal() == api::ContactModel::HERTZ ? NormalModel::Hertz : NormalModel::Linear;
+  switch (c.rolling()) {
+    case api::ContactModel::CDT: scene.contact.rolling = RollingModel::Cdt; break;
+    case api::ContactModel::EPSD: scene.contact.rolling = RollingModel::Epsd; break;
+    default: scene.contact.rolling = RollingModel::None;
+  }
+  scene.contact.no_tensile_force = c.no_tensile_force();
+  if (c.has_tangential_stiffness_ratio()) {
+    check.non_negative("contact.tangentialStiffnessRatio", c.tangential_stiffness_ratio());
+    scene.contact.tangential_stiffness_ratio = c.tangential_stiffness_ratio();
+  }
+  if (c.has_tangential_damping_ratio()) {
+    check.non_negative("contact.tangentialDampingRatio", c.tangential_damping_ratio());
+    scene.contact.tangential_damping_ratio = c.tangential_damping_ratio();
+  }
+  if (c.has_rolling_damping_ratio()) {
+    check.non_negative("contact.rollingDampingRatio", c.rolling_damping_ratio());
+    scene.contact.rolling_damping_ratio = c.rolling_damping_ratio();
+  }
+  const bool hertz = scene.contact.normal == NormalModel::Hertz;
+
+  // materials
+  std::map<std::string, int> material_index;
+  if (spec.materials().empty()) check.fail("materials", "at least one material is required");
+  for (int m = 0; m < spec.materials_size(); ++m) {
+    const auto& in = spec.materials(m);
+    const std::string path = at("materials", m);
+    Material out;
+    out.name = in.name();
+    out.density = in.density();
+    out.youngs_modulus = in.youngs_modulus();
+    out.poisson_ratio = in.poisson_ratio();
+    out.normal_stiffness = in.normal_stiffness();
+    out.rigid = in.rigid();
+    if (in.name().empty()) check.fail(path + ".name", "a material needs a name");
+    else if (!material_index.emplace(in.name(), m).second)
+      check.fail(path + ".name", "duplicate material name \"" + in.name() + "\"");
+    if (!out.rigid) {
+      check.positive(path + ".density", out.density);
+      check.in_range(path + ".poissonRatio", out.poisson_ratio, -1, 0.5, true, true);
+      if (hertz) check.positive(path + ".youngsModulus", out.youngs_modulus);
+      else check.positive(path + ".normalStiffness", out.normal_stiffness);
+    }
+    scene.materials.push_back(out);
+  }
+  auto material = [&](const std::string& name, const std::string& path) {
+    auto it = material_index.find(name);
+    if (it == material_index.end()) {
+      check.fail(path, "unknown material \"" + name + "\"");
+      return -1;
+    }
+    return it->second;
+  };
+
+  // interactions
+  const int nm = static_cast<int>(scene.materials.size());
+  scene.interactions.assign(static_cast<size_t>(nm) * nm, Interaction{});
+  std::vector<char> given(static_cast<size_t>(nm) * nm, 0);
+  bool any_rolling = false;
+  for (int k = 0; k < spec.interactions_size(); ++k) {
+    const auto& in = spec.interactions(k);
+    const std::string path = at("interactions", k);
+    const int a = material(in.a(), path + ".a"), b = material(in.b(), path + ".b");
+    check.in_range(path + ".restitution", in.restitution(), 0, 1, true, false);
+    check.non_negative(path + ".friction", in.friction());
+    check.non_negative(path + ".rollingFriction", in.rolling_friction());
+    if (in.rolling_friction() > 0 && scene.contact.rolling == RollingModel::None)
+      check.fail(path + ".rollingFriction", "is " + num(in.rolling_friction()) +
+                                                " but contact.rolling is NONE: choose CDT or EPSD, or set it to 0");
+    any_rolling = any_rolling || in.rolling_friction() > 0;
+    if (a < 0 || b < 0) continue;
+    if (given[a * nm + b]) check.fail(path, "a second interaction for \"" + in.a() + "\" and \"" + in.b() + "\"");
+    const Interaction value{in.restitution(), in.friction(), in.rolling_friction()};
+    scene.interactions[a * nm + b] = scene.interactions[b * nm + a] = value;
+    given[a * nm + b] = given[b * nm + a] = 1;
+  }
+  (void)any_rolling;
+
+  // particles: listed ones first, then lattices, in the order given
+  std::set<int> particle_materials;
+  auto particle_material = [&](const std::string& name, const std::string& path) {
+    const int m = material(name, path);
+    if (m >= 0 && scene.materials[m].rigid) {
+      check.fail(path, "material \"" + name + "\" is rigid: only walls may use it");
+      return -1;
+    }
+    if (m >= 0) particle_materials.insert(m);
+    return m;
+  };
+  for (int k = 0; k < spec.particles_size(); ++k) {
+    const auto& in = spec.particles(k);
+    const std::string path = at("particles", k);
+    ParticleInit p;
+    check.finite(path + ".position", in.position());
+    check.finite(path + ".velocity", in.velocity());
+    check.finite(path + ".angularVelocity", in.angular_velocity());
+    check.positive(path + ".radius", in.radius());
+    p.position = vec(in.position());
+    p.velocity = vec(in.velocity());
+    p.angular_velocity = vec(in.angular_velocity());
+    p.radius = in.radius();
+    p.material = particle_material(in.material(), path + ".material");
+    p.fixed = in.fixed();
+    scene.particles.push_back(p);
+  }
+  for (int k = 0; k < spec.lattices_size(); ++k) {
+    const auto& in = spec.lattices(k);
+    const std::string path = at("lattices", k);
+    const int m = particle_material(in.material(), path + ".material");
+    const double spacing = in.spacing() == 0 ? 1.0 : in.spacing();
+    check.positive(path + ".radius", in.radius());
+    check.in_range(path + ".spacing", spacing, 0.5, 100, true, false);
+    check.finite(path + ".min", in.min());
+    check.finite(path + ".max", in.max());
+    const Vec3 lo = vec(in.min()), hi = vec(in.max());
+    if (!(lo.array() < hi.array()).all()) {
+      check.fail(path + ".max", "must be above min in x, y and z");
+      continue;
+    }
+    if (in.kind() == api::Lattice::KIND_UNSPECIFIED) {
+      check.fail(path + ".kind", "must be CUBIC, FCC or HEX");
+      continue;
+    }
+    if (!(in.radius() > 0) || !(spacing > 0.5)) continue;
+    const double per_site = std::pow(spacing * 2 * in.radius(), 3) / std::sqrt(2.0);
+    if ((hi - lo).prod() / per_site > 5e7) {
+      check.fail(path, "would make more than 50 million particles");
+      continue;
+    }
+    const LatticeKind kind = in.kind() == api::Lattice::CUBIC ? LatticeKind::Cubic
+                             : in.kind() == api::Lattice::FCC ? LatticeKind::Fcc
+                                                              : LatticeKind::Hex;
+    const std::vector<Vec3> sites = lattice_sites(kind, lo, hi, in.radius(), spacing);
+    if (sites.empty()) check.fail(path, "the box is too small to hold one particle of radius " + num(in.radius()));
+    for (const Vec3& x : sites) {
+      ParticleInit p;
+      p.position = x;
+      p.velocity = vec(in.velocity());
+      p.radius = in.radius();
+      p.material = m;
+      scene.particles.push_back(p);
+    }
+  }
+  if (spec.particles().empty() && spec.lattices().empty()) check.fail("particles", "the scene has no particles");
+
+  // walls
+  std::set<int> wall_materials;
+  for (int k = 0; k < spec.walls_size(); ++k) {
+    const auto& in = spec.walls(k);
+    const std::string path = at("walls", k);
+    WallInit w;
+    w.name = in.name().empty() ? "wall" + std::to_string(k + 1) : in.name();
+    w.material = material(in.material(), path + ".material");
+    if (w.material >= 0) wall_materials.insert(w.material);
+    if (in.has_plane()) {
+      check.finite(path + ".plane.point", in.plane().point());
+      check.finite(path + ".plane.normal", in.plane().normal());
+      const Vec3 n = vec(in.plane().normal());
+      if (!(n.norm() > 0)) check.fail(path + ".plane.normal", "must not be zero");
+      w.shape = PlaneShape{vec(in.plane().point()), n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitZ()};
+    } else if (in.has_plate()) {
+      const auto& pl = in.plate();
+      PlateShape plate{{vec(pl.c1()), vec(pl.c2()), vec(pl.c3()), vec(pl.c4())}};
+      check_plate(plate.corners, path + ".plate", check);
+      w.shape = plate;
+    } else {
+      check.fail(path, "needs a shape: plane or plate");
+    }
+    scene.walls.push_back(w);
+  }
+
+  // every pair that can meet needs an interaction
+  for (int a : particle_materials) {
+    for (int b : particle_materials)
+      if (b >= a && !given[a * nm + b])
+        check.fail("interactions", "no interaction between \"" + scene.materials[a].name + "\" and \"" +
+                                       scene.materials[b].name + "\" (both are particle materials)");
+    for (int w : wall_materials)
+      if (!given[a * nm + w])
+        check.fail("interactions", "no interaction between \"" + scene.materials[a].name + "\" and wall material \"" +
+                                       scene.materials[w].name + "\"");
+  }
+
+  // gravity, time, outputs, domain, numerics
+  check.finite("gravity", spec.gravity());
+  scene.gravity = vec(spec.gravity());
+  const auto& t = spec.time();
+  check.non_negative("time.dt", t.dt());
+  scene.time.dt = t.dt();
+  if (t.dt_fraction() != 0) {
+    check.in_range("time.dtFraction", t.dt_fraction(), 0, 0.5, true, false);
+    scene.time.dt_fraction = t.dt_fraction();
+  }
+  if (t.duration() != 0 && t.steps() != 0) check.fail("time", "give duration or steps, not both");
+  if (t.duration() == 0 && t.steps() == 0) check.fail("time", "give the run's duration (s) or its number of steps");
+  if (t.duration() != 0) check.positive("time.duration", t.duration());
+  if (t.steps() < 0) check.fail("time.steps", "must be >= 0 (got " + std::to_string(t.steps()) + ")");
+  scene.time.duration = t.duration();
+  scene.time.steps = t.steps();
+  scene.time.allow_unstable_dt = t.allow_unstable_dt();
+
+  const auto& o = spec.outputs();
+  if (o.interval() != 0 && o.every_steps() != 0) check.fail("outputs", "give interval or everySteps, not both");
+  check.non_negative("outputs.interval", o.interval());
+  if (o.every_steps() < 0) check.fail("outputs.everySteps", "must be >= 0");
+  scene.outputs.animation = o.has_animation() ? o.animation() : true;
+  scene.outputs.force_chains = o.force_chains();
+  scene.outputs.length_unit = length_unit(o.length_unit(), check);
+  scene.outputs.length_unit_name = o.length_unit().empty() ? "m" : o.length_unit();
+  scene.outputs.number_format =
+      o.number_format() == api::Outputs::LEGACY_FIXED ? FileNumberFormat::LegacyFixed : FileNumberFormat::Scientific;
+  scene.outputs.every_steps = o.every_steps();
+  scene.outputs.interval_seconds = o.interval();
+
+  if (spec.has_domain()) {
+    const Vec3 lo = vec(spec.domain().min()), hi = vec(spec.domain().max());
+    if (!(lo.array() < hi.array()).all()) check.fail("domain.max", "must be above domain.min in x, y and z");
+    scene.domain = Box{lo, hi};
+  }
+
+  const auto& n = spec.numerics();
+  if (n.skin() != 0) {
+    check.in_range("numerics.skin", n.skin(), 0, 2, true, false);
+    scene.numerics.skin_fraction = n.skin();
+  }
+  if (n.search_interval() < 0) check.fail("numerics.searchInterval", "must be >= 0");
+  if (n.threads() < 0) check.fail("numerics.threads", "must be >= 0 (0 = all cores)");
+  if (n.check_interval() < 0) check.fail("numerics.checkInterval", "must be >= 0");
+  if (n.reorder_interval() < 0) check.fail("numerics.reorderInterval", "must be >= 0");
+  scene.numerics.search_interval = n.search_interval();
+  scene.numerics.threads = n.threads();
+  if (n.max_overlap_fraction() != 0) {
+    check.in_range("numerics.maxOverlapFraction", n.max_overlap_fraction(), 0, 1, true, false);
+    scene.numerics.max_overlap_fraction = n.max_overlap_fraction();
+  }
+  if (n.check_interval() > 0) scene.numerics.check_interval = n.check_interval();
+  if (n.reorder_interval() > 0) scene.numerics.reorder_interval = n.reorder_interval();
+
+  if (!check.problems.empty()) throw SpecError(check.problems);
+  return scene;
+}
+
+}  // namespace dem::spec

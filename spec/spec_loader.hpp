@@ -1,0 +1,33 @@
+// From a job spec (proto/dem.proto, as JSON or protobuf bytes) to a checked Scene.
+// Every problem is reported with the JSON path of the field, the value and what is allowed.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "dem.pb.h"
+
+namespace dem::spec {
+
+class SpecError : public std::runtime_error {
+ public:
+  explicit SpecError(std::vector<std::string> problems);
+  const std::vector<std::string>& problems() const { return problems_; }
+
+ private:
+  std::vector<std::string> problems_;
+};
+
+// Parses the canonical JSON mapping; unknown fields and wrong types are errors.
+api::JobSpec parse_json(const std::string& text);
+// Parses protobuf wire bytes.
+api::JobSpec parse_binary(const std::string& bytes);
+// Reads a JSON spec file (errors name the file).
+api::JobSpec read_json_file(const std::string& path);
+
+// Checks the spec and builds the scene; throws SpecError listing every problem found.
+Scene to_scene(const api::JobSpec& spec);
+
+}  // namespace dem::spec

@@ -1,0 +1,61 @@
+// Small scenes built in code for the physics tests, with the materials of validation.md.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "core/scene.hpp"
+#include "sim/simulation.hpp"
+
+namespace dem::test {
+
+inline double sphere_mass(double density, double radius) {
+  return density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+}
+
+// A scene with one particle material "p" (index 0) and one rigid wall material "wall" (index 1).
+inline Scene base_scene(NormalModel model, double density, double youngs, double poisson, double restitution,
+                        double friction, double kn = 0) {
+  Scene s;
+  s.materials.push_back({"p", density, youngs, poisson, kn, false});
+  s.materials.push_back({"wall", 0, 0, 0, 0, true});
+  const Interaction in{restitution, friction, 0};
+  s.interactions.assign(4, in);
+  s.contact.normal = model;
+  s.time.steps = 1;
+  s.outputs.animation = false;
+  return s;
+}
+
+inline void set_rolling(Scene& s, RollingModel model, double mu_r) {
+  s.contact.rolling = model;
+  for (Interaction& in : s.interactions) in.rolling_friction = mu_r;
+}
+
+inline ParticleInit sphere(const Vec3& x, double r, const Vec3& v = Vec3::Zero(), const Vec3& w = Vec3::Zero()) {
+  ParticleInit p;
+  p.position = x;
+  p.radius = r;
+  p.velocity = v;
+  p.angular_velocity = w;
+  p.material = 0;
+  return p;
+}
+
+inline WallInit plane(const Vec3& point, const Vec3& normal, const std::string& name = "plane") {
+  return WallInit{name, 1, PlaneShape{point, normal.normalized()}};
+}
+
+// Runs until `done(sim)` or max_steps; returns the number of steps taken.
+template <class Done>
+std::int64_t step_until(Simulation& sim, std::int64_t max_steps, Done&& done) {
+  std::int64_t k = 0;
+  while (k < max_steps && !done(sim)) {
+    sim.step();
+    ++k;
+  }
+  return k;
+}
+
+}  // namespace dem::test

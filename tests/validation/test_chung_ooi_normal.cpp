@@ -1,0 +1,101 @@
+// Chung & Ooi (2011), Granular Matter 13:643-656, tests 1-3: normal impacts against Hertz theory
+// and the requested restitution (numbers from validation.md section 1).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/impact.hpp"
+
+namespace dem::test {
+namespace {
+
+struct HertzCase {
+  const char* name;
+  double youngs, poisson, density, radius, speed;
+  bool on_plane;
+  double t_c, alpha_max, f_max;  // validation.md table
+};
+
+class ElasticImpact : public ::testing::TestWithParam<HertzCase> {};
+
+TEST_P(ElasticImpact, MatchesHertzTheoryWithinOnePercent) {
+  const HertzCase c = GetParam();
+  Scene s = base_scene(NormalModel::Hertz, c.density, c.youngs, c.poisson, 1.0, 0.0);
+  if (c.on_plane) {
+    // test 2: sphere at 0.2 m/s onto a rigid plane
+    s.particles.push_back(sphere({0, 0, c.radius * 1.001}, c.radius, {0, 0, -c.speed}));
+    s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+  } else {
+    // test 1: two identical spheres, +-V/2 each (V = 20 m/s approach speed of the table)
+    s.particles.push_back(sphere({-c.radius * 1.001, 0, 0}, c.radius, {c.speed / 2, 0, 0}));
+    s.particles.push_back(sphere({c.radius * 1.001, 0, 0}, c.radius, {-c.speed / 2, 0, 0}));
+  }
+  Simulation sim(s);  // the project's default (automatic) time step
+  const ImpactRecord r = record_impact(sim, 100000);
+  EXPECT_NEAR(r.contact_time, c.t_c, 0.01 * c.t_c) << c.name << " dt=" << sim.dt();
+  EXPECT_NEAR(r.max_overlap, c.alpha_max, 0.01 * c.alpha_max) << c.name;
+  EXPECT_NEAR(r.max_force, c.f_max, 0.01 * c.f_max) << c.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ChungOoiTests1And2, ElasticImpact,
+    ::testing::Values(HertzCase{"glass", 4.8e10, 0.20, 2800, 0.010, 20.0, false, 40.34e-6, 274.1e-6, 10.70e3},
+                      HertzCase{"limestone", 2.0e10, 0.25, 2500, 0.010, 20.0, false, 54.20e-6, 368.3e-6, 7.108e3},
+                      HertzCase{"al_alloy", 7.0e10, 0.30, 2699, 0.10, 0.2, true, 731.7e-6, 49.72e-6, 11.37e3},
+                      HertzCase{"mg_alloy", 4.0e10, 0.35, 1800, 0.10, 0.2, true, 767.1e-6, 52.12e-6, 7.233e3}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+struct RestitutionCase {
+  NormalModel model;
+  bool no_tensile;
+  double youngs, poisson, density;
+};
+
+class Restitution : public ::testing::TestWithParam<RestitutionCase> {};
+
+// Test 3: 2.5 mm sphere at 3.9 m/s on a plane; measured e equals the input within 1% for e = 0.1..1.
+TEST_P(Restitution, MeasuredEqualsInputWithinOnePercent) {
+  const RestitutionCase c = GetParam();
+  const double r = 0.0025, v = 3.9;
+  const double kn = 1e6;  // linear model: a stiffness giving a contact time of a few microseconds
+  for (int k = 1; k <= 10; ++k) {
+    const double e = 0.1 * k;
+    Scene s = base_scene(c.model, c.density, c.youngs, c.poisson, e, 0.0, kn);
+    s.contact.no_tensile_force = c.no_tensile;
+    s.particles.push_back(sphere({0, 0, r * 1.0001}, r, {0, 0, -v}));
+    s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+    Simulation sim(s);
+    record_impact(sim, 1000000);
+    const double measured = sim.particles().v[0].z() / v;
+    EXPECT_NEAR(measured, e, 0.01 * e) << "e=" << e << " model=" << (c.model == NormalModel::Hertz ? "hertz" : "linear")
+                                       << " no_tensile=" << c.no_tensile;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ChungOoiTest3, Restitution,
+    ::testing::Values(RestitutionCase{NormalModel::Hertz, false, 3.8e11, 0.23, 4000},
+                      RestitutionCase{NormalModel::Hertz, true, 3.8e11, 0.23, 4000},
+                      RestitutionCase{NormalModel::Linear, false, 3.8e11, 0.23, 4000},
+                      RestitutionCase{NormalModel::Linear, true, 3.8e11, 0.23, 4000},
+                      RestitutionCase{NormalModel::Hertz, false, 1.0e11, 0.25, 7000},
+                      RestitutionCase{NormalModel::Hertz, true, 1.0e11, 0.25, 7000}),
+    [](const auto& info) {
+      const auto& c = info.param;
+      return std::string(c.model == NormalModel::Hertz ? "hertz" : "linear") + (c.no_tensile ? "_no_tension" : "") +
+             (c.density == 4000 ? "_al_oxide" : "_cast_iron");
+    });
+
+// Test 3's reference contact time: Al oxide, e = 1, t_c = 6.104 us.
+TEST(ChungOoiTest3, AluminiumOxideElasticContactTime) {
+  const double r = 0.0025, v = 3.9;
+  Scene s = base_scene(NormalModel::Hertz, 4000, 3.8e11, 0.23, 1.0, 0.0);
+  s.particles.push_back(sphere({0, 0, r * 1.0001}, r, {0, 0, -v}));
+  s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+  Simulation sim(s);
+  const ImpactRecord rec = record_impact(sim, 1000000);
+  EXPECT_NEAR(rec.contact_time, 6.104e-6, 0.01 * 6.104e-6);
+}
+
+}  // namespace
+}  // namespace dem::test
