@@ -101,19 +101,26 @@ inline void rotate_into_plane(Vec3& stored, const Vec3& n) {
 }
 
 // Tangential spring with history and the Mohr-Coulomb limit |F_s| <= mu F_n (the seeds' eqs. 2-3).
+// Sliding is decided on the spring alone, as LIGGGHTS does: when k_t |xi| exceeds mu F_n the spring
+// is shortened to the sliding force and the dashpot is off; otherwise spring plus dashpot, capped.
+// (Taking the dashpot into the spring, as LAMMPS' xi = -(F_s + c_t v_t)/k_t does, can point the
+// spring against the slip when c_t |v_t| > mu F_n and make the friction force flip sign.)
 struct FrictionalTangent {
   static Vec3 evaluate(const PairParams& p, const NormalResponse& nr, double fn, const Vec3& n,
                        const Vec3& v_t, double dt, Vec3& shear) {
     rotate_into_plane(shear, n);
     shear += v_t * dt;
-    Vec3 fs = -nr.kt * shear - nr.ct * v_t;
     const double limit = p.mu * fn;
-    const double fs2 = fs.squaredNorm();
-    if (fs2 > limit * limit) {
-      fs *= limit / std::sqrt(fs2);
-      // keep the spring at the length that gives the sliding force (so unloading starts from it)
-      shear = nr.kt > 0 ? Vec3(-(fs + nr.ct * v_t) / nr.kt) : Vec3::Zero();
+    const Vec3 elastic = -nr.kt * shear;
+    const double elastic2 = elastic.squaredNorm();
+    if (elastic2 > limit * limit) {
+      const double scale = limit / std::sqrt(elastic2);
+      shear *= scale;
+      return scale * elastic;
     }
+    Vec3 fs = elastic - nr.ct * v_t;
+    const double fs2 = fs.squaredNorm();
+    if (fs2 > limit * limit) fs *= limit / std::sqrt(fs2);
     return fs;
   }
 };
