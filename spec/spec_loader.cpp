@@ -65,7 +65,8 @@ double length_unit(const std::string& name, Checker& check) {
 void check_plate(const std::array<Vec3, 4>& c, const std::string& path, Checker& check) {
   const double size = std::max((c[2] - c[0]).norm(), (c[3] - c[1]).norm());
   Vec3 normal = Vec3::Zero();
-  for (int k = 0; k < 4; ++k) normal += c[k].cross(c[(k + 1) % 4]);
+  // Relative to c1: over absolute coordinates the sum cancels catastrophically far from the origin.
+  for (int k = 0; k < 4; ++k) normal += (c[k] - c[0]).cross(c[(k + 1) % 4] - c[0]);
   if (!(size > 0) || normal.norm() < 1e-12 * size * size) {
     check.fail(path, "the four corners do not span an area (degenerate plate)");
     return;
@@ -236,6 +237,7 @@ Scene to_scene(const api::JobSpec& spec) {
     check.in_range(path + ".spacing", spacing, 0.5, 100, true, false);
     check.finite(path + ".min", in.min());
     check.finite(path + ".max", in.max());
+    check.finite(path + ".velocity", in.velocity());
     const Vec3 lo = vec(in.min()), hi = vec(in.max());
     if (!(lo.array() < hi.array()).all()) {
       check.fail(path + ".max", "must be above min in x, y and z");
@@ -285,7 +287,13 @@ Scene to_scene(const api::JobSpec& spec) {
     } else if (in.has_plate()) {
       const auto& pl = in.plate();
       PlateShape plate{{vec(pl.c1()), vec(pl.c2()), vec(pl.c3()), vec(pl.c4())}};
-      check_plate(plate.corners, path + ".plate", check);
+      const std::size_t before = check.problems.size();
+      check.finite(path + ".plate.c1", pl.c1());
+      check.finite(path + ".plate.c2", pl.c2());
+      check.finite(path + ".plate.c3", pl.c3());
+      check.finite(path + ".plate.c4", pl.c4());
+      // The shape checks mean nothing (NaN compares false) unless every corner is finite.
+      if (check.problems.size() == before) check_plate(plate.corners, path + ".plate", check);
       w.shape = plate;
     } else {
       check.fail(path, "needs a shape: plane or plate");
@@ -337,6 +345,9 @@ Scene to_scene(const api::JobSpec& spec) {
   scene.outputs.interval_seconds = o.interval();
 
   if (spec.has_domain()) {
+    // Written into every animation frame header, where a non-finite number cannot be read back.
+    check.finite("domain.min", spec.domain().min());
+    check.finite("domain.max", spec.domain().max());
     const Vec3 lo = vec(spec.domain().min()), hi = vec(spec.domain().max());
     if (!(lo.array() < hi.array()).all()) check.fail("domain.max", "must be above domain.min in x, y and z");
     scene.domain = Box{lo, hi};

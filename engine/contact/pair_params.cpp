@@ -1,5 +1,6 @@
 #include "contact/pair_params.hpp"
 
+#include <cmath>
 #include <map>
 #include <utility>
 
@@ -40,6 +41,9 @@ PairTable::PairTable(const Scene& scene) : count_(static_cast<int>(scene.materia
       p.restitution = in.restitution;
       if (c.normal == NormalModel::Linear) p.zeta = damping(in.restitution);
       else p.eta = damping(in.restitution);
+      p.cn_per_sqrt_mass = 2 * p.zeta * std::sqrt(p.kn);
+      p.hertz_cn = p.eta * std::sqrt(4.0 / 3.0 * p.e_star);
+      p.hertz_ct = p.eta * std::sqrt(2.0 / 3.0 * 8 * p.g_star);
       p.mu = in.friction;
       p.mu_r = in.rolling_friction;
       p.rolling_damping = c.rolling_damping_ratio;

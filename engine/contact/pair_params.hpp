@@ -13,10 +13,13 @@ struct PairParams {
   double kt_ratio = 0;  // K_s / K_n (rns)
   double ct_ratio = 0;  // C_s / C_n (rzs)
   double zeta = 0;      // C_n = 2 zeta sqrt(m* K_n)     (eqs. 5-6; corrected for no tension)
+  double cn_per_sqrt_mass = 0;  // 2 zeta sqrt(K_n): C_n = this * sqrt(m*)
   // Hertz-Mindlin
   double e_star = 0;    // 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2
   double g_star = 0;    // 1/G* = 2(2-nu1)(1+nu1)/E1 + 2(2-nu2)(1+nu2)/E2
   double eta = 0;       // damping number of the dimensionless Hertz impact (restitution_damping.hpp)
+  double hertz_cn = 0;  // eta sqrt(4/3 E*):  C_n = this * (R* d)^(1/4) * sqrt(m*)
+  double hertz_ct = 0;  // eta sqrt(16/3 G*): C_t = this * (R* d)^(1/4) * sqrt(m*)
   // both
   double mu = 0;
   double mu_r = 0;

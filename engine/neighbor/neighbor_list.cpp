@@ -47,6 +47,19 @@ int find_pair(const NeighborList& list, int i, int j) {
 
 }  // namespace
 
+PairConstants pair_constants(const Particles& p, int i, int j) {
+  const double ri = p.radius[i], rj = p.radius[j];
+  // I + m r^2 = 7/5 m r^2 for a solid sphere
+  const double ii = 1.4 * p.mass[i] * ri * ri, ij = 1.4 * p.mass[j] * rj * rj;
+  return {std::sqrt(reduced(p.inv_mass[i], p.inv_mass[j], p.mass[i], p.mass[j])), ri * rj / (ri + rj),
+          reduced(p.inv_mass[i] > 0 ? 1 / ii : 0, p.inv_mass[j] > 0 ? 1 / ij : 0, ii, ij)};
+}
+
+PairConstants wall_constants(const Particles& p, int i) {
+  const double r = p.radius[i];
+  return {std::sqrt(p.mass[i]), r, 1.4 * p.mass[i] * r * r};
+}
+
 void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options, const NeighborList& previous,
                          const std::vector<int>& new_to_old, NeighborList& next) {
   const int n = static_cast<int>(p.size());
@@ -92,8 +105,13 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
   for (int b = 0; b < blocks; ++b)
     std::copy(block_partners[b].begin(), block_partners[b].end(), next.partner.begin() + next.row_start[b * kBlock]);
 
-  // Carry the history of pairs that were already listed.
   const std::size_t pairs = next.partner.size();
+  next.constants.resize(pairs);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i)
+    for (int k = next.row_start[i]; k < next.row_start[i + 1]; ++k) next.constants[k] = pair_constants(p, i, next.partner[k]);
+
+  // Carry the history of pairs that were already listed.
   next.shear.assign(pairs, Vec3::Zero());
   if (options.keep_rolling_history) next.roll.assign(pairs, Vec3::Zero());
   else next.roll.clear();

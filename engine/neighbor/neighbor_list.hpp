@@ -13,11 +13,29 @@
 
 namespace dem {
 
+// Per-pair values that only change when the list is rebuilt: computed once there, not every step.
+struct PairConstants {
+  double sqrt_m_eff = 0;  // sqrt of the reduced mass 1/(1/m_i + 1/m_j)
+  double r_eff = 0;       // reduced radius r_i r_j / (r_i + r_j)
+  double i_roll = 0;      // rolling inertia of Ai et al. (2011) eq. 13: 1/I_r = sum 1/(I + m r^2)
+};
+
+// Reduced value of two bodies given by their inverses; two held bodies (both inverses zero) fall
+// back to the plain reduced value so that damping stays finite.
+inline double reduced(double inv_a, double inv_b, double a, double b) {
+  return inv_a + inv_b > 0 ? 1 / (inv_a + inv_b) : a * b / (a + b);
+}
+
+// Constants of a sphere-sphere pair, and of a sphere against a wall (infinite mass and radius).
+PairConstants pair_constants(const Particles& p, int i, int j);
+PairConstants wall_constants(const Particles& p, int i);
+
 struct NeighborList {
   std::vector<int> row_start;  // size n + 1
   std::vector<int> partner;    // j of each pair, ascending within a row
   std::vector<Vec3> shear;     // tangential spring per pair
   std::vector<Vec3> roll;      // rolling spring per pair (empty unless the rolling law has one)
+  std::vector<PairConstants> constants;
 
   std::size_t pair_count() const { return partner.size(); }
   int row_of_pair_start(int i) const { return row_start[i]; }

@@ -65,6 +65,7 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
     scene_.outputs.every_steps =
         std::max<std::int64_t>(1, std::llround(scene_.outputs.interval_seconds / state_.dt));
   state_.particles = make_particles(scene_);
+  state_.f_next.assign(state_.particles.size(), Vec3::Zero());
   state_.gravity = scene_.gravity;
   for (const WallInit& w : scene_.walls) state_.walls.push_back(Wall::from(w));
   skin_ = scene_.numerics.skin_fraction * mean_diameter(state_.particles.radius);
@@ -118,28 +119,33 @@ void Simulation::build_neighbors() {
   state_.neighbors = std::move(next);
   const std::size_t pairs = state_.neighbors.pair_count();
   PairResults& r = state_.pairs;
-  r.force.assign(pairs, Vec3::Zero());
-  r.lever.assign(pairs, Vec3::Zero());
-  r.roll_moment.assign(pairs, Vec3::Zero());
   r.fn.assign(pairs, 0.0);
+  r.ft_squared.assign(pairs, 0.0);
   r.touching.assign(pairs, 0);
-  index_partner_pairs();
+  plan_blocks();
   WallContacts previous = std::move(state_.wall_contacts);
   build_wall_contacts(previous, order);
   x_at_build_ = p.x;
   last_build_step_ = step_;
 }
 
-void Simulation::index_partner_pairs() {
+void Simulation::plan_blocks() {
   const NeighborList& nl = state_.neighbors;
-  PairResults& r = state_.pairs;
+  BlockPlan& b = state_.blocks;
   const int n = static_cast<int>(state_.particles.size());
-  r.as_partner_start.assign(n + 1, 0);
-  for (int j : nl.partner) ++r.as_partner_start[j + 1];
-  for (int i = 0; i < n; ++i) r.as_partner_start[i + 1] += r.as_partner_start[i];
-  r.as_partner.resize(nl.partner.size());
-  std::vector<int> fill(r.as_partner_start.begin(), r.as_partner_start.end() - 1);
-  for (std::size_t k = 0; k < nl.partner.size(); ++k) r.as_partner[fill[nl.partner[k]]++] = static_cast<int>(k);
+  b.deferred_start.assign(n + 1, 0);
+  auto crosses = [&](int i, int j) { return j / b.block_size != i / b.block_size; };
+  for (int i = 0; i < n; ++i)
+    for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
+      if (crosses(i, nl.partner[k])) ++b.deferred_start[nl.partner[k] + 1];
+  for (int i = 0; i < n; ++i) b.deferred_start[i + 1] += b.deferred_start[i];
+  b.deferred_pair.resize(b.deferred_start[n]);
+  std::vector<int> fill(b.deferred_start.begin(), b.deferred_start.end() - 1);
+  for (int i = 0; i < n; ++i)
+    for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
+      if (crosses(i, nl.partner[k])) b.deferred_pair[fill[nl.partner[k]]++] = k;
+  b.deferred_force.assign(nl.pair_count(), Vec3::Zero());
+  b.deferred_torque.assign(nl.pair_count(), Vec3::Zero());
 }
 
 void Simulation::build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old) {
@@ -163,6 +169,7 @@ void Simulation::build_wall_contacts(const WallContacts& previous, const std::ve
         }
       }
       wc.wall.push_back(w);
+      wc.constants.push_back(wall_constants(p, i));
       wc.shear.push_back(shear);
       if (keep_roll) wc.roll.push_back(roll);
     }
@@ -210,7 +217,7 @@ std::vector<PairContact> Simulation::pair_contacts() const {
   for (std::size_t i = 0; i < state_.particles.size(); ++i)
     for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
       if (state_.pairs.touching[k])
-        out.push_back({static_cast<int>(i), nl.partner[k], state_.pairs.fn[k], state_.pairs.lever[k].norm()});
+        out.push_back({static_cast<int>(i), nl.partner[k], state_.pairs.fn[k], std::sqrt(state_.pairs.ft_squared[k])});
   return out;
 }
 

@@ -48,7 +48,7 @@ class Simulation {
   double half_kick_and_drift();  // returns the largest squared displacement since the last build
   void build_neighbors();
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);
-  void index_partner_pairs();
+  void plan_blocks();
 
   Scene scene_;
   SimState state_;

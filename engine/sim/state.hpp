@@ -17,26 +17,37 @@ struct WallContacts {
   std::vector<int> wall;       // wall index of each entry
   std::vector<Vec3> shear;     // tangential spring per entry
   std::vector<Vec3> roll;      // rolling spring per entry (EPSD only)
+  std::vector<PairConstants> constants;
   std::vector<double> fn;      // normal force of the last step (0 when apart)
   std::vector<double> ft;      // tangential force magnitude of the last step
   std::vector<std::uint8_t> touching;
 };
 
-// Results of the last force evaluation per listed pair; read by the gather and by observers.
+// Results of the last force evaluation per listed pair, for observers (force chains, contact counts).
 struct PairResults {
-  std::vector<Vec3> force;        // on i
-  std::vector<Vec3> lever;        // n x F_s: torque -r_i lever on i, -r_j lever on j
-  std::vector<Vec3> roll_moment;  // on i (rolling laws only)
-  std::vector<double> fn;
+  std::vector<double> fn;             // normal force
+  std::vector<double> ft_squared;     // squared tangential force
   std::vector<std::uint8_t> touching;
-  std::vector<int> as_partner_start;  // pairs in which particle p is j, compressed rows (size n + 1)
-  std::vector<int> as_partner;        // ascending pair indices
+};
+
+// The force loop works on fixed blocks of consecutive (spatially sorted) particles. A pair whose
+// partner j lies in the same block as i is added to both bodies at once; a pair that crosses to a
+// later block leaves j's share here, to be added by j's block after all blocks are done. The blocks
+// do not depend on the number of threads, so neither does any sum: results are bit-identical.
+struct BlockPlan {
+  int block_size = 4096;
+  std::vector<int> deferred_start;    // per particle p: the crossing pairs in which p is j (size n + 1)
+  std::vector<int> deferred_pair;     // ascending pair indices
+  std::vector<Vec3> deferred_force;   // per pair (crossing pairs only): force on j
+  std::vector<Vec3> deferred_torque;  // per pair (crossing pairs only): torque on j
 };
 
 struct SimState {
   Particles particles;
   NeighborList neighbors;
   PairResults pairs;
+  BlockPlan blocks;
+  std::vector<Vec3> f_next;  // forces being summed this step (the last step's stay in particles.f)
   std::vector<Wall> walls;
   WallContacts wall_contacts;
   PairTable table;

@@ -38,18 +38,31 @@ double hertz_contact_time(const PairParams& p, double m_eff, double r_eff, doubl
   return 2.9432 * alpha / v / std::max(1.0, p.eta);
 }
 
-// A characteristic impact speed: twice the fastest initial particle, or a fall across the scene.
+// A characteristic impact speed: twice the fastest initial particle, or a free fall from the top of
+// the particle cloud to the lowest body below it (a particle or a wall).
 double reference_speed(const Scene& scene) {
   double v0 = 0;
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = -lo;
+  const double g = scene.gravity.norm();
+  const Vec3 down = g > 0 ? Vec3(scene.gravity / g) : Vec3::Zero();
+  double top = -kInf, bottom = kInf;
   for (const ParticleInit& p : scene.particles) {
     v0 = std::max(v0, p.velocity.norm());
-    lo = lo.cwiseMin(p.position);
-    hi = hi.cwiseMax(p.position);
+    top = std::max(top, -p.position.dot(down));
+    bottom = std::min(bottom, -p.position.dot(down));
+  }
+  for (const WallInit& w : scene.walls) {
+    if (const auto* plate = std::get_if<PlateShape>(&w.shape)) {
+      for (const Vec3& c : plate->corners) bottom = std::min(bottom, -c.dot(down));
+    } else if (const auto* plane = std::get_if<PlaneShape>(&w.shape)) {
+      // height of the plane below each particle, along the vertical
+      const double facing = -down.dot(plane->normal);
+      if (facing <= 0) continue;
+      for (const ParticleInit& p : scene.particles)
+        bottom = std::min(bottom, -p.position.dot(down) - (p.position - plane->point).dot(plane->normal) / facing);
+    }
   }
   double fall = 0;
-  const double g = scene.gravity.norm();
-  if (g > 0 && !scene.particles.empty()) fall = std::sqrt(2 * g * std::abs((hi - lo).dot(scene.gravity / g)) + 1e-300);
+  if (g > 0 && top > bottom) fall = std::sqrt(2 * g * (top - bottom));
   return std::max({2 * v0, fall, 0.1});
 }
 

@@ -29,8 +29,10 @@ Wall Wall::from(const WallInit& init) {
     w.corners = plate.corners;
     w.point = plate.corners[0];
     // Newell's normal: robust for any planar polygon; corners are then counter-clockwise about it.
+    // Summed relative to corner 1: over absolute coordinates the terms grow with the distance from
+    // the origin and cancel down to the plate's area, losing every digit for a small plate far away.
     Vec3 n = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) n += w.corners[k].cross(w.corners[(k + 1) % 4]);
+    for (int k = 0; k < 4; ++k) n += (w.corners[k] - w.point).cross(w.corners[(k + 1) % 4] - w.point);
     w.normal = n.normalized();
   }
   return w;

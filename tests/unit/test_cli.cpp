@@ -1,0 +1,232 @@
+// Tests of the dem command (cli/): exit codes, messages naming the bad field, and the files a run
+// writes. They run the built binary on small spec files in a temporary folder; every run is a few
+// particles for a few steps.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "legacy/legacy_formats.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kDem = DEM_BINARY_DIR "/dem";
+
+struct Result {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// A path in single quotes for the shell (test paths hold no quote).
+std::string shell_quoted(const fs::path& p) {
+  std::string s = "'";
+  s += p.string();
+  s += "'";
+  return s;
+}
+
+// Runs `dem ARGS` through the shell, capturing both streams.
+Result dem(const std::string& args) {
+  Result r;
+  const std::string command = shell_quoted(kDem) + " " + args + " 2>&1";
+  std::FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    ADD_FAILURE() << "popen failed for " << command;
+    return r;
+  }
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// Two glass spheres 0.1 mm apart closing at 2 m/s: they touch within the 12 steps.
+const char* kGoodSpec = R"({
+  "name": "cli test",
+  "materials": [{"name": "glass", "density": 2500, "normalStiffness": 1e5}],
+  "interactions": [{"a": "glass", "b": "glass", "restitution": 0.5, "friction": 0.3}],
+  "contact": {"normal": "LINEAR", "rolling": "NONE"},
+  "particles": [
+    {"position": {"x": 0}, "radius": 0.01, "material": "glass", "velocity": {"x": 1}},
+    {"position": {"x": 0.0201}, "radius": 0.01, "material": "glass", "velocity": {"x": -1}}
+  ],
+  "time": {"steps": 12},
+  "outputs": {"everySteps": 5, "lengthUnit": "mm"}
+})";
+
+std::string good_with(const std::string& from, const std::string& to) {
+  std::string text = kGoodSpec;
+  const std::size_t at = text.find(from);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "test set-up: \"" << from << "\" is not in the spec";
+    return text;
+  }
+  return text.replace(at, from.size(), to);
+}
+
+// A private folder per test (ctest may run tests in parallel), removed afterwards.
+class Cli : public testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(fs::exists(kDem)) << kDem << " is not built";
+    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("dem_cli_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write_spec(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  fs::path dir_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// dem validate
+
+TEST_F(Cli, ValidateAcceptsAGoodSpec) {
+  const Result r = dem("validate " + shell_quoted(write_spec("good.json", kGoodSpec)));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("valid; 2 particles"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("12 steps"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, ValidateNamesANegativeRadius) {
+  const Result r = dem("validate " + shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("radius": -0.01)"))));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("particles[0].radius"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, ValidateNamesAnUnknownField) {
+  const Result r = dem("validate " + shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("raduis": 0.01)"))));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("raduis"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, ValidateNamesADtAboveTheStableLimit) {
+  // The pair's contact time is about 0.75 ms: a 1 ms step is far above t_c / 10.
+  const Result r = dem("validate " + shell_quoted(write_spec("bad.json", good_with(R"("steps": 12)", R"("steps": 12, "dt": 1e-3)"))));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("time.dt"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, ValidateOfAMissingFileNamesIt) {
+  const Result r = dem("validate " + shell_quoted(dir_ / "missing.json"));
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("missing.json"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, ValidateWithoutASpecIsAUsageError) { EXPECT_EQ(dem("validate").exit_code, 2); }
+
+// ---------------------------------------------------------------------------------------------
+// dem run
+
+TEST_F(Cli, RunWritesTheAnimationFrames) {
+  const fs::path out = dir_ / "out";
+  const Result r = dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(out / "ANIMATION_3D.dat");
+  ASSERT_TRUE(in) << "no ANIMATION_3D.dat in " << out;
+  const auto read = dem::legacy::read_animation(in);
+  EXPECT_FALSE(read.truncated);
+  EXPECT_EQ(read.problem, "");
+  // Frames at the first step, every 5 steps, and the last: steps 0, 5, 10, 12.
+  ASSERT_EQ(read.frames.size(), 4u);
+  const std::int64_t steps[] = {0, 5, 10, 12};
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(read.frames[k].step, steps[k]);
+    ASSERT_EQ(read.frames[k].particles.size(), 2u);
+    EXPECT_EQ(read.frames[k].particles[0].id, 1);
+    EXPECT_EQ(read.frames[k].particles[1].id, 2);
+  }
+  // The first frame is the initial state, in millimetres (outputs.lengthUnit).
+  const auto& first = read.frames[0].particles;
+  EXPECT_NEAR(first[1].position.x(), 20.1, 1e-5);
+  EXPECT_NEAR(first[0].diameter, 20.0, 1e-5);
+  EXPECT_NEAR(first[0].velocity.x(), 1000.0, 1e-3);
+  // Apart at the start, touching from about step 3 (0.1 mm at 2 m/s, dt = t_c / 50 = 15 us) on.
+  EXPECT_EQ(first[0].contacts, 0);
+  EXPECT_EQ(read.frames[1].particles[0].contacts, 1);
+  EXPECT_EQ(read.frames[1].particles[1].contacts, 1);
+  // Force chains were not asked for.
+  EXPECT_FALSE(fs::exists(out / "ForceChain_3D.dat"));
+}
+
+TEST_F(Cli, RunOfALatticeWritesEveryParticle) {
+  // An fcc lattice of 2 x 2 x 2 cells (32 spheres, see test_lattice.cpp) at spacing 1.1, at rest,
+  // 1 m away from the two listed spheres. The box holds 4 half-cell layers of h per axis plus a
+  // margin smaller than a layer.
+  const double h = 1.1 * 0.02 / std::sqrt(2.0), side = 0.02 + 3.5 * h;
+  char lattice[400];
+  std::snprintf(lattice, sizeof lattice,
+                R"("lattices": [{"kind": "FCC", "min": {"x": 1, "y": 1, "z": 1},
+                   "max": {"x": %.9f, "y": %.9f, "z": %.9f}, "radius": 0.01, "spacing": 1.1, "material": "glass"}],)",
+                1 + side, 1 + side, 1 + side);
+  std::string spec = good_with(R"("particles": [)", std::string(lattice) + R"("particles": [)");
+  const fs::path out = dir_ / "out";
+  const Result r = dem("run " + shell_quoted(write_spec("lattice.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(out / "ANIMATION_3D.dat");
+  const auto read = dem::legacy::read_animation(in);
+  ASSERT_EQ(read.frames.size(), 4u) << read.problem;
+  for (const auto& frame : read.frames) EXPECT_EQ(frame.particles.size(), 34u);  // 2 listed + 32
+}
+
+TEST_F(Cli, RunOfABadSpecFailsAndWritesNothing) {
+  const fs::path out = dir_ / "out";
+  const Result r = dem("run " + shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("radius": -0.01)"))) +
+                       " --out " + shell_quoted(out) + " --quiet");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("particles[0].radius"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "a failed run created " << out;
+}
+
+TEST_F(Cli, RunWithAnUnstableDtFailsAndWritesNothing) {
+  const fs::path out = dir_ / "out";
+  const Result r = dem("run " + shell_quoted(write_spec("bad.json", good_with(R"("steps": 12)", R"("steps": 12, "dt": 1e-3)"))) +
+                       " --out " + shell_quoted(out) + " --quiet");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("time.dt"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, RunWithoutOutIsAUsageError) {
+  const Result r = dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, RunWithOutButNoValueIsAUsageError) {
+  EXPECT_EQ(dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out").exit_code, 2);
+}
+
+TEST_F(Cli, RunWithAnUnknownOptionIsAUsageError) {
+  const fs::path out = dir_ / "out";
+  const Result r = dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --fast");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--fast"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, RunWithNegativeThreadsIsAUsageError) {
+  const fs::path out = dir_ / "out";
+  EXPECT_EQ(dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --threads -1").exit_code, 2);
+}
+
+TEST_F(Cli, UnknownCommandIsAUsageError) { EXPECT_EQ(dem("frobnicate").exit_code, 2); }
+
+}  // namespace

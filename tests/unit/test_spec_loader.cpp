@@ -1,0 +1,485 @@
+// Tests of the job spec loader (spec/spec_loader.hpp): JSON and protobuf bytes -> checked Scene.
+// A good spec must give exactly the scene it describes; each bad one a SpecError whose problems
+// name the field (its JSON path) and say what is wrong.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "spec/spec_loader.hpp"
+
+namespace dem::spec {
+namespace {
+
+// Two glass spheres above a steel floor: every section a small scene needs, nothing optional.
+const char* kGoodSpec = R"({
+  "name": "two spheres",
+  "materials": [
+    {"name": "glass", "density": 2500, "normalStiffness": 1e5, "poissonRatio": 0.2},
+    {"name": "steel", "rigid": true}
+  ],
+  "interactions": [
+    {"a": "glass", "b": "glass", "restitution": 0.5, "friction": 0.3},
+    {"a": "glass", "b": "steel", "restitution": 0.8, "friction": 0.1}
+  ],
+  "contact": {"normal": "LINEAR", "rolling": "NONE"},
+  "particles": [
+    {"position": {"x": 0, "y": 0, "z": 0.1}, "radius": 0.01, "material": "glass", "velocity": {"z": -1}},
+    {"position": {"x": 0.05, "y": 0, "z": 0.1}, "radius": 0.02, "material": "glass", "fixed": true}
+  ],
+  "walls": [
+    {"name": "floor", "material": "steel", "plane": {"point": {"z": 0}, "normal": {"z": 2}}}
+  ],
+  "gravity": {"z": -9.81},
+  "time": {"steps": 100}
+})";
+
+// Replaces the first occurrence of `from` in `text` by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "test set-up: \"" << from << "\" is not in the spec";
+    return text;
+  }
+  return text.replace(at, from.size(), to);
+}
+
+// kGoodSpec with the first occurrence of `from` replaced by `to`.
+std::string good_with(const std::string& from, const std::string& to) { return replaced(kGoodSpec, from, to); }
+
+// The problems reported for a spec, from parsing or from checking; a failure if there are none.
+std::vector<std::string> problems_of(const std::string& json) {
+  try {
+    to_scene(parse_json(json));
+  } catch (const SpecError& e) {
+    return e.problems();
+  }
+  ADD_FAILURE() << "the spec was accepted:\n" << json;
+  return {};
+}
+
+std::string listing(const std::vector<std::string>& problems) {
+  std::string s;
+  for (const std::string& p : problems) s += "\n  " + p;
+  return s;
+}
+
+// A problem that starts with `path` (its JSON path) and says `reason`.
+testing::AssertionResult has_problem(const std::vector<std::string>& problems, const std::string& path,
+                                     const std::string& reason) {
+  for (const std::string& p : problems)
+    if (p.rfind(path, 0) == 0 && p.find(reason) != std::string::npos) return testing::AssertionSuccess();
+  return testing::AssertionFailure() << "no problem \"" << path << "...: ..." << reason << "...\" among:" << listing(problems);
+}
+
+// ---------------------------------------------------------------------------------------------
+// A good spec
+
+TEST(SpecLoader, GoodSpecBuildsTheSceneItDescribes) {
+  const Scene s = to_scene(parse_json(kGoodSpec));
+  EXPECT_EQ(s.name, "two spheres");
+
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[0].name, "glass");
+  EXPECT_EQ(s.materials[0].density, 2500);
+  EXPECT_EQ(s.materials[0].normal_stiffness, 1e5);
+  EXPECT_EQ(s.materials[0].poisson_ratio, 0.2);
+  EXPECT_FALSE(s.materials[0].rigid);
+  EXPECT_EQ(s.materials[1].name, "steel");
+  EXPECT_TRUE(s.materials[1].rigid);
+
+  // 2 x 2 table, symmetric; the pair nobody gave (steel-steel) keeps the defaults.
+  ASSERT_EQ(s.interactions.size(), 4u);
+  EXPECT_EQ(s.interaction(0, 0).restitution, 0.5);
+  EXPECT_EQ(s.interaction(0, 0).friction, 0.3);
+  EXPECT_EQ(s.interaction(0, 1).restitution, 0.8);
+  EXPECT_EQ(s.interaction(1, 0).restitution, 0.8);
+  EXPECT_EQ(s.interaction(1, 0).friction, 0.1);
+  EXPECT_EQ(s.interaction(0, 1).rolling_friction, 0.0);
+
+  ASSERT_EQ(s.particles.size(), 2u);
+  EXPECT_EQ(s.particles[0].position, Vec3(0, 0, 0.1));
+  EXPECT_EQ(s.particles[0].velocity, Vec3(0, 0, -1));
+  EXPECT_EQ(s.particles[0].radius, 0.01);
+  EXPECT_EQ(s.particles[0].material, 0);
+  EXPECT_FALSE(s.particles[0].fixed);
+  EXPECT_EQ(s.particles[1].position, Vec3(0.05, 0, 0.1));
+  EXPECT_EQ(s.particles[1].radius, 0.02);
+  EXPECT_TRUE(s.particles[1].fixed);
+
+  ASSERT_EQ(s.walls.size(), 1u);
+  EXPECT_EQ(s.walls[0].name, "floor");
+  EXPECT_EQ(s.walls[0].material, 1);
+  const auto* plane = std::get_if<PlaneShape>(&s.walls[0].shape);
+  ASSERT_NE(plane, nullptr);
+  EXPECT_EQ(plane->point, Vec3(0, 0, 0));
+  EXPECT_EQ(plane->normal, Vec3(0, 0, 1));  // given as (0, 0, 2): made unit
+
+  EXPECT_EQ(s.gravity, Vec3(0, 0, -9.81));
+  EXPECT_EQ(s.contact.normal, NormalModel::Linear);
+  EXPECT_EQ(s.contact.rolling, RollingModel::None);
+  EXPECT_EQ(s.time.steps, 100);
+  EXPECT_EQ(s.time.duration, 0.0);
+  EXPECT_FALSE(s.domain.has_value());
+}
+
+TEST(SpecLoader, OmittedFieldsTakeTheDocumentedDefaults) {
+  const Scene s = to_scene(parse_json(kGoodSpec));
+  // contact (dem.proto ContactModel; the seeds' rns = 0.5, rzs = 0; Ai et al. eta_r = 0.3)
+  EXPECT_FALSE(s.contact.no_tensile_force);
+  EXPECT_EQ(s.contact.tangential_stiffness_ratio, 0.5);
+  EXPECT_EQ(s.contact.tangential_damping_ratio, 0.0);
+  EXPECT_EQ(s.contact.rolling_damping_ratio, 0.3);
+  // time: automatic step at 1/50 of the contact time
+  EXPECT_EQ(s.time.dt, 0.0);
+  EXPECT_EQ(s.time.dt_fraction, 1.0 / 50.0);
+  EXPECT_FALSE(s.time.allow_unstable_dt);
+  // outputs: animation on, force chains off, metres, %.6e, first and last frame only
+  EXPECT_TRUE(s.outputs.animation);
+  EXPECT_FALSE(s.outputs.force_chains);
+  EXPECT_EQ(s.outputs.length_unit, 1.0);
+  EXPECT_EQ(s.outputs.length_unit_name, "m");
+  EXPECT_EQ(s.outputs.number_format, FileNumberFormat::Scientific);
+  EXPECT_EQ(s.outputs.every_steps, 0);
+  EXPECT_EQ(s.outputs.interval_seconds, 0.0);
+  // numerics
+  EXPECT_EQ(s.numerics.skin_fraction, 0.1);
+  EXPECT_EQ(s.numerics.search_interval, 0);
+  EXPECT_EQ(s.numerics.threads, 0);
+  EXPECT_EQ(s.numerics.max_overlap_fraction, 0.25);
+  EXPECT_EQ(s.numerics.check_interval, 100);
+  EXPECT_EQ(s.numerics.reorder_interval, 10);
+}
+
+TEST(SpecLoader, GivenOptionsOverrideTheDefaults) {
+  const std::string json = good_with(R"("time": {"steps": 100})",
+                                     R"("time": {"duration": 0.5, "dt": 1e-6, "dtFraction": 0.01},
+  "outputs": {"everySteps": 7, "animation": false, "forceChains": true, "lengthUnit": "mm",
+              "numberFormat": "LEGACY_FIXED"},
+  "numerics": {"skin": 0.3, "threads": 2, "checkInterval": 5, "reorderInterval": 3},
+  "domain": {"min": {"x": -1, "y": -1, "z": -1}, "max": {"x": 1, "y": 1, "z": 2}})");
+  const Scene s = to_scene(parse_json(json));
+  EXPECT_EQ(s.time.duration, 0.5);
+  EXPECT_EQ(s.time.steps, 0);
+  EXPECT_EQ(s.time.dt, 1e-6);
+  EXPECT_EQ(s.time.dt_fraction, 0.01);
+  EXPECT_EQ(s.outputs.every_steps, 7);
+  EXPECT_FALSE(s.outputs.animation);
+  EXPECT_TRUE(s.outputs.force_chains);
+  EXPECT_EQ(s.outputs.length_unit, 1e-3);
+  EXPECT_EQ(s.outputs.length_unit_name, "mm");
+  EXPECT_EQ(s.outputs.number_format, FileNumberFormat::LegacyFixed);
+  EXPECT_EQ(s.numerics.skin_fraction, 0.3);
+  EXPECT_EQ(s.numerics.threads, 2);
+  EXPECT_EQ(s.numerics.check_interval, 5);
+  EXPECT_EQ(s.numerics.reorder_interval, 3);
+  ASSERT_TRUE(s.domain.has_value());
+  EXPECT_EQ(s.domain->min, Vec3(-1, -1, -1));
+  EXPECT_EQ(s.domain->max, Vec3(1, 1, 2));
+}
+
+TEST(SpecLoader, ProtoFieldNamesAreAcceptedAsWellAsCamelCase) {
+  // The canonical JSON mapping accepts both spellings (dem.proto header).
+  const Scene s = to_scene(parse_json(good_with(R"("normalStiffness": 1e5)", R"("normal_stiffness": 2e5)")));
+  EXPECT_EQ(s.materials[0].normal_stiffness, 2e5);
+}
+
+TEST(SpecLoader, LatticeSitesFollowTheListedParticles) {
+  // A cubic lattice of radius 0.01 in a 0.04 box: 2 x 2 x 2 sites, appended after the two
+  // listed particles, each with the lattice's velocity and material.
+  const Scene s = to_scene(parse_json(good_with(R"("walls": [)", R"("lattices": [
+    {"kind": "CUBIC", "min": {"x": 1, "y": 1, "z": 1}, "max": {"x": 1.04, "y": 1.04, "z": 1.04},
+     "radius": 0.01, "material": "glass", "velocity": {"x": 0.5}}],
+  "walls": [)")));
+  ASSERT_EQ(s.particles.size(), 10u);
+  EXPECT_EQ(s.particles[0].position, Vec3(0, 0, 0.1));
+  for (std::size_t k = 2; k < 10; ++k) {
+    EXPECT_EQ(s.particles[k].radius, 0.01);
+    EXPECT_EQ(s.particles[k].material, 0);
+    EXPECT_EQ(s.particles[k].velocity, Vec3(0.5, 0, 0));
+    for (int d = 0; d < 3; ++d) {
+      EXPECT_GE(s.particles[k].position[d], 1.01 - 1e-12);
+      EXPECT_LE(s.particles[k].position[d], 1.03 + 1e-12);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parser errors: the protobuf JSON parser's own message, whatever its wording, must name the field
+
+TEST(SpecLoader, UnknownFieldIsNamed) {
+  const auto problems = problems_of(good_with(R"("radius": 0.01)", R"("radiuss": 0.01)"));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("radiuss"), std::string::npos) << problems[0];
+}
+
+TEST(SpecLoader, StringForANumberIsNamed) {
+  const auto problems = problems_of(good_with(R"("density": 2500)", R"("density": "heavy")"));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("density"), std::string::npos) << problems[0];
+}
+
+TEST(SpecLoader, UnknownEnumValueIsAnError) {
+  const auto problems = problems_of(good_with(R"("normal": "LINEAR")", R"("normal": "LINEAER")"));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("LINEAER"), std::string::npos) << problems[0];
+}
+
+TEST(SpecLoader, MalformedJsonIsAnError) {
+  const auto problems = problems_of(std::string(kGoodSpec).substr(0, 200));
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0].rfind("spec: ", 0), 0u) << problems[0];
+}
+
+// ---------------------------------------------------------------------------------------------
+// Checker errors, one per rule
+
+TEST(SpecLoader, NegativeRadius) {
+  const auto problems = problems_of(good_with(R"("radius": 0.01)", R"("radius": -0.01)"));
+  EXPECT_TRUE(has_problem(problems, "particles[0].radius:", "must be a positive number (got -0.01)"));
+  EXPECT_EQ(problems.size(), 1u) << listing(problems);
+}
+
+TEST(SpecLoader, UnknownMaterialName) {
+  const auto problems = problems_of(good_with(R"("radius": 0.02, "material": "glass")", R"("radius": 0.02, "material": "glas")"));
+  EXPECT_TRUE(has_problem(problems, "particles[1].material:", "unknown material \"glas\""));
+}
+
+TEST(SpecLoader, MissingInteractionBetweenTwoParticleMaterials) {
+  // sand meets itself and the floor, but nobody said how it meets glass.
+  std::string json = good_with(R"({"name": "steel", "rigid": true})",
+                               R"({"name": "steel", "rigid": true},
+    {"name": "sand", "density": 2600, "normalStiffness": 1e5})");
+  json = replaced(json, R"("interactions": [)", R"("interactions": [
+    {"a": "sand", "b": "sand", "restitution": 0.5},
+    {"a": "steel", "b": "sand", "restitution": 0.5},)");
+  json = replaced(json, R"("radius": 0.02, "material": "glass")", R"("radius": 0.02, "material": "sand")");
+  const auto problems = problems_of(json);
+  EXPECT_TRUE(has_problem(problems, "interactions:", "no interaction between \"glass\" and \"sand\""));
+  EXPECT_EQ(problems.size(), 1u) << listing(problems);
+}
+
+TEST(SpecLoader, MissingInteractionBetweenParticleAndWallMaterial) {
+  const auto problems = problems_of(good_with(R"({"a": "glass", "b": "steel", "restitution": 0.8, "friction": 0.1})",
+                                              R"({"a": "steel", "b": "steel", "restitution": 0.8})"));
+  EXPECT_TRUE(has_problem(problems, "interactions:", "no interaction between \"glass\" and wall material \"steel\""));
+}
+
+TEST(SpecLoader, RestitutionZeroIsRejected) {
+  const auto problems = problems_of(good_with(R"("restitution": 0.5)", R"("restitution": 0)"));
+  EXPECT_TRUE(has_problem(problems, "interactions[0].restitution:", "must be in (0, 1] (got 0)"));
+}
+
+TEST(SpecLoader, RestitutionAboveOneIsRejected) {
+  const auto problems = problems_of(good_with(R"("restitution": 0.8)", R"("restitution": 1.5)"));
+  EXPECT_TRUE(has_problem(problems, "interactions[1].restitution:", "must be in (0, 1] (got 1.5)"));
+}
+
+TEST(SpecLoader, RestitutionOneIsAccepted) {
+  EXPECT_NO_THROW(to_scene(parse_json(good_with(R"("restitution": 0.5)", R"("restitution": 1)"))));
+}
+
+TEST(SpecLoader, RollingFrictionWithoutARollingModel) {
+  const auto problems = problems_of(good_with(R"("friction": 0.3})", R"("friction": 0.3, "rollingFriction": 0.05})"));
+  EXPECT_TRUE(has_problem(problems, "interactions[0].rollingFriction:", "contact.rolling is NONE"));
+}
+
+TEST(SpecLoader, RollingFrictionWithARollingModelIsAccepted) {
+  std::string json = good_with(R"("friction": 0.3})", R"("friction": 0.3, "rollingFriction": 0.05})");
+  json = replaced(json, R"("rolling": "NONE")", R"("rolling": "EPSD")");
+  const Scene s = to_scene(parse_json(json));
+  EXPECT_EQ(s.contact.rolling, RollingModel::Epsd);
+  EXPECT_EQ(s.interaction(0, 0).rolling_friction, 0.05);
+}
+
+TEST(SpecLoader, BothDurationAndSteps) {
+  const auto problems = problems_of(good_with(R"("steps": 100)", R"("steps": 100, "duration": 1.0)"));
+  EXPECT_TRUE(has_problem(problems, "time:", "not both"));
+}
+
+TEST(SpecLoader, NeitherDurationNorSteps) {
+  const auto problems = problems_of(good_with(R"("time": {"steps": 100})", R"("time": {"dt": 1e-6})"));
+  EXPECT_TRUE(has_problem(problems, "time:", "duration"));
+}
+
+TEST(SpecLoader, LatticeWithMaxBelowMin) {
+  const auto problems = problems_of(good_with(R"("walls": [)", R"("lattices": [
+    {"kind": "FCC", "min": {"x": 0, "y": 0, "z": 0}, "max": {"x": 1, "y": -1, "z": 1},
+     "radius": 0.01, "material": "glass"}],
+  "walls": [)"));
+  EXPECT_TRUE(has_problem(problems, "lattices[0].max:", "must be above min"));
+}
+
+TEST(SpecLoader, PlateWithNonPlanarCorners) {
+  const auto problems = problems_of(good_with(R"("plane": {"point": {"z": 0}, "normal": {"z": 2}})",
+                                              R"("plate": {"c1": {"x": -1, "y": -1}, "c2": {"x": 1, "y": -1},
+                                                           "c3": {"x": 1, "y": 1}, "c4": {"x": -1, "y": 1, "z": 0.2}})"));
+  EXPECT_TRUE(has_problem(problems, "walls[0].plate", "not in one plane"));
+}
+
+TEST(SpecLoader, SmallPlateFarFromTheOriginIsAccepted) {
+  // A planar 1/128 m plate at map-grid coordinates (every value exact in binary): the planarity
+  // check must not be fooled by rounding in a normal summed over absolute coordinates.
+  const std::string json = good_with(R"("plane": {"point": {"z": 0}, "normal": {"z": 2}})",
+                                     R"("plate": {"c1": {"x": 452000, "y": 4500000, "z": 312},
+                                                  "c2": {"x": 452000.0078125, "y": 4500000, "z": 312},
+                                                  "c3": {"x": 452000.0078125, "y": 4500000.0078125, "z": 312.0078125},
+                                                  "c4": {"x": 452000, "y": 4500000.0078125, "z": 312.0078125}})");
+  try {
+    const Scene s = to_scene(parse_json(json));
+    EXPECT_TRUE(std::holds_alternative<PlateShape>(s.walls[0].shape));
+  } catch (const SpecError& e) {
+    ADD_FAILURE() << "a planar convex plate was rejected:" << listing(e.problems());
+  }
+}
+
+TEST(SpecLoader, PlateWithCornersOutOfOrder) {
+  // c1 c3 c2 c4 of a square: a bow tie, whose two halves cancel: no area.
+  const auto problems = problems_of(good_with(R"("plane": {"point": {"z": 0}, "normal": {"z": 2}})",
+                                              R"("plate": {"c1": {"x": -1, "y": -1}, "c2": {"x": 1, "y": 1},
+                                                           "c3": {"x": 1, "y": -1}, "c4": {"x": -1, "y": 1}})"));
+  EXPECT_TRUE(has_problem(problems, "walls[0].plate:", "degenerate plate"));
+}
+
+TEST(SpecLoader, ConcavePlateIsRejected) {
+  // An arrowhead: c3 is pushed in past the diagonal c2-c4, the contact code assumes a convex plate.
+  const auto problems = problems_of(good_with(R"("plane": {"point": {"z": 0}, "normal": {"z": 2}})",
+                                              R"("plate": {"c1": {"x": 0, "y": 0}, "c2": {"x": 2, "y": 0},
+                                                           "c3": {"x": 0.5, "y": 0.5}, "c4": {"x": 0, "y": 2}})"));
+  EXPECT_TRUE(has_problem(problems, "walls[0].plate:", "convex quadrilateral"));
+}
+
+TEST(SpecLoader, PlateWithAnInfiniteCorner) {
+  // The JSON mapping accepts "Infinity" for a double; a plate out there has no plane at all.
+  const auto problems = problems_of(good_with(R"("plane": {"point": {"z": 0}, "normal": {"z": 2}})",
+                                              R"("plate": {"c1": {"x": "-Infinity", "y": -1}, "c2": {"x": 1, "y": -1},
+                                                           "c3": {"x": 1, "y": 1}, "c4": {"x": -1, "y": 1}})"));
+  EXPECT_TRUE(has_problem(problems, "walls[0].plate.c1:", "finite"));
+  EXPECT_EQ(problems.size(), 1u) << listing(problems);
+}
+
+TEST(SpecLoader, LatticeWithANonFiniteVelocity) {
+  // Listed particles' velocities are checked; a lattice's must be too.
+  const auto problems = problems_of(good_with(R"("walls": [)", R"("lattices": [
+    {"kind": "CUBIC", "min": {"x": 1, "y": 1, "z": 1}, "max": {"x": 1.04, "y": 1.04, "z": 1.04},
+     "radius": 0.01, "material": "glass", "velocity": {"x": "NaN"}}],
+  "walls": [)"));
+  EXPECT_TRUE(has_problem(problems, "lattices[0].velocity:", "finite"));
+}
+
+TEST(SpecLoader, NonFiniteParticleVelocity) {
+  const auto problems = problems_of(good_with(R"("velocity": {"z": -1})", R"("velocity": {"z": "-Infinity"})"));
+  EXPECT_TRUE(has_problem(problems, "particles[0].velocity:", "finite"));
+}
+
+TEST(SpecLoader, DomainWithAnInfiniteBound) {
+  // The domain is written into every ANIMATION_3D.dat frame header, where "inf" cannot be read.
+  const auto problems = problems_of(good_with(R"("time": {"steps": 100})",
+                                              R"("time": {"steps": 100},
+  "domain": {"min": {"x": "-Infinity", "y": -1, "z": -1}, "max": {"x": 1, "y": 1, "z": 1}})"));
+  EXPECT_TRUE(has_problem(problems, "domain.min:", "finite"));
+}
+
+TEST(SpecLoader, BadLengthUnit) {
+  const auto problems = problems_of(good_with(R"("time": {"steps": 100})",
+                                              R"("time": {"steps": 100}, "outputs": {"lengthUnit": "km"})"));
+  EXPECT_TRUE(has_problem(problems, "outputs.lengthUnit:", "must be \"m\", \"cm\" or \"mm\" (got \"km\")"));
+}
+
+TEST(SpecLoader, HertzNeedsYoungsModulus) {
+  const auto problems = problems_of(good_with(R"("normal": "LINEAR")", R"("normal": "HERTZ")"));
+  EXPECT_TRUE(has_problem(problems, "materials[0].youngsModulus:", "must be a positive number (got 0)"));
+}
+
+TEST(SpecLoader, RigidMaterialOnAParticle) {
+  const auto problems = problems_of(good_with(R"("radius": 0.02, "material": "glass")", R"("radius": 0.02, "material": "steel")"));
+  EXPECT_TRUE(has_problem(problems, "particles[1].material:", "rigid"));
+}
+
+TEST(SpecLoader, EveryProblemOfASpecIsReported) {
+  // Five independent mistakes in one spec: the user sees them all at once.
+  std::string json = good_with(R"("radius": 0.01)", R"("radius": -0.01)");
+  json = replaced(json, R"("restitution": 0.5)", R"("restitution": 0)");
+  json = replaced(json, R"("material": "glass", "fixed")", R"("material": "glas", "fixed")");
+  json = replaced(json, R"("time": {"steps": 100})", R"("time": {}, "outputs": {"lengthUnit": "ft"})");
+  const auto problems = problems_of(json);
+  EXPECT_TRUE(has_problem(problems, "particles[0].radius:", "positive"));
+  EXPECT_TRUE(has_problem(problems, "interactions[0].restitution:", "(0, 1]"));
+  EXPECT_TRUE(has_problem(problems, "particles[1].material:", "unknown material \"glas\""));
+  EXPECT_TRUE(has_problem(problems, "time:", "duration"));
+  EXPECT_TRUE(has_problem(problems, "outputs.lengthUnit:", "\"ft\""));
+  EXPECT_EQ(problems.size(), 5u) << listing(problems);
+}
+
+TEST(SpecLoader, SpecErrorMessageListsEveryProblem) {
+  try {
+    to_scene(parse_json(good_with(R"("time": {"steps": 100})", R"("time": {}, "outputs": {"lengthUnit": "ft"})")));
+    FAIL() << "accepted";
+  } catch (const SpecError& e) {
+    ASSERT_EQ(e.problems().size(), 2u);
+    EXPECT_EQ(std::string(e.what()), e.problems()[0] + "\n" + e.problems()[1]);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Protobuf bytes
+
+TEST(SpecLoader, GarbageBytesFailCleanly) {
+  const std::vector<std::string> garbage = {
+      std::string(12, '\xff'),             // a varint tag that never ends
+      std::string("\x0a\x7f\x01", 3),      // materials: 127 bytes announced, 1 given
+      std::string("\x0f\x00", 2),          // wire type 7 does not exist
+      std::string("\x12\x05\xff\xff\xff\xff\xff", 7),  // a nested message that is itself garbage
+  };
+  for (const std::string& bytes : garbage) {
+    try {
+      parse_binary(bytes);
+      ADD_FAILURE() << "accepted " << bytes.size() << " garbage bytes";
+    } catch (const SpecError& e) {
+      ASSERT_EQ(e.problems().size(), 1u);
+      EXPECT_TRUE(has_problem(e.problems(), "spec:", "protobuf"));
+    }
+  }
+}
+
+TEST(SpecLoader, BinaryRoundTripGivesTheSameSpecAndScene) {
+  const api::JobSpec from_json = parse_json(kGoodSpec);
+  const std::string bytes = from_json.SerializeAsString();
+  const api::JobSpec from_bytes = parse_binary(bytes);
+  EXPECT_EQ(from_bytes.SerializeAsString(), bytes);
+
+  const Scene a = to_scene(from_json), b = to_scene(from_bytes);
+  EXPECT_EQ(b.name, a.name);
+  ASSERT_EQ(b.particles.size(), a.particles.size());
+  for (std::size_t k = 0; k < a.particles.size(); ++k) {
+    EXPECT_EQ(b.particles[k].position, a.particles[k].position);
+    EXPECT_EQ(b.particles[k].velocity, a.particles[k].velocity);
+    EXPECT_EQ(b.particles[k].radius, a.particles[k].radius);
+    EXPECT_EQ(b.particles[k].fixed, a.particles[k].fixed);
+  }
+  ASSERT_EQ(b.interactions.size(), a.interactions.size());
+  for (std::size_t k = 0; k < a.interactions.size(); ++k) {
+    EXPECT_EQ(b.interactions[k].restitution, a.interactions[k].restitution);
+    EXPECT_EQ(b.interactions[k].friction, a.interactions[k].friction);
+  }
+  EXPECT_EQ(b.materials[0].normal_stiffness, a.materials[0].normal_stiffness);
+  EXPECT_EQ(b.time.steps, 100);
+  EXPECT_EQ(b.walls.size(), 1u);
+}
+
+TEST(SpecLoader, EmptyBytesAreAnEmptySpecThatFailsTheChecks) {
+  // Zero bytes are a valid (empty) message: the checker, not the parser, must refuse it.
+  const api::JobSpec spec = parse_binary("");
+  try {
+    to_scene(spec);
+    FAIL() << "an empty spec was accepted";
+  } catch (const SpecError& e) {
+    EXPECT_TRUE(has_problem(e.problems(), "materials:", "at least one material"));
+    EXPECT_TRUE(has_problem(e.problems(), "particles:", "no particles"));
+  }
+}
+
+}  // namespace
+}  // namespace dem::spec

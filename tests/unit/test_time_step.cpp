@@ -1,0 +1,209 @@
+// Tests of the time-step choice (engine/sim/time_step.hpp) against the closed forms of
+// /work/shared/spec/validation.md: the linear contact time (section 2), the Hertz contact time
+// (section 1) and the Rayleigh time (section 6).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "contact/pair_params.hpp"
+#include "core/errors.hpp"
+#include "sim/time_step.hpp"
+
+namespace dem {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+double sphere_volume(double r) { return 4.0 / 3.0 * kPi * r * r * r; }
+
+// Two equal spheres of one linear material: each of mass 2e-3 kg, so m* = m / 2 = 1e-3 kg, and
+// k_n = 1e5 N/m (eq. 4 of two equal springs gives the spring itself), e = 0.5.
+Scene linear_pair_scene() {
+  const double r = 0.01;
+  Scene s;
+  Material m;
+  m.name = "stuff";
+  m.density = 2e-3 / sphere_volume(r);
+  m.normal_stiffness = 1e5;
+  s.materials = {m};
+  s.interactions = {Interaction{0.5, 0.3, 0}};
+  s.contact.normal = NormalModel::Linear;
+  for (double x : {0.0, 0.03}) {
+    ParticleInit p;
+    p.position = Vec3(x, 0, 0);
+    p.radius = r;
+    s.particles.push_back(p);
+  }
+  s.time.steps = 10;
+  return s;
+}
+
+// validation.md section 2 from its own formulas: zeta(e), omega0 = sqrt(k / m*), t_c.
+double linear_contact_time(double e, double k, double m_eff) {
+  const double l = std::log(e);
+  const double zeta = -l / std::sqrt(kPi * kPi + l * l);
+  return kPi / std::sqrt(k / m_eff * (1 - zeta * zeta));
+}
+
+TimeStepReport choose(const Scene& s) { return choose_time_step(s, PairTable(s)); }
+
+// The message of the SceneError a scene's time step raises, or "" if it is accepted.
+std::string rejection(const Scene& s) {
+  try {
+    choose(s);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Linear law
+
+TEST(TimeStep, LinearContactTimeIsTheValidationExample) {
+  const TimeStepReport r = choose(linear_pair_scene());
+  EXPECT_NEAR(r.contact_time, 3.2172e-4, 1e-8);  // validation.md section 2, 5 digits
+  EXPECT_NEAR(r.contact_time, linear_contact_time(0.5, 1e5, 1e-3), 1e-12 * r.contact_time);
+  EXPECT_EQ(r.rayleigh_time, 0.0);  // Hertz only
+}
+
+TEST(TimeStep, AutomaticStepIsOneFiftiethOfTheContactTime) {
+  const TimeStepReport r = choose(linear_pair_scene());
+  EXPECT_TRUE(r.automatic);
+  EXPECT_NEAR(r.dt, linear_contact_time(0.5, 1e5, 1e-3) / 50, 1e-12 * r.dt);
+}
+
+TEST(TimeStep, DtFractionScalesTheAutomaticStep) {
+  Scene s = linear_pair_scene();
+  s.time.dt_fraction = 0.01;
+  EXPECT_NEAR(choose(s).dt, linear_contact_time(0.5, 1e5, 1e-3) / 100, 1e-12 * 3.2e-6);
+}
+
+TEST(TimeStep, ContactWithARigidWallCounts) {
+  // One sphere of 2e-3 kg on a rigid wall: m* = m, and eq. 4 with a rigid partner gives K_n = 2 k:
+  // omega0 = 1e4 / s as for the pair. The wall contact is elastic (zeta = 0), so it is shorter than
+  // the damped sphere-sphere one: t_c = pi / omega0 = 3.1416e-4 s, not 3.2172e-4 s.
+  Scene s = linear_pair_scene();
+  s.particles.pop_back();
+  Material steel;
+  steel.name = "steel";
+  steel.rigid = true;
+  s.materials.push_back(steel);
+  s.interactions = {Interaction{0.5, 0.3, 0}, Interaction{1.0, 0.3, 0}, Interaction{1.0, 0.3, 0},
+                    Interaction{1, 0, 0}};
+  WallInit floor;
+  floor.material = 1;
+  floor.shape = PlaneShape{};
+  s.walls = {floor};
+  EXPECT_NEAR(choose(s).contact_time, linear_contact_time(1.0, 2e5, 2e-3), 1e-12 * 3.2e-4);
+  EXPECT_NEAR(choose(s).contact_time, kPi * 1e-4, 1e-15);
+}
+
+TEST(TimeStep, LightestParticlesSetTheContactTime) {
+  // Adding a sphere of half the radius (1/8 of the mass) shortens the shortest contact: small-small
+  // with m* = m / 16 = 1.25e-4 kg.
+  Scene s = linear_pair_scene();
+  ParticleInit small = s.particles[0];
+  small.position = Vec3(0.1, 0, 0);
+  small.radius = 0.005;
+  s.particles.push_back(small);
+  EXPECT_NEAR(choose(s).contact_time, linear_contact_time(0.5, 1e5, 2e-3 / 16), 1e-12 * 3.2e-4);
+}
+
+TEST(TimeStep, GivenDtAboveTheStableLimitNamesTimeDt) {
+  Scene s = linear_pair_scene();
+  const double t_c = linear_contact_time(0.5, 1e5, 1e-3);
+  s.time.dt = t_c / 5;  // 5 steps per contact cannot resolve it
+  const std::string message = rejection(s);
+  EXPECT_NE(message.find("time.dt"), std::string::npos) << message;
+  EXPECT_NE(message.find("allowUnstableDt"), std::string::npos) << message;
+}
+
+TEST(TimeStep, GivenDtAboveTheLimitIsAcceptedWhenAllowed) {
+  Scene s = linear_pair_scene();
+  s.time.dt = linear_contact_time(0.5, 1e5, 1e-3) / 5;
+  s.time.allow_unstable_dt = true;
+  const TimeStepReport r = choose(s);
+  EXPECT_FALSE(r.automatic);
+  EXPECT_EQ(r.dt, s.time.dt);
+}
+
+TEST(TimeStep, GivenDtBelowTheLimitIsUsedAsGiven) {
+  Scene s = linear_pair_scene();
+  s.time.dt = linear_contact_time(0.5, 1e5, 1e-3) / 20;
+  const TimeStepReport r = choose(s);
+  EXPECT_FALSE(r.automatic);
+  EXPECT_EQ(r.dt, s.time.dt);
+  EXPECT_GE(r.stable_limit, r.dt);
+  // ... and the automatic step itself is always accepted when given back.
+  Scene again = linear_pair_scene();
+  again.time.dt = choose(linear_pair_scene()).dt;
+  EXPECT_NO_THROW(choose(again));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hertz law
+
+// Two glass spheres of validation.md section 1 test 1: R = 0.01 m, E = 4.8e10 Pa, nu = 0.2,
+// rho = 2800 kg/m^3, approaching at 10 m/s each, e = 1.
+Scene glass_pair_scene() {
+  Scene s;
+  Material glass;
+  glass.name = "glass";
+  glass.density = 2800;
+  glass.youngs_modulus = 4.8e10;
+  glass.poisson_ratio = 0.2;
+  s.materials = {glass};
+  s.interactions = {Interaction{1.0, 0, 0}};
+  s.contact.normal = NormalModel::Hertz;
+  for (double side : {-1.0, 1.0}) {
+    ParticleInit p;
+    p.position = Vec3(side * 0.0105, 0, 0);
+    p.velocity = Vec3(-side * 10, 0, 0);
+    p.radius = 0.01;
+    s.particles.push_back(p);
+  }
+  s.time.steps = 10;
+  return s;
+}
+
+TEST(TimeStep, HertzReportsTheRayleighTime) {
+  const TimeStepReport r = choose(glass_pair_scene());
+  // validation.md section 6: pi R sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)).
+  const double g = 4.8e10 / (2 * 1.2);
+  const double expected = kPi * 0.01 * std::sqrt(2800 / g) / (0.1631 * 0.2 + 0.8766);
+  EXPECT_NEAR(r.rayleigh_time, expected, 1e-12 * expected);
+  EXPECT_NEAR(r.rayleigh_time, 1.293e-5, 0.001e-5);  // the table's 4 digits
+}
+
+TEST(TimeStep, HertzContactTimeIsChungOoiTest1AtTheRelativeSpeed) {
+  // Approach speed 20 m/s (twice the fastest particle): t_c = 40.34 us (validation.md section 1).
+  const TimeStepReport r = choose(glass_pair_scene());
+  EXPECT_NEAR(r.reference_speed, 20.0, 1e-12);
+  EXPECT_NEAR(r.contact_time, 40.34e-6, 0.01e-6);
+  // The same from the closed form: m* = m / 2, R* = R / 2, E* = E / (2 (1 - nu^2)).
+  const double m_eff = 2800 * sphere_volume(0.01) / 2, r_eff = 0.005, e_eff = 4.8e10 / (2 * (1 - 0.04));
+  const double alpha = std::pow(15 * m_eff * 400 / (16 * std::sqrt(r_eff) * e_eff), 0.4);
+  EXPECT_NEAR(r.contact_time, 2.9432 * alpha / 20, 1e-9 * r.contact_time);
+  // The step: 1/50 of the contact time, unless a fifth of the Rayleigh time is shorter.
+  EXPECT_TRUE(r.automatic);
+  EXPECT_NEAR(r.dt, std::min(r.contact_time / 50, 0.2 * r.rayleigh_time), 1e-12 * r.dt);
+}
+
+TEST(TimeStep, HertzGivenDtAboveTheRayleighTimeIsRejected) {
+  Scene s = glass_pair_scene();
+  s.time.dt = 5e-6;  // above t_c / 10 = 4.03e-6 s, below the Rayleigh time
+  const std::string message = rejection(s);
+  EXPECT_NE(message.find("time.dt"), std::string::npos) << message;
+}
+
+TEST(TimeStep, DescribeNamesTheNumbers) {
+  const std::string text = choose(glass_pair_scene()).describe();
+  EXPECT_NE(text.find("automatic"), std::string::npos) << text;
+  EXPECT_NE(text.find("Rayleigh time 1.29"), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace dem
