@@ -8,6 +8,10 @@
 
 namespace dem {
 
+// Below this many particles a step is too short to share between threads: the fork and join would
+// cost more than they save (and oversubscribed machines make it far worse).
+constexpr int kParallelMinParticles = 4096;
+
 struct Particles {
   std::vector<Vec3> x;  // position
   std::vector<Vec3> v;  // velocity

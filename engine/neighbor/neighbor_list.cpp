@@ -80,7 +80,7 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
   constexpr int kBlock = 512;
   const int blocks = (n + kBlock - 1) / kBlock;
   std::vector<std::vector<int>> block_partners(blocks);
-#pragma omp parallel for schedule(dynamic)
+#pragma omp parallel for schedule(dynamic) if (n >= kParallelMinParticles)
   for (int b = 0; b < blocks; ++b) {
     std::vector<int>& out = block_partners[b];
     std::vector<int> row;
@@ -107,7 +107,7 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
 
   const std::size_t pairs = next.partner.size();
   next.constants.resize(pairs);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
   for (int i = 0; i < n; ++i)
     for (int k = next.row_start[i]; k < next.row_start[i + 1]; ++k) next.constants[k] = pair_constants(p, i, next.partner[k]);
 
@@ -117,7 +117,7 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
   else next.roll.clear();
   if (previous.partner.empty()) return;
   const bool keep_roll = options.keep_rolling_history && !previous.roll.empty();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
   for (int i = 0; i < n; ++i) {
     const int oi = new_to_old.empty() ? i : new_to_old[i];
     for (int k = next.row_start[i]; k < next.row_start[i + 1]; ++k) {

@@ -153,7 +153,7 @@ class ForceKernelImpl final : public ForceKernel {
     const int n = static_cast<int>(p.size());
     const double half_dt = 0.5 * s.dt;
     const Vec3 g = s.gravity;
-#pragma omp parallel for schedule(static) if (n > 4096)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
     for (int i = 0; i < n; ++i) {
       Vec3 f = s.f_next[i], t = p.t[i];
       for (int a = plan.deferred_start[i]; a < plan.deferred_start[i + 1]; ++a) {

@@ -91,7 +91,7 @@ double Simulation::half_kick_and_drift() {
   const int n = static_cast<int>(p.size());
   const double dt = state_.dt, half_dt = 0.5 * dt;
   double moved2 = 0;
-#pragma omp parallel for schedule(static) reduction(max : moved2)
+#pragma omp parallel for schedule(static) reduction(max : moved2) if (n >= kParallelMinParticles)
   for (int i = 0; i < n; ++i) {
     p.v[i] += half_dt * p.inv_mass[i] * p.f[i];
     p.w[i] += half_dt * p.inv_inertia[i] * p.t[i];
