@@ -32,7 +32,7 @@ struct ContactInput {
   double vn_now;    // normal relative velocity predicted at the full step (normal damping)
   double onset;     // share of the step's force window inside the contact (boundary_share)
   Vec3 w_rel;       // w_i - w_j
-  const PairConstants* pair;  // sqrt(m*), R*, I_r of the pair
+  PairConstants pair;  // sqrt(m*), and R* and I_r where the law uses them
   double dt;
 };
 
@@ -139,7 +139,7 @@ struct CdtRolling {
     Vec3 wr = c.w_rel - c.n.dot(c.w_rel) * c.n;
     const double w = wr.norm();
     if (w == 0) return Vec3::Zero();
-    const double moment = std::min(p.mu_r * c.pair->r_eff * fn, c.pair->i_roll * w / c.dt);
+    const double moment = std::min(p.mu_r * c.pair.r_eff * fn, c.pair.i_roll * w / c.dt);
     return -moment / w * wr;
   }
 };
@@ -151,7 +151,7 @@ struct EpsdRolling {
                        Vec3* spring) {
     Vec3& mk = *spring;
     const Vec3 wr = c.w_rel - c.n.dot(c.w_rel) * c.n;
-    const double r_eff = c.pair->r_eff;
+    const double r_eff = c.pair.r_eff;
     const double kr = 2.25 * nr.kn_tangent * p.mu_r * p.mu_r * r_eff * r_eff;
     rotate_into_plane(mk, c.n);
     mk -= kr * c.dt * wr;
@@ -161,7 +161,7 @@ struct EpsdRolling {
       if (m2 > 0) mk *= limit / std::sqrt(m2);
       return mk;  // fully mobilised: no damping (f = 0 of Ai et al.)
     }
-    const double cr = 2 * p.rolling_damping * std::sqrt(c.pair->i_roll * kr);
+    const double cr = 2 * p.rolling_damping * std::sqrt(c.pair.i_roll * kr);
     return mk - cr * wr;
   }
 };
@@ -170,11 +170,12 @@ template <class Normal, bool NoTensile, bool Friction, class Rolling>
 struct ContactLaw {
   static constexpr bool kRolling = !std::is_same_v<Rolling, NoRolling>;
   static constexpr bool kRollingSpring = std::is_same_v<Rolling, EpsdRolling>;
+  static constexpr bool kNeedsEffectiveRadius = kRolling || std::is_same_v<Normal, HertzNormal>;
   using NormalLaw = Normal;
 
   DEM_HOT static ContactOutput evaluate(const PairParams& p, const ContactInput& c, const ContactHistory& h) {
     const double vn = c.v_rel.dot(c.n);
-    const NormalResponse nr = Normal::evaluate(p, c.delta, c.vn_now, c.onset, *c.pair);
+    const NormalResponse nr = Normal::evaluate(p, c.delta, c.vn_now, c.onset, c.pair);
     const double fn = NoTensile ? std::max(nr.fn, 0.0) : nr.fn;
     ContactOutput out;
     out.fn = fn;

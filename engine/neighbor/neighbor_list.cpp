@@ -106,10 +106,17 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
     std::copy(block_partners[b].begin(), block_partners[b].end(), next.partner.begin() + next.row_start[b * kBlock]);
 
   const std::size_t pairs = next.partner.size();
-  next.constants.resize(pairs);
+  next.sqrt_m_eff.resize(pairs);
+  next.r_eff.resize(pairs);
+  next.i_roll.resize(pairs);
 #pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
   for (int i = 0; i < n; ++i)
-    for (int k = next.row_start[i]; k < next.row_start[i + 1]; ++k) next.constants[k] = pair_constants(p, i, next.partner[k]);
+    for (int k = next.row_start[i]; k < next.row_start[i + 1]; ++k) {
+      const PairConstants c = pair_constants(p, i, next.partner[k]);
+      next.sqrt_m_eff[k] = c.sqrt_m_eff;
+      next.r_eff[k] = c.r_eff;
+      next.i_roll[k] = c.i_roll;
+    }
 
   // Carry the history of pairs that were already listed.
   next.shear.assign(pairs, Vec3::Zero());

@@ -35,7 +35,10 @@ struct NeighborList {
   std::vector<int> partner;    // j of each pair, ascending within a row
   std::vector<Vec3> shear;     // tangential spring per pair
   std::vector<Vec3> roll;      // rolling spring per pair (empty unless the rolling law has one)
-  std::vector<PairConstants> constants;
+  // pair constants, one array each so that the force loop streams only those its law needs
+  std::vector<double> sqrt_m_eff;
+  std::vector<double> r_eff;
+  std::vector<double> i_roll;
 
   std::size_t pair_count() const { return partner.size(); }
   int row_of_pair_start(int i) const { return row_start[i]; }

@@ -30,10 +30,13 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
         outcome.error = "cancelled";
         break;
       }
+      const std::int64_t next = sim.step_count() + 1;
+      const bool frame_due = (every > 0 && next % every == 0) || next == total;
+      sim.record_contacts(frame_due);
       sim.step();
       const std::int64_t s = sim.step_count();
       if (s % check_every == 0 || s == total) guard.check(sim);
-      if ((every > 0 && s % every == 0) || s == total) frame();
+      if (frame_due) frame();
       if (options.on_progress) {
         const auto now = Clock::now();
         const double since = std::chrono::duration<double>(now - last_report).count();

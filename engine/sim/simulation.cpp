@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -66,6 +67,7 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
         std::max<std::int64_t>(1, std::llround(scene_.outputs.interval_seconds / state_.dt));
   state_.particles = make_particles(scene_);
   state_.f_next.assign(state_.particles.size(), Vec3::Zero());
+  state_.half_kick.assign(state_.particles.size(), Vec3::Zero());
   state_.gravity = scene_.gravity;
   for (const WallInit& w : scene_.walls) state_.walls.push_back(Wall::from(w));
   skin_ = scene_.numerics.skin_fraction * mean_diameter(state_.particles.radius);
@@ -83,6 +85,7 @@ void Simulation::step() {
   const int interval = scene_.numerics.search_interval;
   if (moved2 > half_skin * half_skin || (interval > 0 && step_ + 1 - last_build_step_ >= interval)) build_neighbors();
   kernel_->compute_and_kick(state_);
+  contacts_recorded_ = state_.record_contacts;
   ++step_;
 }
 
@@ -91,9 +94,11 @@ double Simulation::half_kick_and_drift() {
   const int n = static_cast<int>(p.size());
   const double dt = state_.dt, half_dt = 0.5 * dt;
   double moved2 = 0;
+  std::vector<Vec3>& kick = state_.half_kick;
 #pragma omp parallel for schedule(static) reduction(max : moved2) if (n >= kParallelMinParticles)
   for (int i = 0; i < n; ++i) {
-    p.v[i] += half_dt * p.inv_mass[i] * p.f[i];
+    kick[i] = half_dt * p.inv_mass[i] * p.f[i];
+    p.v[i] += kick[i];
     p.w[i] += half_dt * p.inv_inertia[i] * p.t[i];
     p.x[i] += dt * p.v[i];
     moved2 = std::max(moved2, (p.x[i] - x_at_build_[i]).squaredNorm());
@@ -110,8 +115,12 @@ void Simulation::build_neighbors() {
     order = spatial_order(p, 2 * r_max + skin_);
     bool identity = true;
     for (std::size_t k = 0; k < order.size() && identity; ++k) identity = order[k] == static_cast<int>(k);
-    if (identity) order.clear();
-    else p.permute(order);
+    if (identity) {
+      order.clear();
+    } else {
+      p.permute(order);
+      permute_array(state_.half_kick, order);  // this step's kick, already taken, feeds the prediction
+    }
   }
   ++builds_;
   NeighborList next;
@@ -169,7 +178,6 @@ void Simulation::build_wall_contacts(const WallContacts& previous, const std::ve
         }
       }
       wc.wall.push_back(w);
-      wc.constants.push_back(wall_constants(p, i));
       wc.shear.push_back(shear);
       if (keep_roll) wc.roll.push_back(roll);
     }
@@ -195,7 +203,14 @@ double Simulation::gravitational_energy() const {
   return e;
 }
 
+namespace {
+void require_recorded(bool recorded) {
+  if (!recorded) throw std::logic_error("the last step did not record contact forces (Simulation::record_contacts)");
+}
+}  // namespace
+
 std::vector<int> Simulation::contact_counts() const {
+  require_recorded(contacts_recorded_);
   const Particles& p = state_.particles;
   const NeighborList& nl = state_.neighbors;
   std::vector<int> count(p.size(), 0);
@@ -212,6 +227,7 @@ std::vector<int> Simulation::contact_counts() const {
 }
 
 std::vector<PairContact> Simulation::pair_contacts() const {
+  require_recorded(contacts_recorded_);
   const NeighborList& nl = state_.neighbors;
   std::vector<PairContact> out;
   for (std::size_t i = 0; i < state_.particles.size(); ++i)

@@ -38,9 +38,15 @@ class Simulation {
   int neighbor_builds() const { return builds_; }
   double skin() const { return skin_; }
 
+  // Per-contact forces (pair_contacts, contact_counts) are kept only for steps that ask for them:
+  // on by default; a runner turns it on just before the steps whose frames it writes.
+  void record_contacts(bool on) { state_.record_contacts = on; }
+  bool contacts_recorded() const { return contacts_recorded_; }
+
   double kinetic_energy() const;        // translational + rotational, J
   double gravitational_energy() const;  // -sum m g.x, J
   ContactSummary contact_summary() const { return kernel_->summarize(state_); }
+  // Both throw std::logic_error when the last step did not record contacts.
   std::vector<int> contact_counts() const;  // per particle index: touching pairs and walls
   std::vector<PairContact> pair_contacts() const;
 
@@ -59,6 +65,7 @@ class Simulation {
   std::int64_t step_ = 0;
   std::int64_t total_steps_ = 0;
   int builds_ = 0;
+  bool contacts_recorded_ = true;
   std::int64_t last_build_step_ = 0;
 };
 

@@ -17,7 +17,6 @@ struct WallContacts {
   std::vector<int> wall;       // wall index of each entry
   std::vector<Vec3> shear;     // tangential spring per entry
   std::vector<Vec3> roll;      // rolling spring per entry (EPSD only)
-  std::vector<PairConstants> constants;
   std::vector<double> fn;      // normal force of the last step (0 when apart)
   std::vector<double> ft;      // tangential force magnitude of the last step
   std::vector<std::uint8_t> touching;
@@ -47,12 +46,14 @@ struct SimState {
   NeighborList neighbors;
   PairResults pairs;
   BlockPlan blocks;
-  std::vector<Vec3> f_next;  // forces being summed this step (the last step's stay in particles.f)
+  std::vector<Vec3> f_next;     // forces being summed this step (the last step's stay in particles.f)
+  std::vector<Vec3> half_kick;  // velocity change of this step's first half kick, dt/2 f/m
   std::vector<Wall> walls;
   WallContacts wall_contacts;
   PairTable table;
   Vec3 gravity = Vec3::Zero();
   double dt = 0;
+  bool record_contacts = true;  // keep per-contact forces in `pairs` (observers need them)
 };
 
 }  // namespace dem
