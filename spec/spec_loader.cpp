@@ -181,7 +181,6 @@ Scene to_scene(const api::JobSpec& spec) {
   const int nm = static_cast<int>(scene.materials.size());
   scene.interactions.assign(static_cast<size_t>(nm) * nm, Interaction{});
   std::vector<char> given(static_cast<size_t>(nm) * nm, 0);
-  bool any_rolling = false;
   for (int k = 0; k < spec.interactions_size(); ++k) {
     const auto& in = spec.interactions(k);
     const std::string path = at("interactions", k);
@@ -192,14 +191,12 @@ Scene to_scene(const api::JobSpec& spec) {
     if (in.rolling_friction() > 0 && scene.contact.rolling == RollingModel::None)
       check.fail(path + ".rollingFriction", "is " + num(in.rolling_friction()) +
                                                 " but contact.rolling is NONE: choose CDT or EPSD, or set it to 0");
-    any_rolling = any_rolling || in.rolling_friction() > 0;
     if (a < 0 || b < 0) continue;
     if (given[a * nm + b]) check.fail(path, "a second interaction for \"" + in.a() + "\" and \"" + in.b() + "\"");
     const Interaction value{in.restitution(), in.friction(), in.rolling_friction()};
     scene.interactions[a * nm + b] = scene.interactions[b * nm + a] = value;
     given[a * nm + b] = given[b * nm + a] = 1;
   }
-  (void)any_rolling;
 
   // particles: listed ones first, then lattices, in the order given
   std::set<int> particle_materials;
@@ -320,7 +317,8 @@ Scene to_scene(const api::JobSpec& spec) {
   check.non_negative("time.dt", t.dt());
   scene.time.dt = t.dt();
   if (t.dt_fraction() != 0) {
-    check.in_range("time.dtFraction", t.dt_fraction(), 0, 0.5, true, false);
+    // at most the stable limit (10 steps per contact), which a given dt is held to as well
+    check.in_range("time.dtFraction", t.dt_fraction(), 0, 0.1, true, false);
     scene.time.dt_fraction = t.dt_fraction();
   }
   if (t.duration() != 0 && t.steps() != 0) check.fail("time", "give duration or steps, not both");

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "support/impact.hpp"
+#include "support/report.hpp"
 
 namespace dem::test {
 namespace {
@@ -32,6 +33,9 @@ TEST_P(ElasticImpact, MatchesHertzTheoryWithinOnePercent) {
   }
   Simulation sim(s);  // the project's default (automatic) time step
   const ImpactRecord r = record_impact(sim, 100000);
+  report(std::string(c.name) + " contact time", r.contact_time, c.t_c);
+  report(std::string(c.name) + " max overlap", r.max_overlap, c.alpha_max);
+  report(std::string(c.name) + " max force", r.max_force, c.f_max);
   EXPECT_NEAR(r.contact_time, c.t_c, 0.01 * c.t_c) << c.name << " dt=" << sim.dt();
   EXPECT_NEAR(r.max_overlap, c.alpha_max, 0.01 * c.alpha_max) << c.name;
   EXPECT_NEAR(r.max_force, c.f_max, 0.01 * c.f_max) << c.name;
@@ -67,6 +71,8 @@ TEST_P(Restitution, MeasuredEqualsInputWithinOnePercent) {
     Simulation sim(s);
     record_impact(sim, 1000000);
     const double measured = sim.particles().v[0].z() / v;
+    report(std::string(c.model == NormalModel::Hertz ? "hertz" : "linear") + (c.no_tensile ? " no-tension" : "") +
+               " restitution", measured, e);
     EXPECT_NEAR(measured, e, 0.01 * e) << "e=" << e << " model=" << (c.model == NormalModel::Hertz ? "hertz" : "linear")
                                        << " no_tensile=" << c.no_tensile;
   }
@@ -94,6 +100,7 @@ TEST(ChungOoiTest3, AluminiumOxideElasticContactTime) {
   s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
   Simulation sim(s);
   const ImpactRecord rec = record_impact(sim, 1000000);
+  report("Al oxide e = 1 contact time", rec.contact_time, 6.104e-6);
   EXPECT_NEAR(rec.contact_time, 6.104e-6, 0.01 * 6.104e-6);
 }
 

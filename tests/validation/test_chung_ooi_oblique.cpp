@@ -7,6 +7,7 @@
 
 #include "support/impact.hpp"
 #include "support/impulse.hpp"
+#include "support/report.hpp"
 
 namespace dem::test {
 namespace {
@@ -43,6 +44,7 @@ void expect_matches_impact_theory(Scene s, double e, double mu, const std::strin
   record_impact(sim, 1000000);
   auto check = [&](const Vec3& before, const Vec3& after, const Vec3& want, const char* what) {
     const double change = (want - before).norm();
+    report(label + " " + what + " change", (after - before).norm(), change);
     EXPECT_LE((after - want).norm(), 0.01 * change) << label << " " << what << ": got " << after.transpose()
                                                     << " want " << want.transpose();
   };
@@ -76,6 +78,10 @@ TEST_P(ObliqueImpact, SpinAndReboundAngleWithinOnePercent) {
   // contact point velocity after the impact: v + w x (-r n)
   const Vec3 vc = vel + w.cross(Vec3(0, 0, -r));
   const double rebound = std::atan2(vc.x(), vc.z()) / kDeg;
+  const std::string label = std::string(model == NormalModel::Hertz ? "hertz" : "linear") + " theta " +
+                            std::to_string(static_cast<int>(c.angle_deg));
+  report(label + " spin", w.norm(), c.spin);
+  report(label + " rebound angle", rebound, c.rebound_deg);
   EXPECT_NEAR(w.norm(), c.spin, 0.01 * c.spin) << "theta=" << c.angle_deg;
   EXPECT_NEAR(rebound, c.rebound_deg, 0.01 * c.rebound_deg) << "theta=" << c.angle_deg;
   // tangential rebound v_t' = v_t - mu (1 + e) v_n (gross sliding)

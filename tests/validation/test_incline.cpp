@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "support/report.hpp"
 #include "support/scenes.hpp"
 
 namespace dem::test {
@@ -37,6 +38,9 @@ TEST_P(Incline, AccelerationMatchesClosedFormWithinHalfAPermille) {
   const double a = (sim.particles().v[0].dot(downhill) - v1) / (sim.time() - t1);
   const bool slides = std::tan(th) > 3.5 * c.mu;
   const double want = slides ? kG * (std::sin(th) - c.mu * std::cos(th)) : 5.0 / 7.0 * kG * std::sin(th);
+  report(std::string(c.model == NormalModel::Hertz ? "hertz" : "linear") + (slides ? " sliding" : " rolling") +
+             " acceleration",
+         a, want);
   EXPECT_NEAR(a, want, 5e-4 * want) << (slides ? "sliding" : "rolling");
   // no motion off the plane
   EXPECT_LT(std::abs(sim.particles().v[0].dot(normal)), 1e-6 * sim.particles().v[0].norm());
