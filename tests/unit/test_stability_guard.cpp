@@ -1,0 +1,101 @@
+// The stability guard stops a run that went unstable with a message naming the step, the particle
+// and the likely cause, and the frames written before the stop stay readable.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "legacy/legacy_formats.hpp"
+#include "output/legacy_output.hpp"
+#include "support/scenes.hpp"
+
+namespace dem::test {
+namespace {
+
+// Two spheres pressed together by 1% of the radius, at rest, elastic, no gravity.
+Scene pressed_pair() {
+  Scene s = base_scene(NormalModel::Linear, 2500, 0, 0.25, 1.0, 0.0, 1e4);
+  s.particles.push_back(sphere({-0.0099, 0, 0}, 0.01));
+  s.particles.push_back(sphere({0.0099, 0, 0}, 0.01));
+  s.time.steps = 2000;
+  s.outputs.every_steps = 1;
+  s.outputs.animation = true;
+  s.numerics.check_interval = 1;
+  return s;
+}
+
+struct Stopped {
+  RunOutcome outcome;
+  legacy::ReadResult<legacy::AnimationFrame> frames;
+};
+
+Stopped run_with_file(Scene s) {
+  Simulation sim(std::move(s));
+  const auto path = std::filesystem::temp_directory_path() / ("dem_guard_" + std::to_string(::getpid()) + ".dat");
+  Stopped out;
+  {
+    AnimationWriter writer(path.string(), sim);
+    out.outcome = run(sim, {&writer});
+  }
+  std::ifstream in(path, std::ios::binary);
+  out.frames = legacy::read_animation(in);
+  std::filesystem::remove(path);
+  return out;
+}
+
+TEST(StabilityGuard, EnergyGrowingWithoutSourceStopsTheRun) {
+  // a sphere resting on a rigid floor under gravity, so the contact lasts
+  Scene s = pressed_pair();
+  s.particles.resize(1);
+  s.particles[0].position = {0, 0, 0.0099};
+  s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+  s.gravity = {0, 0, -9.81};
+  // velocity Verlet is unstable past dt = 2 / omega; omega^2 = K_n / m with K_n = 2 k (rigid wall)
+  s.time.dt = 2.02 * std::sqrt(sphere_mass(2500, 0.01) / 2e4);
+  s.time.allow_unstable_dt = true;
+  s.numerics.max_overlap_fraction = 1.0;  // let the energy check trip first
+  const Stopped r = run_with_file(s);
+  ASSERT_FALSE(r.outcome.ok);
+  EXPECT_NE(r.outcome.error.find("energy grew"), std::string::npos) << r.outcome.error;
+  EXPECT_NE(r.outcome.error.find("at step"), std::string::npos) << r.outcome.error;
+  EXPECT_NE(r.outcome.error.find("particle "), std::string::npos) << r.outcome.error;
+  EXPECT_NE(r.outcome.error.find("time step"), std::string::npos) << r.outcome.error;
+  EXPECT_GT(r.outcome.steps, 1);  // it grew for a while before the guard saw it
+  EXPECT_LT(r.outcome.steps, 2000);
+  // every frame before the stop is in the file, whole (the failed step writes none)
+  EXPECT_FALSE(r.frames.truncated) << r.frames.problem;
+  EXPECT_EQ(static_cast<std::int64_t>(r.frames.frames.size()), r.outcome.steps);
+}
+
+TEST(StabilityGuard, OverlapBeyondTheLimitStopsTheRun) {
+  Scene s = pressed_pair();
+  // a fast head-on approach into a soft contact: the overlap passes a quarter of the radius
+  s.particles[0].velocity = {5, 0, 0};
+  s.particles[1].velocity = {-5, 0, 0};
+  const Stopped r = run_with_file(s);
+  ASSERT_FALSE(r.outcome.ok);
+  EXPECT_NE(r.outcome.error.find("overlap of"), std::string::npos) << r.outcome.error;
+  EXPECT_NE(r.outcome.error.find("stiffness"), std::string::npos) << r.outcome.error;
+  EXPECT_FALSE(r.frames.truncated) << r.frames.problem;
+  EXPECT_GE(r.frames.frames.size(), 1u);
+}
+
+TEST(StabilityGuard, NotANumberStopsTheRun) {
+  Scene s = pressed_pair();
+  s.particles[0].velocity = {std::nan(""), 0, 0};
+  Simulation sim(s);
+  const RunOutcome outcome = run(sim, {});
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_NE(outcome.error.find("not a number"), std::string::npos) << outcome.error;
+  EXPECT_NE(outcome.error.find("particle 1"), std::string::npos) << outcome.error;
+}
+
+TEST(StabilityGuard, AStableRunIsLeftAlone) {
+  Scene s = pressed_pair();
+  const RunOutcome outcome = run_with_file(s).outcome;
+  EXPECT_TRUE(outcome.ok) << outcome.error;
+  EXPECT_EQ(outcome.steps, 2000);
+}
+
+}  // namespace
+}  // namespace dem::test
