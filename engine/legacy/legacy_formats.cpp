@@ -356,6 +356,24 @@ constexpr std::string_view plate_layout = "id rplate x1 y1 z1 x2 y2 z2 x3 y3 z3 
 constexpr std::string_view triangle_layout = "id tri x1 y1 z1 x2 y2 z2 x3 y3 z3";
 constexpr std::string_view particle_layout = "id x y z D vx vy vz nc wx wy wz part";
 
+// Plate and triangle lines: "id WORD" then the corners, three numbers each.
+template <class Polygon>
+std::optional<Stop> read_polygons(FrameLines& frame_lines, std::string_view what, std::string_view layout,
+                                  std::string_view word, std::size_t count, std::vector<Polygon>& out) {
+  constexpr std::size_t corners = std::tuple_size_v<decltype(Polygon::corners)>;
+  out.reserve(safe_reserve(count));
+  for (std::size_t k = 0; k < count; ++k) {
+    if (auto stop = frame_lines.next({what, layout, 2 + 3 * corners, k + 1, count})) return stop;
+    if (auto stop = frame_lines.check_word(1, word)) return stop;
+    LineValues values = frame_lines.values();
+    Polygon& polygon = out.emplace_back();
+    polygon.id = values.integer(0);
+    for (std::size_t corner = 0; corner < corners; ++corner) polygon.corners[corner] = values.vec3(2 + 3 * corner);
+    if (!values.ok()) return malformed(values.problem());
+  }
+  return std::nullopt;
+}
+
 std::optional<Stop> read_animation_frame(TokenLines& lines, AnimationFrame& frame) {
   if (auto stop = check_frame_header(lines, animation_header, 1, animation_header)) return stop;
   FrameLines frame_lines(lines, animation_header);
@@ -382,27 +400,11 @@ std::optional<Stop> read_animation_frame(TokenLines& lines, AnimationFrame& fram
   const std::size_t plate_count = counts.count(2);
   if (!counts.ok()) return malformed(counts.problem());
 
-  frame.plates.reserve(safe_reserve(plate_count));
-  for (std::size_t k = 0; k < plate_count; ++k) {
-    if (auto stop = frame_lines.next({"plate line", plate_layout, 14, k + 1, plate_count})) return stop;
-    if (auto stop = frame_lines.check_word(1, plate_word)) return stop;
-    LineValues values = frame_lines.values();
-    AnimationPlate& plate = frame.plates.emplace_back();
-    plate.id = values.integer(0);
-    for (std::size_t corner = 0; corner < 4; ++corner) plate.corners[corner] = values.vec3(2 + 3 * corner);
-    if (!values.ok()) return malformed(values.problem());
-  }
-
-  frame.triangles.reserve(safe_reserve(triangle_count));
-  for (std::size_t k = 0; k < triangle_count; ++k) {
-    if (auto stop = frame_lines.next({"triangle line", triangle_layout, 11, k + 1, triangle_count})) return stop;
-    if (auto stop = frame_lines.check_word(1, triangle_word)) return stop;
-    LineValues values = frame_lines.values();
-    AnimationTriangle& triangle = frame.triangles.emplace_back();
-    triangle.id = values.integer(0);
-    for (std::size_t corner = 0; corner < 3; ++corner) triangle.corners[corner] = values.vec3(2 + 3 * corner);
-    if (!values.ok()) return malformed(values.problem());
-  }
+  if (auto stop = read_polygons(frame_lines, "plate line", plate_layout, plate_word, plate_count, frame.plates))
+    return stop;
+  if (auto stop =
+          read_polygons(frame_lines, "triangle line", triangle_layout, triangle_word, triangle_count, frame.triangles))
+    return stop;
 
   frame.particles.reserve(safe_reserve(particle_count));
   for (std::size_t k = 0; k < particle_count; ++k) {
