@@ -2,9 +2,12 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -89,12 +92,52 @@ void check_plate(const std::array<Vec3, 4>& c, const std::string& path, Checker&
 SpecError::SpecError(std::vector<std::string> problems)
     : std::runtime_error(join(problems)), problems_(std::move(problems)) {}
 
+// Protobuf's JSON errors name the field as "(parent) name: ..." or "(path): ..."; say them the way
+// the checks do: "path: what is wrong".
+std::string reword_protobuf_error(const std::string& message) {
+  static const std::regex unknown(R"(^\(([^)]*)\) ?([A-Za-z0-9_]+): Cannot find field\.?$)");
+  static const std::regex unknown_top(R"(^([A-Za-z0-9_]+): Cannot find field\.?$)");
+  static const std::regex bad_value(R"(^\(([^)]*)\): invalid value (.*) for type TYPE_([A-Z0-9]+)$)");
+  static const std::regex bad_enum(R"(^\(([^)]*)\): invalid value (.*) for type type\.googleapis\.com/(.+)$)");
+  std::smatch m;
+  if (std::regex_match(message, m, bad_enum)) {
+    std::string names;
+    if (const auto* e = google::protobuf::DescriptorPool::generated_pool()->FindEnumTypeByName(m[3].str())) {
+      for (int k = 0; k < e->value_count(); ++k) {
+        const std::string& name = e->value(k)->name();
+        if (name.find("UNSPECIFIED") != std::string::npos) continue;
+        names += (names.empty() ? "" : ", ") + name;
+      }
+    }
+    return m[1].str() + ": expected one of " + (names.empty() ? m[3].str() : names) + ", got " + m[2].str();
+  }
+  if (std::regex_match(message, m, unknown)) return m[1].str() + "." + m[2].str() + ": unknown field";
+  if (std::regex_match(message, m, unknown_top)) return m[1].str() + ": unknown field";
+  if (std::regex_match(message, m, bad_value)) {
+    const std::string type = m[3].str();
+    const std::string expected = type == "DOUBLE" || type == "FLOAT"     ? "a number"
+                                 : type == "BOOL"                       ? "true or false"
+                                 : type == "STRING"                     ? "a string"
+                                 : type.find("INT") != std::string::npos ? "a whole number"
+                                                                         : "a value of type " + type;
+    return m[1].str() + ": expected " + expected + ", got " + m[2].str();
+  }
+  return "spec: " + message;
+}
+
 api::JobSpec parse_json(const std::string& text) {
+  // Syntax first, with a line and column (protobuf's parser gives neither).
+  try {
+    const auto syntax_only = nlohmann::json::parse(text);
+    (void)syntax_only;
+  } catch (const nlohmann::json::parse_error& e) {
+    throw SpecError({std::string("spec: malformed JSON: ") + e.what()});
+  }
   api::JobSpec spec;
   google::protobuf::util::JsonParseOptions options;
   options.ignore_unknown_fields = false;
   const auto status = google::protobuf::util::JsonStringToMessage(text, &spec, options);
-  if (!status.ok()) throw SpecError({"spec: " + std::string(status.message())});
+  if (!status.ok()) throw SpecError({reword_protobuf_error(std::string(status.message()))});
   return spec;
 }
 

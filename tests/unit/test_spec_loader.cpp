@@ -207,30 +207,33 @@ TEST(SpecLoader, LatticeSitesFollowTheListedParticles) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Parser errors: the protobuf JSON parser's own message, whatever its wording, must name the field
+// Parser errors: syntax (with line and column), unknown fields and wrong types, by JSON path
 
 TEST(SpecLoader, UnknownFieldIsNamed) {
   const auto problems = problems_of(good_with(R"("radius": 0.01)", R"("radiuss": 0.01)"));
   ASSERT_EQ(problems.size(), 1u);
-  EXPECT_NE(problems[0].find("radiuss"), std::string::npos) << problems[0];
+  EXPECT_NE(problems[0].find("particles[0].radiuss: unknown field"), std::string::npos) << problems[0];
 }
 
 TEST(SpecLoader, StringForANumberIsNamed) {
   const auto problems = problems_of(good_with(R"("density": 2500)", R"("density": "heavy")"));
   ASSERT_EQ(problems.size(), 1u);
-  EXPECT_NE(problems[0].find("density"), std::string::npos) << problems[0];
+  EXPECT_NE(problems[0].find("materials[0].density: expected a number, got \"heavy\""), std::string::npos)
+      << problems[0];
 }
 
 TEST(SpecLoader, UnknownEnumValueIsAnError) {
   const auto problems = problems_of(good_with(R"("normal": "LINEAR")", R"("normal": "LINEAER")"));
   ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("contact.normal: expected one of LINEAR, HERTZ"), std::string::npos) << problems[0];
   EXPECT_NE(problems[0].find("LINEAER"), std::string::npos) << problems[0];
 }
 
 TEST(SpecLoader, MalformedJsonIsAnError) {
   const auto problems = problems_of(std::string(kGoodSpec).substr(0, 200));
   ASSERT_EQ(problems.size(), 1u);
-  EXPECT_EQ(problems[0].rfind("spec: ", 0), 0u) << problems[0];
+  EXPECT_EQ(problems[0].rfind("spec: malformed JSON: ", 0), 0u) << problems[0];
+  EXPECT_NE(problems[0].find("line "), std::string::npos) << problems[0];  // where it broke
 }
 
 // ---------------------------------------------------------------------------------------------
