@@ -41,7 +41,6 @@ struct NeighborList {
   std::vector<double> i_roll;
 
   std::size_t pair_count() const { return partner.size(); }
-  int row_of_pair_start(int i) const { return row_start[i]; }
 };
 
 struct NeighborBuildOptions {

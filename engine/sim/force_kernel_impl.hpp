@@ -6,7 +6,6 @@
 #pragma once
 
 #include <algorithm>
-#include <limits>
 
 #include "contact/contact_law.hpp"
 #include "sim/force_kernel.hpp"
