@@ -76,34 +76,44 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
     grids.back().fill(p.x, level.members);
   }
 
-  // Rows are found in fixed blocks (independent of the thread count) and joined in block order.
+  // Each pair is found once, from its smaller sphere: a particle scans only its own level and the
+  // coarser ones (a large sphere never scans the fine grids, whose cells are small for its reach).
+  // Within a level, the pair belongs to the lower index. Pairs are found in fixed blocks
+  // (independent of the thread count), then put into rows and each row sorted.
+  std::vector<int> level_of(n);
+  for (std::size_t l = 0; l < levels.size(); ++l)
+    for (int i : levels[l].members) level_of[i] = static_cast<int>(l);
   constexpr int kBlock = 512;
   const int blocks = (n + kBlock - 1) / kBlock;
-  std::vector<std::vector<int>> block_partners(blocks);
+  std::vector<std::vector<std::pair<int, int>>> block_pairs(blocks);
 #pragma omp parallel for schedule(dynamic) if (n >= kParallelMinParticles)
   for (int b = 0; b < blocks; ++b) {
-    std::vector<int>& out = block_partners[b];
-    std::vector<int> row;
+    std::vector<std::pair<int, int>>& out = block_pairs[b];
     for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
-      row.clear();
       const Vec3 xi = p.x[i];
       const double ri = p.radius[i];
-      for (std::size_t l = 0; l < grids.size(); ++l) {
+      for (std::size_t l = level_of[i]; l < grids.size(); ++l) {
+        const bool same_level = static_cast<int>(l) == level_of[i];
         grids[l].for_each_near(xi, ri + levels[l].r_max + options.skin, [&](int j) {
-          if (j <= i) return;
+          if (same_level ? j <= i : false) return;
           const double cut = ri + p.radius[j] + options.skin;
-          if ((p.x[j] - xi).squaredNorm() < cut * cut) row.push_back(j);
+          if ((p.x[j] - xi).squaredNorm() < cut * cut) out.emplace_back(std::min(i, j), std::max(i, j));
         });
       }
-      std::sort(row.begin(), row.end());
-      next.row_start[i + 1] = static_cast<int>(row.size());
-      out.insert(out.end(), row.begin(), row.end());
     }
   }
+  for (const auto& found : block_pairs)
+    for (const auto& [a, b] : found) ++next.row_start[a + 1];
   for (int i = 0; i < n; ++i) next.row_start[i + 1] += next.row_start[i];
   next.partner.resize(next.row_start[n]);
-  for (int b = 0; b < blocks; ++b)
-    std::copy(block_partners[b].begin(), block_partners[b].end(), next.partner.begin() + next.row_start[b * kBlock]);
+  {
+    std::vector<int> fill(next.row_start.begin(), next.row_start.end() - 1);
+    for (const auto& found : block_pairs)
+      for (const auto& [a, b] : found) next.partner[fill[a]++] = b;
+  }
+#pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
+  for (int i = 0; i < n; ++i)
+    std::sort(next.partner.begin() + next.row_start[i], next.partner.begin() + next.row_start[i + 1]);
 
   const std::size_t pairs = next.partner.size();
   next.sqrt_m_eff.resize(pairs);
