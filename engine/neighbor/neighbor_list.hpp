@@ -1,10 +1,11 @@
 // Verlet neighbour list: for each particle i the particles j > i closer than r_i + r_j + skin, in
 // compressed rows, with the contact history of each pair stored beside it.
 //
-// Search: one cell grid per size level (radii within a factor 2), so a 10:1 size ratio does not
-// make small particles scan cells sized for the large ones. Each particle scans every level with
-// the reach r_i + r_max(level) + skin and keeps j > i. Rows are sorted, so the list, and everything
-// computed from it, is the same whatever the number of threads.
+// Search: one cell grid per size level (radii within a factor 2). Each particle scans its own level
+// and the coarser ones with the reach r_i + r_max(level) + skin, so every pair is found once, from
+// its smaller sphere: with a 10:1 size ratio no small sphere scans cells sized for the large ones
+// and no large sphere scans the fine grids. Rows are sorted, so the list, and everything computed
+// from it, is the same whatever the number of threads.
 #pragma once
 
 #include <vector>
