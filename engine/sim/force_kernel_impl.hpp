@@ -86,6 +86,7 @@ class ForceKernelImpl final : public ForceKernel {
     Vec3* __restrict roll = nl.roll.data();
     Vec3* __restrict f_next = s.f_next.data();
     Vec3* __restrict torque = s.particles.t.data();
+    const int* __restrict slot = s.blocks.slot.data();
     Vec3* __restrict deferred_force = s.blocks.deferred_force.data();
     Vec3* __restrict deferred_torque = s.blocks.deferred_torque.data();
     double* __restrict out_fn = s.pairs.fn.data();
@@ -126,8 +127,8 @@ class ForceKernelImpl final : public ForceKernel {
             if (!shear[k].isZero(0)) shear[k].setZero();
             if constexpr (Law::kRollingSpring) roll[k].setZero();
             if (j >= end) {
-              deferred_force[k].setZero();
-              deferred_torque[k].setZero();
+              deferred_force[slot[k]].setZero();
+              deferred_torque[slot[k]].setZero();
             }
             continue;
           }
@@ -158,8 +159,8 @@ class ForceKernelImpl final : public ForceKernel {
             f_next[j] -= r.force;
             torque[j] += torque_j;
           } else {
-            deferred_force[k] = -r.force;
-            deferred_torque[k] = torque_j;
+            deferred_force[slot[k]] = -r.force;
+            deferred_torque[slot[k]] = torque_j;
           }
           if constexpr (kRecord) {
             out_fn[k] = r.fn;
@@ -183,9 +184,8 @@ class ForceKernelImpl final : public ForceKernel {
     for (int i = 0; i < n; ++i) {
       Vec3 f = s.f_next[i], t = p.t[i];
       for (int a = plan.deferred_start[i]; a < plan.deferred_start[i + 1]; ++a) {
-        const int k = plan.deferred_pair[a];
-        f += plan.deferred_force[k];
-        t += plan.deferred_torque[k];
+        f += plan.deferred_force[a];
+        t += plan.deferred_torque[a];
       }
       if constexpr (kWalls) add_wall_forces(s, i, f, t);
       f += p.mass[i] * g;

@@ -148,13 +148,13 @@ void Simulation::plan_blocks() {
     for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
       if (crosses(i, nl.partner[k])) ++b.deferred_start[nl.partner[k] + 1];
   for (int i = 0; i < n; ++i) b.deferred_start[i + 1] += b.deferred_start[i];
-  b.deferred_pair.resize(b.deferred_start[n]);
+  b.slot.assign(nl.pair_count(), -1);
   std::vector<int> fill(b.deferred_start.begin(), b.deferred_start.end() - 1);
   for (int i = 0; i < n; ++i)
     for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
-      if (crosses(i, nl.partner[k])) b.deferred_pair[fill[nl.partner[k]]++] = k;
-  b.deferred_force.assign(nl.pair_count(), Vec3::Zero());
-  b.deferred_torque.assign(nl.pair_count(), Vec3::Zero());
+      if (crosses(i, nl.partner[k])) b.slot[k] = fill[nl.partner[k]]++;
+  b.deferred_force.assign(b.deferred_start[n], Vec3::Zero());
+  b.deferred_torque.assign(b.deferred_start[n], Vec3::Zero());
 }
 
 void Simulation::build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old) {

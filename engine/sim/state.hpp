@@ -35,10 +35,10 @@ struct PairResults {
 // do not depend on the number of threads, so neither does any sum: results are bit-identical.
 struct BlockPlan {
   int block_size = 4096;
-  std::vector<int> deferred_start;    // per particle p: the crossing pairs in which p is j (size n + 1)
-  std::vector<int> deferred_pair;     // ascending pair indices
-  std::vector<Vec3> deferred_force;   // per pair (crossing pairs only): force on j
-  std::vector<Vec3> deferred_torque;  // per pair (crossing pairs only): torque on j
+  std::vector<int> deferred_start;    // per particle p: its slots as j of crossing pairs (size n + 1)
+  std::vector<int> slot;              // per pair: its slot, or -1 when both bodies share a block
+  std::vector<Vec3> deferred_force;   // per slot: force on j (slots of p in ascending pair order)
+  std::vector<Vec3> deferred_torque;  // per slot: torque on j
 };
 
 struct SimState {
