@@ -8,6 +8,9 @@
 namespace dem {
 namespace {
 
+// I + m r^2 about the contact point: 7/5 m r^2 for a solid sphere
+double rolling_inertia(const Particles& p, int i) { return 1.4 * p.mass[i] * p.radius[i] * p.radius[i]; }
+
 struct SizeLevel {
   double r_max = 0;
   std::vector<int> members;
@@ -49,15 +52,13 @@ int find_pair(const NeighborList& list, int i, int j) {
 
 PairConstants pair_constants(const Particles& p, int i, int j) {
   const double ri = p.radius[i], rj = p.radius[j];
-  // I + m r^2 = 7/5 m r^2 for a solid sphere
-  const double ii = 1.4 * p.mass[i] * ri * ri, ij = 1.4 * p.mass[j] * rj * rj;
+  const double ii = rolling_inertia(p, i), ij = rolling_inertia(p, j);
   return {std::sqrt(reduced(p.inv_mass[i], p.inv_mass[j], p.mass[i], p.mass[j])), ri * rj / (ri + rj),
           reduced(p.inv_mass[i] > 0 ? 1 / ii : 0, p.inv_mass[j] > 0 ? 1 / ij : 0, ii, ij)};
 }
 
 PairConstants wall_constants(const Particles& p, int i) {
-  const double r = p.radius[i];
-  return {std::sqrt(p.mass[i]), r, 1.4 * p.mass[i] * r * r};
+  return {std::sqrt(p.mass[i]), p.radius[i], rolling_inertia(p, i)};
 }
 
 void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options, const NeighborList& previous,

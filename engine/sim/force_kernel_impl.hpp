@@ -215,7 +215,7 @@ class ForceKernelImpl final : public ForceKernel {
       c.vn_now = vn + s.half_kick[i].dot(c.n);
       c.onset = boundary_share(c.delta, vn, s.dt);
       c.w_rel = p.w[i];
-      c.pair = wall_constants(p, i);
+      c.pair = wc.constants[e];
       c.dt = s.dt;
       ContactHistory h{&wc.shear[e], Law::kRollingSpring ? &wc.roll[e] : nullptr};
       const ContactOutput r = Law::evaluate(s.table(p.material[i], wall.material), c, h);

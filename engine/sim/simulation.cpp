@@ -178,6 +178,7 @@ void Simulation::build_wall_contacts(const WallContacts& previous, const std::ve
         }
       }
       wc.wall.push_back(w);
+      wc.constants.push_back(wall_constants(p, i));
       wc.shear.push_back(shear);
       if (keep_roll) wc.roll.push_back(roll);
     }

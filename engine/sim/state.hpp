@@ -17,6 +17,7 @@ struct WallContacts {
   std::vector<int> wall;       // wall index of each entry
   std::vector<Vec3> shear;     // tangential spring per entry
   std::vector<Vec3> roll;      // rolling spring per entry (EPSD only)
+  std::vector<PairConstants> constants;  // computed at the build, like the pairs'
   std::vector<double> fn;      // normal force of the last step (0 when apart)
   std::vector<double> ft;      // tangential force magnitude of the last step
   std::vector<std::uint8_t> touching;
