@@ -11,12 +11,10 @@
 // contact, against 0.1% with the prediction; see docs/physics.md).
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <type_traits>
 
 #include "contact/pair_params.hpp"
-#include "core/vec.hpp"
+#include "core/lanes.hpp"
 #include "neighbor/neighbor_list.hpp"
 
 // The laws run once per contact per step: keep them inlined into the force loop whatever the
@@ -25,27 +23,52 @@
 
 namespace dem {
 
+// One contact, or one per lane (T = Lanes<W>: core/lanes.hpp).
+template <class T>
 struct ContactInput {
-  Vec3 n;
-  double delta;
-  Vec3 v_rel;       // contact-point relative velocity at the half step (moves the springs)
-  double vn_now;    // normal relative velocity predicted at the full step (normal damping)
-  double onset;     // share of the step's force window inside the contact (boundary_share)
-  Vec3 w_rel;       // w_i - w_j
-  PairConstants pair;  // sqrt(m*), and R* and I_r where the law uses them
-  double dt;
+  V3<T> n;
+  T delta;
+  V3<T> v_rel;      // contact-point relative velocity at the half step (moves the springs)
+  T vn_now;         // normal relative velocity predicted at the full step (normal damping)
+  T onset;          // share of the step's force window inside the contact (boundary_share)
+  V3<T> w_rel;      // w_i - w_j
+  T sqrt_m_eff;     // sqrt of the reduced mass
+  T r_eff;          // reduced radius (Hertz and rolling laws)
+  T i_roll;         // rolling inertia (rolling laws)
+  T dt;
 };
 
-struct ContactHistory {
-  Vec3* shear;      // tangential spring displacement (Mindlin or linear)
-  Vec3* roll;       // rolling spring moment (EPSD only)
-};
-
+template <class T>
 struct ContactOutput {
-  Vec3 force;       // on i
-  Vec3 shear_force; // tangential part of force (lever torque: -r_i n x fs on i, -r_j n x fs on j)
-  Vec3 roll_moment; // on i (j gets the opposite)
-  double fn;        // normal force magnitude (>= 0 unless tension is allowed)
+  V3<T> force;       // on i
+  V3<T> shear_force; // tangential part of force (lever torque: -r_i n x fs on i, -r_j n x fs on j)
+  V3<T> roll_moment; // on i (j gets the opposite)
+  T fn;              // normal force magnitude (>= 0 unless tension is allowed)
+};
+
+// The coefficients of each lane's material pair.
+template <class T>
+struct LawParams {
+  T kn, kt_ratio, ct_ratio, cn_per_sqrt_mass, e_star, g_star, hertz_cn, hertz_ct, mu, mu_r, rolling_damping;
+
+  DEM_HOT void set(int l, const PairParams& p) {
+    set_lane(kn, l, p.kn);
+    set_lane(kt_ratio, l, p.kt_ratio);
+    set_lane(ct_ratio, l, p.ct_ratio);
+    set_lane(cn_per_sqrt_mass, l, p.cn_per_sqrt_mass);
+    set_lane(e_star, l, p.e_star);
+    set_lane(g_star, l, p.g_star);
+    set_lane(hertz_cn, l, p.hertz_cn);
+    set_lane(hertz_ct, l, p.hertz_ct);
+    set_lane(mu, l, p.mu);
+    set_lane(mu_r, l, p.mu_r);
+    set_lane(rolling_damping, l, p.rolling_damping);
+  }
+  DEM_HOT static LawParams all(const PairParams& p) {
+    LawParams out;
+    for (int l = 0; l < lane_count<T>(); ++l) out.set(l, p);
+    return out;
+  }
 };
 
 // Contact boundaries: a dashpot force jumps at first touch (from 0 to C_n v) and, when tension is
@@ -55,25 +78,27 @@ struct ContactOutput {
 // 1/2 + s of the window, and the dashpot force is scaled by that share. Without it a first-order
 // impulse error C_n |v_n| dt (1/2 - s) remains at each boundary (up to 2% in e at 50 steps per
 // contact, depending on where the steps fall).
-DEM_HOT double boundary_share(double delta, double vn, double dt) {
-  const double travel = std::abs(vn) * dt;
-  return delta < travel ? 0.5 + delta / travel : 1.0;
+template <class T>
+DEM_HOT T boundary_share(T delta, T vn, T dt) {
+  const T travel = lane_abs(vn) * dt;
+  return select(delta < travel, 0.5 + delta / travel, splat<T>(1.0));
 }
 
+template <class T>
 struct NormalResponse {
-  double fn;         // normal force, positive = repulsive
-  double kn_tangent; // dFn/d(delta), for the rolling spring
-  double kt;         // tangential stiffness
-  double ct;         // tangential damping
+  T fn;         // normal force, positive = repulsive
+  T kn_tangent; // dFn/d(delta), for the rolling spring
+  T kt;         // tangential stiffness
+  T ct;         // tangential damping
 };
 
 // Linear spring-dashpot: F_n = K_n x_n - C_n xdot_n, K_s = rns K_n, C_s = rzs C_n
 // (PDEM-EGD manual eqs. 1-7; C_n = 2 zeta sqrt(m* K_n) with m* the reduced mass).
 struct LinearNormal {
-  DEM_HOT static NormalResponse evaluate(const PairParams& p, double delta, double vn, double onset,
-                                         const PairConstants& pc) {
-    const double cn = p.cn_per_sqrt_mass * pc.sqrt_m_eff;
-    return {p.kn * delta - onset * cn * vn, p.kn, p.kt_ratio * p.kn, p.ct_ratio * cn};
+  template <class T>
+  DEM_HOT static NormalResponse<T> evaluate(const LawParams<T>& p, const ContactInput<T>& c) {
+    const T cn = p.cn_per_sqrt_mass * c.sqrt_m_eff;
+    return {p.kn * c.delta - c.onset * cn * c.vn_now, p.kn, p.kt_ratio * p.kn, p.ct_ratio * cn};
   }
   static double elastic_energy(const PairParams& p, double delta, double) { return 0.5 * p.kn * delta * delta; }
 };
@@ -81,14 +106,14 @@ struct LinearNormal {
 // Hertz-Mindlin: F_n = 4/3 E* sqrt(R* d) d, k_t = 8 G* sqrt(R* d) (Mindlin & Deresiewicz 1953, no-slip
 // limit), damping proportional to d^(1/4) (Tsuji et al. 1992) with the number eta solved for e exactly.
 struct HertzNormal {
-  DEM_HOT static NormalResponse evaluate(const PairParams& p, double delta, double vn, double onset,
-                                         const PairConstants& pc) {
-    const double sqrt_rd = std::sqrt(pc.r_eff * delta);
-    const double f_elastic = (4.0 / 3.0) * p.e_star * sqrt_rd * delta;
+  template <class T>
+  DEM_HOT static NormalResponse<T> evaluate(const LawParams<T>& p, const ContactInput<T>& c) {
+    const T sqrt_rd = lane_sqrt(c.r_eff * c.delta);
+    const T f_elastic = (4.0 / 3.0) * p.e_star * sqrt_rd * c.delta;
     // C_n = eta sqrt(m* 4/3 E* sqrt(R* d)); C_t = eta sqrt(2/3 k_t m*) (LIGGGHTS' gamma_t, beta -> eta)
-    const double scale = std::sqrt(sqrt_rd) * pc.sqrt_m_eff;
-    const double kt = 8 * p.g_star * sqrt_rd;
-    return {f_elastic - onset * p.hertz_cn * scale * vn, 2 * p.e_star * sqrt_rd, kt, p.hertz_ct * scale};
+    const T scale = lane_sqrt(sqrt_rd) * c.sqrt_m_eff;
+    const T kt = 8.0 * p.g_star * sqrt_rd;
+    return {f_elastic - c.onset * p.hertz_cn * scale * c.vn_now, 2.0 * p.e_star * sqrt_rd, kt, p.hertz_ct * scale};
   }
   static double elastic_energy(const PairParams& p, double delta, double r_eff) {
     return (8.0 / 15.0) * p.e_star * std::sqrt(r_eff) * delta * delta * std::sqrt(delta);
@@ -98,7 +123,10 @@ struct HertzNormal {
 // Keeps a stored vector in the current tangent plane as the contact turns: the normal part is
 // removed (LIGGGHTS' practice). LAMMPS also restores the old length; the loss is (turn angle)^2 / 2
 // per step, ~1e-10 here, and the rescaling would cost a division and a square root per contact.
-DEM_HOT void rotate_into_plane(Vec3& stored, const Vec3& n) { stored -= n.dot(stored) * n; }
+template <class T>
+DEM_HOT V3<T> in_plane(const V3<T>& stored, const V3<T>& n) {
+  return stored - dot(n, stored) * n;
+}
 
 // Tangential spring with history and the Mohr-Coulomb limit |F_s| <= mu F_n (the seeds' eqs. 2-3).
 // Sliding is decided on the spring alone, as LIGGGHTS does: when k_t |xi| exceeds mu F_n the spring
@@ -106,28 +134,28 @@ DEM_HOT void rotate_into_plane(Vec3& stored, const Vec3& n) { stored -= n.dot(st
 // (Taking the dashpot into the spring, as LAMMPS' xi = -(F_s + c_t v_t)/k_t does, can point the
 // spring against the slip when c_t |v_t| > mu F_n and make the friction force flip sign.)
 struct FrictionalTangent {
-  DEM_HOT static Vec3 evaluate(const PairParams& p, const NormalResponse& nr, double fn, const Vec3& n,
-                       const Vec3& v_t, double dt, Vec3& shear) {
-    rotate_into_plane(shear, n);
-    shear += v_t * dt;
-    const double limit = p.mu * fn;
-    const Vec3 elastic = -nr.kt * shear;
-    const double elastic2 = elastic.squaredNorm();
-    if (elastic2 > limit * limit) {
-      const double scale = limit / std::sqrt(elastic2);
-      shear *= scale;
-      return scale * elastic;
-    }
-    Vec3 fs = elastic - nr.ct * v_t;
-    const double fs2 = fs.squaredNorm();
-    if (fs2 > limit * limit) fs *= limit / std::sqrt(fs2);
-    return fs;
+  template <class T>
+  DEM_HOT static V3<T> evaluate(const LawParams<T>& p, const NormalResponse<T>& nr, T fn, const V3<T>& n,
+                                const V3<T>& v_t, T dt, V3<T>& shear) {
+    shear = in_plane(shear, n) + v_t * dt;
+    const T limit = p.mu * fn;
+    const T limit2 = limit * limit;
+    const V3<T> elastic = -nr.kt * shear;
+    const T elastic2 = squared_norm(elastic);
+    const auto sliding = elastic2 > limit2;
+    const T slide_scale = limit / lane_sqrt(elastic2);  // only kept where sliding (elastic2 > 0)
+    V3<T> fs = elastic - nr.ct * v_t;
+    const T fs2 = squared_norm(fs);
+    fs = select(fs2 > limit2, fs * (limit / lane_sqrt(fs2)), fs);
+    shear = select(sliding, shear * slide_scale, shear);
+    return select(sliding, slide_scale * elastic, fs);
   }
 };
 
 struct NoRolling {
-  DEM_HOT static Vec3 evaluate(const PairParams&, const NormalResponse&, double, const ContactInput&, Vec3*) {
-    return Vec3::Zero();
+  template <class T>
+  DEM_HOT static V3<T> evaluate(const LawParams<T>&, const NormalResponse<T>&, T, const ContactInput<T>&, V3<T>&) {
+    return V3<T>::zero();
   }
 };
 
@@ -135,34 +163,32 @@ struct NoRolling {
 // capped at the one that stops the relative rolling within this step, so a body at rest does not
 // chatter (the model itself is undefined at w_r = 0).
 struct CdtRolling {
-  DEM_HOT static Vec3 evaluate(const PairParams& p, const NormalResponse&, double fn, const ContactInput& c, Vec3*) {
-    Vec3 wr = c.w_rel - c.n.dot(c.w_rel) * c.n;
-    const double w = wr.norm();
-    if (w == 0) return Vec3::Zero();
-    const double moment = std::min(p.mu_r * c.pair.r_eff * fn, c.pair.i_roll * w / c.dt);
-    return -moment / w * wr;
+  template <class T>
+  DEM_HOT static V3<T> evaluate(const LawParams<T>& p, const NormalResponse<T>&, T fn, const ContactInput<T>& c,
+                                V3<T>&) {
+    const V3<T> wr = in_plane(c.w_rel, c.n);
+    const T w = lane_sqrt(squared_norm(wr));
+    const T moment = lane_min(p.mu_r * c.r_eff * fn, c.i_roll * w / c.dt);
+    return select(w == T{}, V3<T>::zero(), (-moment / w) * wr);
   }
 };
 
 // Elastic-plastic spring-dashpot (Ai et al. 2011, model C, eqs. 11-16): k_r = 2.25 k_n mu_r^2 R*^2,
 // spring moment limited to mu_r R* F_n, viscous part C_r = 2 eta_r sqrt(I_r k_r) while not sliding.
 struct EpsdRolling {
-  DEM_HOT static Vec3 evaluate(const PairParams& p, const NormalResponse& nr, double fn, const ContactInput& c,
-                       Vec3* spring) {
-    Vec3& mk = *spring;
-    const Vec3 wr = c.w_rel - c.n.dot(c.w_rel) * c.n;
-    const double r_eff = c.pair.r_eff;
-    const double kr = 2.25 * nr.kn_tangent * p.mu_r * p.mu_r * r_eff * r_eff;
-    rotate_into_plane(mk, c.n);
-    mk -= kr * c.dt * wr;
-    const double limit = p.mu_r * r_eff * std::max(fn, 0.0);
-    const double m2 = mk.squaredNorm();
-    if (m2 >= limit * limit) {
-      if (m2 > 0) mk *= limit / std::sqrt(m2);
-      return mk;  // fully mobilised: no damping (f = 0 of Ai et al.)
-    }
-    const double cr = 2 * p.rolling_damping * std::sqrt(c.pair.i_roll * kr);
-    return mk - cr * wr;
+  template <class T>
+  DEM_HOT static V3<T> evaluate(const LawParams<T>& p, const NormalResponse<T>& nr, T fn, const ContactInput<T>& c,
+                                V3<T>& mk) {
+    const V3<T> wr = in_plane(c.w_rel, c.n);
+    const T r_eff = c.r_eff;
+    const T kr = 2.25 * nr.kn_tangent * p.mu_r * p.mu_r * r_eff * r_eff;
+    mk = in_plane(mk, c.n) - (kr * c.dt) * wr;
+    const T limit = p.mu_r * r_eff * lane_max(fn, T{});
+    const T m2 = squared_norm(mk);
+    const auto mobilised = m2 >= limit * limit;  // fully mobilised: no damping (f = 0 of Ai et al.)
+    mk = select(mobilised & (m2 > T{}), mk * (limit / lane_sqrt(m2)), mk);
+    const T cr = 2.0 * p.rolling_damping * lane_sqrt(c.i_roll * kr);
+    return select(mobilised, mk, mk - cr * wr);
   }
 };
 
@@ -173,21 +199,24 @@ struct ContactLaw {
   static constexpr bool kNeedsEffectiveRadius = kRolling || std::is_same_v<Normal, HertzNormal>;
   using NormalLaw = Normal;
 
-  DEM_HOT static ContactOutput evaluate(const PairParams& p, const ContactInput& c, const ContactHistory& h) {
-    const double vn = c.v_rel.dot(c.n);
-    const NormalResponse nr = Normal::evaluate(p, c.delta, c.vn_now, c.onset, c.pair);
-    const double fn = NoTensile ? std::max(nr.fn, 0.0) : nr.fn;
-    ContactOutput out;
+  // shear and roll: the contact's springs, updated in place.
+  template <class T>
+  DEM_HOT static ContactOutput<T> evaluate(const LawParams<T>& p, const ContactInput<T>& c, V3<T>& shear,
+                                           V3<T>& roll) {
+    const NormalResponse<T> nr = Normal::evaluate(p, c);
+    const T fn = NoTensile ? lane_max(nr.fn, T{}) : nr.fn;
+    ContactOutput<T> out;
     out.fn = fn;
     if constexpr (Friction) {
-      const Vec3 v_t = c.v_rel - vn * c.n;
-      out.shear_force = FrictionalTangent::evaluate(p, nr, std::max(fn, 0.0), c.n, v_t, c.dt, *h.shear);
+      const T vn = dot(c.v_rel, c.n);
+      const V3<T> v_t = c.v_rel - vn * c.n;
+      out.shear_force = FrictionalTangent::evaluate(p, nr, lane_max(fn, T{}), c.n, v_t, c.dt, shear);
     } else {
-      out.shear_force.setZero();
+      out.shear_force = V3<T>::zero();
     }
     out.force = fn * c.n + out.shear_force;
-    if constexpr (kRolling) out.roll_moment = Rolling::evaluate(p, nr, fn, c, h.roll);
-    else out.roll_moment.setZero();
+    if constexpr (kRolling) out.roll_moment = Rolling::evaluate(p, nr, fn, c, roll);
+    else out.roll_moment = V3<T>::zero();
     return out;
   }
 };

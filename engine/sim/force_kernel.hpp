@@ -26,6 +26,17 @@ class ForceKernel {
   virtual bool has_rolling_spring() const = 0;
 };
 
+// Sphere pairs are evaluated four at a time with AVX2 where the CPU has it (x86-64), else one at a
+// time; both give identical bits. set_pair_lanes(1) forces the one-at-a-time loop (for tests and
+// comparisons); asking for 4 where AVX2 is missing throws.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define DEM_HAS_AVX2_LANES 1
+#else
+#define DEM_HAS_AVX2_LANES 0
+#endif
+int pair_lanes();
+void set_pair_lanes(int lanes);
+
 std::unique_ptr<ForceKernel> select_kernel(const Scene& scene, bool has_walls);
 
 }  // namespace dem

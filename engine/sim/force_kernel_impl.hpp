@@ -63,14 +63,49 @@ class ForceKernelImpl final : public ForceKernel {
   // kRecord: keep each pair's forces for observers (force chains, contact counts) this step.
   template <bool kRecord>
   static void evaluate_pairs(SimState& s) {
+    const int n = static_cast<int>(s.particles.size());
+    const int size = s.blocks.block_size;
+    const int blocks = (n + size - 1) / size;
+    const int lanes = pair_lanes();
+#pragma omp parallel for schedule(dynamic, 1) if (blocks > 1)
+    for (int b = 0; b < blocks; ++b) {
+      const int begin = b * size, end = std::min(n, begin + size);
+      for (int i = begin; i < end; ++i) {
+        s.f_next[i].setZero();
+        s.particles.t[i].setZero();
+      }
+#if DEM_HAS_AVX2_LANES
+      if (lanes == 4) {
+        pairs_of_block_avx2<kRecord>(s, begin, end);
+        continue;
+      }
+#endif
+      pairs_of_block<1, kRecord>(s, begin, end);
+    }
+  }
+
+#if DEM_HAS_AVX2_LANES
+  // The same loop four contacts at a time. Only this function is compiled for AVX2 (the OpenMP
+  // region stays outside it), and it runs only where the CPU has AVX2 (pair_lanes()).
+  template <bool kRecord>
+  [[gnu::target("avx2"), gnu::noinline]] static void pairs_of_block_avx2(SimState& s, int begin, int end) {
+    pairs_of_block<4, kRecord>(s, begin, end);
+  }
+#endif
+
+  // The rows begin..end, each W pairs at a time (a row's last group padded by repeating its last
+  // pair, whose extra lanes are then left out). Body i is the same in every lane. Its force and
+  // torque are summed in four running sums, the m-th pair of the row going to sum m mod 4, which are
+  // added at the end of the row as ((s0 + s1) + (s2 + s3)); j's shares are written lane by lane in
+  // pair order after all reads of the group. Every sum is thus made in the same order for W = 1
+  // and W = 4, and the results are bit-identical.
+  template <int W, bool kRecord>
+  DEM_HOT static void pairs_of_block(SimState& s, int begin, int end) {
+    using T = Lanes<W>;
     // Raw restrict pointers: the loop writes forces and springs, and without them the compiler must
     // assume every write may change the positions, radii or the vectors themselves and reload them.
     const Particles& p = s.particles;
     NeighborList& nl = s.neighbors;
-    const int n = static_cast<int>(p.size());
-    const int size = s.blocks.block_size;
-    const int blocks = (n + size - 1) / size;
-    const double dt = s.dt;
     const Vec3* __restrict x = p.x.data();
     const Vec3* __restrict v = p.v.data();
     const Vec3* __restrict w = p.w.data();
@@ -93,85 +128,131 @@ class ForceKernelImpl final : public ForceKernel {
     double* __restrict out_ft2 = s.pairs.ft_squared.data();
     std::uint8_t* __restrict out_touching = s.pairs.touching.data();
     const PairTable& table = s.table;
-#pragma omp parallel for schedule(dynamic, 1) if (blocks > 1)
-    for (int b = 0; b < blocks; ++b) {
-      const int begin = b * size, end = std::min(n, begin + size);
-      for (int i = begin; i < end; ++i) {
-        f_next[i].setZero();
-        torque[i].setZero();
+    const int materials = table.material_count();
+    const T dt = splat<T>(s.dt);
+
+    auto part = [&](int k) {  // a listed pair that does not touch: its history and its share end
+      if (!shear[k].isZero(0)) shear[k].setZero();
+      if constexpr (Law::kRollingSpring) roll[k].setZero();
+      if (slot[k] >= 0) {
+        deferred_force[slot[k]].setZero();
+        deferred_torque[slot[k]].setZero();
       }
-      std::vector<double> row_dist, row_inv;  // per row: distance and its inverse, before the force pass
-      for (int i = begin; i < end; ++i) {
-        const Vec3 xi = x[i], vi = v[i], wi = w[i], kick_i = kick[i];
-        const double ri = radius[i];
-        const int mi = material[i];
-        Vec3 fi = f_next[i], ti = torque[i];
-        const int row_begin = row_start[i], row_end = row_start[i + 1];
-        // Pass 1: the distances. Short independent iterations let the square roots of a whole row
-        // overlap instead of each contact waiting for its own.
-        const int row_length = row_end - row_begin;
-        row_dist.resize(row_length);
-        row_inv.resize(row_length);
-        for (int m = 0; m < row_length; ++m) row_dist[m] = (xi - x[partner[row_begin + m]]).squaredNorm();
-        for (int m = 0; m < row_length; ++m) {
-          row_dist[m] = std::sqrt(row_dist[m]);
-          row_inv[m] = 1 / row_dist[m];
+      if constexpr (kRecord) out_touching[k] = 0;
+    };
+
+    LawParams<T> params{};
+    int params_of = -1;  // material pair whose coefficients fill every lane of params, -1 if mixed
+    for (int i = begin; i < end; ++i) {
+      const int row_begin = row_start[i], row_end = row_start[i + 1];
+      if (row_begin == row_end) continue;
+      const V3<T> xi = broadcast<T>(x[i]), vi = broadcast<T>(v[i]), wi = broadcast<T>(w[i]),
+                  kick_i = broadcast<T>(kick[i]);
+      const T ri = splat<T>(radius[i]);
+      const int mi = material[i];
+      constexpr int kSums = 4 / W;  // running sums of each kind: 4 lanes of one, or 4 of W = 1
+      V3<T> sum_f[kSums], sum_t[kSums];
+      for (int m = 0; m < kSums; ++m) sum_f[m] = sum_t[m] = V3<T>::zero();
+      for (int k0 = row_begin; k0 < row_end; k0 += W) {
+        const int used = std::min(W, row_end - k0);
+        const int m = ((k0 - row_begin) / W) % kSums;
+        int kv[W], jv[W];
+        for (int l = 0; l < W; ++l) {
+          kv[l] = k0 + std::min(l, used - 1);
+          jv[l] = partner[kv[l]];
         }
-        for (int k = row_begin; k < row_end; ++k) {
-          const int j = partner[k];
-          const double rj = radius[j];
-          const double rs = ri + rj;
-          const double dist = row_dist[k - row_begin];
-          if (dist >= rs) {
-            if constexpr (kRecord) out_touching[k] = 0;
-            if (!shear[k].isZero(0)) shear[k].setZero();
-            if constexpr (Law::kRollingSpring) roll[k].setZero();
-            if (j >= end) {
-              deferred_force[slot[k]].setZero();
-              deferred_torque[slot[k]].setZero();
-            }
+        const V3<T> xj = gather<T>(x, jv);
+        const T rj = gather<T>(radius, jv);
+        const V3<T> d = xi - xj;
+        const T dist = lane_sqrt(squared_norm(d));
+        const T rs = ri + rj;
+        const auto touching = dist < rs;
+        if (!any_lane(touching)) {
+          for (int l = 0; l < used; ++l) part(kv[l]);
+          continue;
+        }
+
+        int pair_of[W];
+        bool same = true;
+        for (int l = 0; l < W; ++l) {
+          pair_of[l] = mi * materials + material[jv[l]];
+          same = same && pair_of[l] == params_of;
+        }
+        if (!same) {
+          bool uniform = true;
+          for (int l = 0; l < W; ++l) {
+            params.set(l, table(mi, material[jv[l]]));
+            uniform = uniform && pair_of[l] == pair_of[0];
+          }
+          params_of = uniform ? pair_of[0] : -1;
+        }
+
+        const V3<T> wj = gather<T>(w, jv);
+        ContactInput<T> c;
+        c.n = d * (1.0 / dist);
+        c.delta = rs - dist;
+        c.v_rel = vi - gather<T>(v, jv) - cross(ri * wi + rj * wj, c.n);
+        const T vn = dot(c.v_rel, c.n);
+        // full-step prediction: v(n+1) ~ v(n+1/2) + (the first half kick again)
+        c.vn_now = vn + dot(kick_i - gather<T>(kick, jv), c.n);
+        c.onset = boundary_share(c.delta, vn, dt);
+        c.w_rel = wi - wj;
+        c.sqrt_m_eff = gather<T>(sqrt_m_eff, kv);
+        c.r_eff = Law::kNeedsEffectiveRadius ? gather<T>(r_eff, kv) : T{};
+        c.i_roll = Law::kRolling ? gather<T>(i_roll, kv) : T{};
+        c.dt = dt;
+        V3<T> spring = gather<T>(shear, kv);
+        V3<T> roll_spring = Law::kRollingSpring ? gather<T>(roll, kv) : V3<T>::zero();
+        const ContactOutput<T> r = Law::evaluate(params, c, spring, roll_spring);
+        const V3<T> lever = cross(c.n, r.shear_force);
+        V3<T> torque_i = -(ri * lever), torque_j = -(rj * lever);
+        if constexpr (Law::kRolling) {
+          torque_i = torque_i + r.roll_moment;
+          torque_j = torque_j - r.roll_moment;
+        }
+        T ft2{};
+        if constexpr (kRecord) ft2 = squared_norm(r.shear_force);
+        const auto counted = touching & lanes_below<T>(used);
+        sum_f[m] = sum_f[m] + select(counted, r.force, V3<T>::zero());
+        sum_t[m] = sum_t[m] + select(counted, torque_i, V3<T>::zero());
+
+        for (int l = 0; l < used; ++l) {
+          const int k = kv[l], j = jv[l];
+          if (!lane_on(touching, l)) {
+            part(k);
             continue;
           }
-          ContactInput c;
-          c.n = (xi - x[j]) * row_inv[k - row_begin];
-          c.delta = rs - dist;
-          c.v_rel = vi - v[j] - (ri * wi + rj * w[j]).cross(c.n);
-          const double vn = c.v_rel.dot(c.n);
-          // full-step prediction: v(n+1) ~ v(n+1/2) + (the first half kick again)
-          c.vn_now = vn + (kick_i - kick[j]).dot(c.n);
-          c.onset = boundary_share(c.delta, vn, dt);
-          c.w_rel = wi - w[j];
-          c.pair.sqrt_m_eff = sqrt_m_eff[k];
-          if constexpr (Law::kNeedsEffectiveRadius) c.pair.r_eff = r_eff[k];
-          if constexpr (Law::kRolling) c.pair.i_roll = i_roll[k];
-          c.dt = dt;
-          ContactHistory h{&shear[k], Law::kRollingSpring ? &roll[k] : nullptr};
-          const ContactOutput r = Law::evaluate(table(mi, material[j]), c, h);
-          const Vec3 lever = c.n.cross(r.shear_force);
-          Vec3 torque_j = -rj * lever;
-          fi += r.force;
-          ti -= ri * lever;
-          if constexpr (Law::kRolling) {
-            ti += r.roll_moment;
-            torque_j -= r.roll_moment;
-          }
-          if (j < end) {
-            f_next[j] -= r.force;
-            torque[j] += torque_j;
+          const Vec3 force = r.force.get(l);
+          if (slot[k] < 0) {
+            f_next[j] -= force;
+            torque[j] += torque_j.get(l);
           } else {
-            deferred_force[slot[k]] = -r.force;
-            deferred_torque[slot[k]] = torque_j;
+            deferred_force[slot[k]] = -force;
+            deferred_torque[slot[k]] = torque_j.get(l);
           }
+          shear[k] = spring.get(l);
+          if constexpr (Law::kRollingSpring) roll[k] = roll_spring.get(l);
           if constexpr (kRecord) {
-            out_fn[k] = r.fn;
-            out_ft2[k] = r.shear_force.squaredNorm();
+            out_fn[k] = lane(r.fn, l);
+            out_ft2[k] = lane(ft2, l);
             out_touching[k] = 1;
           }
         }
-        f_next[i] = fi;
-        torque[i] = ti;
       }
+      f_next[i] += four_sums(sum_f);
+      torque[i] += four_sums(sum_t);
     }
+  }
+
+  // ((s0 + s1) + (s2 + s3)) of the four running sums, held as 4 lanes of one or 4 scalars.
+  template <class T, int kSums>
+  DEM_HOT static Vec3 four_sums(const V3<T> (&sums)[kSums]) {
+    Vec3 s[4];
+    for (int l = 0; l < 4; ++l) {
+      if constexpr (kSums == 1) s[l] = sums[0].get(l);
+      else s[l] = sums[l].get(0);
+    }
+    return (s[0] + s[1]) + (s[2] + s[3]);
   }
 
   static void gather_and_kick(SimState& s) {
@@ -180,19 +261,34 @@ class ForceKernelImpl final : public ForceKernel {
     const int n = static_cast<int>(p.size());
     const double half_dt = 0.5 * s.dt;
     const Vec3 g = s.gravity;
+    // Raw pointers: through the std::vectors the compiler reloaded their data pointers after every
+    // store and called Eigen's assignment loops out of line.
+    const Vec3* __restrict f_next = s.f_next.data();
+    const Vec3* __restrict deferred_force = plan.deferred_force.data();
+    const Vec3* __restrict deferred_torque = plan.deferred_torque.data();
+    const int* __restrict deferred_start = plan.deferred_start.data();
+    const double* __restrict mass = p.mass.data();
+    const double* __restrict inv_mass = p.inv_mass.data();
+    const double* __restrict inv_inertia = p.inv_inertia.data();
+    Vec3* __restrict force = p.f.data();
+    Vec3* __restrict torque = p.t.data();
+    Vec3* __restrict v = p.v.data();
+    Vec3* __restrict w = p.w.data();
 #pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
     for (int i = 0; i < n; ++i) {
-      Vec3 f = s.f_next[i], t = p.t[i];
-      for (int a = plan.deferred_start[i]; a < plan.deferred_start[i + 1]; ++a) {
-        f += plan.deferred_force[a];
-        t += plan.deferred_torque[a];
+      Vec3 f = f_next[i], t = torque[i];
+      for (int a = deferred_start[i]; a < deferred_start[i + 1]; ++a) {
+        f = f + deferred_force[a];
+        t = t + deferred_torque[a];
       }
-      if constexpr (kWalls) add_wall_forces(s, i, f, t);
-      f += p.mass[i] * g;
-      p.f[i] = f;
-      p.t[i] = t;
-      p.v[i] += half_dt * p.inv_mass[i] * f;
-      p.w[i] += half_dt * p.inv_inertia[i] * t;
+      if constexpr (kWalls) {
+        if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) add_wall_forces(s, i, f, t);
+      }
+      f = f + mass[i] * g;
+      force[i] = f;
+      torque[i] = t;
+      v[i] = v[i] + (half_dt * inv_mass[i]) * f;
+      w[i] = w[i] + (half_dt * inv_inertia[i]) * t;
     }
   }
 
@@ -202,29 +298,39 @@ class ForceKernelImpl final : public ForceKernel {
     const double ri = p.radius[i];
     for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) {
       const Wall& wall = s.walls[wc.wall[e]];
-      ContactInput c;
-      if (p.inv_mass[i] == 0 || !wall.contact(p.x[i], ri, c.n, c.delta)) {
+      Vec3 normal;
+      double delta;
+      if (p.inv_mass[i] == 0 || !wall.contact(p.x[i], ri, normal, delta)) {
         wc.touching[e] = 0;
         wc.fn[e] = wc.ft[e] = 0;
         wc.shear[e].setZero();
         if constexpr (Law::kRollingSpring) wc.roll[e].setZero();
         continue;
       }
-      c.v_rel = p.v[i] - ri * p.w[i].cross(c.n);
-      const double vn = c.v_rel.dot(c.n);
-      c.vn_now = vn + s.half_kick[i].dot(c.n);
+      ContactInput<double> c;
+      c.n = to_v3(normal);
+      c.delta = delta;
+      c.v_rel = to_v3(p.v[i]) - ri * cross(to_v3(p.w[i]), c.n);
+      const double vn = dot(c.v_rel, c.n);
+      c.vn_now = vn + dot(to_v3(s.half_kick[i]), c.n);
       c.onset = boundary_share(c.delta, vn, s.dt);
-      c.w_rel = p.w[i];
-      c.pair = wc.constants[e];
+      c.w_rel = to_v3(p.w[i]);
+      c.sqrt_m_eff = wc.constants[e].sqrt_m_eff;
+      c.r_eff = wc.constants[e].r_eff;
+      c.i_roll = wc.constants[e].i_roll;
       c.dt = s.dt;
-      ContactHistory h{&wc.shear[e], Law::kRollingSpring ? &wc.roll[e] : nullptr};
-      const ContactOutput r = Law::evaluate(s.table(p.material[i], wall.material), c, h);
-      f += r.force;
-      t -= ri * c.n.cross(r.shear_force);
-      if constexpr (Law::kRolling) t += r.roll_moment;
-      wc.touching[e] = 1;
+      V3<double> spring = to_v3(wc.shear[e]), roll_spring = V3<double>::zero();
+      if constexpr (Law::kRollingSpring) roll_spring = to_v3(wc.roll[e]);
+      const auto params = LawParams<double>::all(s.table(p.material[i], wall.material));
+      const ContactOutput<double> r = Law::evaluate(params, c, spring, roll_spring);
+      wc.shear[e] = spring.get(0);
+      if constexpr (Law::kRollingSpring) wc.roll[e] = roll_spring.get(0);
+      f += r.force.get(0);
+      t -= ri * cross(c.n, r.shear_force).get(0);
+      if constexpr (Law::kRolling) t += r.roll_moment.get(0);
       wc.fn[e] = r.fn;
-      if (s.record_contacts) wc.ft[e] = r.shear_force.norm();
+      if (s.record_contacts) wc.ft[e] = std::sqrt(squared_norm(r.shear_force));
+      wc.touching[e] = 1;
     }
   }
 };

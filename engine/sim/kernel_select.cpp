@@ -1,42 +1,44 @@
 // Picks the force loop once from what the scene contains, so that a scene without walls, friction,
 // rolling resistance or tension clamping does not pay for them inside the loop.
+#include <atomic>
+#include <cstdlib>
 #include <stdexcept>
+#include <string>
 
-#include "sim/force_kernel_impl.hpp"
+#include "sim/kernel_factory.hpp"
 
 namespace dem {
 namespace {
 
-template <class Normal, bool NoTensile, bool Friction, class Rolling>
-std::unique_ptr<ForceKernel> with_walls(bool has_walls) {
-  using Law = ContactLaw<Normal, NoTensile, Friction, Rolling>;
-  if (has_walls) return std::make_unique<ForceKernelImpl<Law, true>>();
-  return std::make_unique<ForceKernelImpl<Law, false>>();
+int supported_lanes() {
+#if DEM_HAS_AVX2_LANES
+  return __builtin_cpu_supports("avx2") ? 4 : 1;
+#else
+  return 1;
+#endif
 }
 
-template <class Normal, bool NoTensile, bool Friction>
-std::unique_ptr<ForceKernel> with_rolling(RollingModel rolling, bool has_walls) {
-  switch (rolling) {
-    case RollingModel::None: return with_walls<Normal, NoTensile, Friction, NoRolling>(has_walls);
-    case RollingModel::Cdt: return with_walls<Normal, NoTensile, Friction, CdtRolling>(has_walls);
-    case RollingModel::Epsd: return with_walls<Normal, NoTensile, Friction, EpsdRolling>(has_walls);
-  }
-  throw std::logic_error("unknown rolling model");
-}
-
-template <class Normal, bool NoTensile>
-std::unique_ptr<ForceKernel> with_friction(bool friction, RollingModel rolling, bool has_walls) {
-  if (friction) return with_rolling<Normal, NoTensile, true>(rolling, has_walls);
-  return with_rolling<Normal, NoTensile, false>(rolling, has_walls);
-}
-
-template <class Normal>
-std::unique_ptr<ForceKernel> with_tension(bool no_tensile, bool friction, RollingModel rolling, bool has_walls) {
-  if (no_tensile) return with_friction<Normal, true>(friction, rolling, has_walls);
-  return with_friction<Normal, false>(friction, rolling, has_walls);
-}
+std::atomic<int> chosen_lanes{0};  // 0: not chosen yet
 
 }  // namespace
+
+int pair_lanes() {
+  int lanes = chosen_lanes.load(std::memory_order_relaxed);
+  if (lanes == 0) {
+    // DEM_PAIR_LANES=1 runs the one-at-a-time loop, to compare the two
+    const char* forced = std::getenv("DEM_PAIR_LANES");
+    lanes = forced != nullptr && std::string(forced) == "1" ? 1 : supported_lanes();
+    chosen_lanes.store(lanes, std::memory_order_relaxed);
+  }
+  return lanes;
+}
+
+void set_pair_lanes(int lanes) {
+  if (lanes != 1 && lanes != supported_lanes())
+    throw std::invalid_argument("pair lanes: " + std::to_string(lanes) + " not available (use 1 or " +
+                                std::to_string(supported_lanes()) + ")");
+  chosen_lanes.store(lanes, std::memory_order_relaxed);
+}
 
 std::unique_ptr<ForceKernel> select_kernel(const Scene& scene, bool has_walls) {
   bool friction = false, rolling = false;
@@ -47,8 +49,8 @@ std::unique_ptr<ForceKernel> select_kernel(const Scene& scene, bool has_walls) {
   const RollingModel model = rolling ? scene.contact.rolling : RollingModel::None;
   const bool no_tensile = scene.contact.no_tensile_force;
   if (scene.contact.normal == NormalModel::Linear)
-    return with_tension<LinearNormal>(no_tensile, friction, model, has_walls);
-  return with_tension<HertzNormal>(no_tensile, friction, model, has_walls);
+    return kernels::linear(no_tensile, friction, model, has_walls);
+  return kernels::hertz(no_tensile, friction, model, has_walls);
 }
 
 }  // namespace dem
