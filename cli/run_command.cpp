@@ -67,7 +67,10 @@ bool parse_run_args(const std::vector<std::string>& args, RunArgs& out) {
   return true;
 }
 
-Scene load(const std::string& path) { return spec::to_scene(spec::read_json_file(path)); }
+Scene load(const std::string& path) {
+  // mesh files are found next to the spec
+  return spec::to_scene(spec::read_json_file(path), std::filesystem::path(path).parent_path().string());
+}
 
 }  // namespace
 

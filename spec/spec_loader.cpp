@@ -5,12 +5,15 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include "mesh/mesh_io.hpp"
 #include "spec/lattice.hpp"
 
 namespace dem::spec {
@@ -56,6 +59,113 @@ class Checker {
 
   std::vector<std::string> problems;
 };
+
+Eigen::Matrix3d rotation(const api::Vec3& axis, double degrees, const std::string& path, Checker& check) {
+  const Vec3 a = vec(axis);
+  if (degrees == 0) return Eigen::Matrix3d::Identity();
+  if (!std::isfinite(degrees)) check.fail(path + ".rotationDegrees", "must be finite");
+  if (!(a.norm() > 0) || !a.allFinite()) {
+    check.fail(path + ".rotationAxis", "must be a non-zero vector when rotationDegrees is given");
+    return Eigen::Matrix3d::Identity();
+  }
+  return Eigen::AngleAxisd(degrees * std::numbers::pi / 180, a.normalized()).toRotationMatrix();
+}
+
+void load_mesh(const api::Mesh& in, const std::string& path, const std::string& base_dir, Checker& check,
+               WallInit& w) {
+  TriangleMesh mesh;
+  std::string source = "inline";
+  const bool inline_mesh = in.vertices_size() > 0 || in.triangles_size() > 0;
+  if (inline_mesh && !in.file().empty()) {
+    check.fail(path, "has both a file and inline vertices/triangles: give one");
+    return;
+  }
+  try {
+    if (!in.file().empty()) {
+      const std::filesystem::path file = base_dir.empty() || std::filesystem::path(in.file()).is_absolute()
+                                             ? std::filesystem::path(in.file())
+                                             : std::filesystem::path(base_dir) / in.file();
+      source = file.string();
+      if (in.format() == api::Mesh::STL) mesh = read_stl(source);
+      else if (in.format() == api::Mesh::LEGACY) mesh = read_legacy_mesh(source);
+      else mesh = read_mesh(source);
+    } else if (inline_mesh) {
+      for (const auto& v : in.vertices()) mesh.vertices.push_back(vec(v));
+      for (const auto& t : in.triangles()) mesh.triangles.push_back({t.i() - 1, t.j() - 1, t.k() - 1});
+      check_mesh(mesh, [&](std::size_t t) { return path + ".triangles[" + std::to_string(t) + "]"; });
+    } else {
+      check.fail(path, "needs a file or inline vertices and triangles");
+      return;
+    }
+  } catch (const MeshError& e) {
+    check.fail(path + (inline_mesh ? "" : ".file"), e.what());
+    return;
+  }
+  const double scale = in.scale() == 0 ? 1.0 : in.scale();
+  if (!(scale > 0) || !std::isfinite(scale)) check.fail(path + ".scale", "must be a positive number (got " + num(scale) + ")");
+  check.finite(path + ".translation", in.translation());
+  mesh.transform(scale, rotation(in.rotation_axis(), in.rotation_degrees(), path, check), vec(in.translation()));
+  w.shape = MeshShape{std::move(mesh.vertices), std::move(mesh.triangles), source};
+}
+
+PrescribedMotion motion(const api::Motion& in, const std::string& path, Checker& check) {
+  check.finite(path + ".velocity", in.velocity());
+  check.finite(path + ".amplitude", in.amplitude());
+  check.finite(path + ".angularVelocity", in.angular_velocity());
+  check.non_negative(path + ".frequency", in.frequency());
+  if (!std::isfinite(in.phase_degrees())) check.fail(path + ".phaseDegrees", "must be finite");
+  PrescribedMotion m;
+  m.velocity = vec(in.velocity());
+  m.amplitude = vec(in.amplitude());
+  m.frequency = in.frequency();
+  m.phase = in.phase_degrees() * std::numbers::pi / 180;
+  m.angular_velocity = vec(in.angular_velocity());
+  if (in.has_center()) {
+    check.finite(path + ".center", in.center());
+    m.center = vec(in.center());
+  }
+  if (!m.amplitude.isZero(0) && !(m.frequency > 0))
+    check.fail(path + ".frequency", "must be > 0 when an amplitude is given");
+  return m;
+}
+
+LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
+  LoadControl l;
+  if (in.has_direction()) {
+    check.finite(path + ".direction", in.direction());
+    const Vec3 d = vec(in.direction());
+    if (!(d.norm() > 0)) check.fail(path + ".direction", "must not be zero");
+    else l.direction = d.normalized();
+  }
+  if (in.has_cyclic()) {
+    const auto& c = in.cyclic();
+    l.kind = LoadControl::Kind::Cyclic;
+    check.positive(path + ".mass", in.mass());
+    check.non_negative(path + ".cyclic.fMin", c.f_min());
+    check.non_negative(path + ".cyclic.fMax", c.f_max());
+    if (c.f_max() < c.f_min()) check.fail(path + ".cyclic.fMax", "must be >= fMin (got " + num(c.f_max()) + " < " + num(c.f_min()) + ")");
+    check.positive(path + ".cyclic.frequency", c.frequency());
+    if (c.cycles() < 1) check.fail(path + ".cyclic.cycles", "must be >= 1 (got " + std::to_string(c.cycles()) + ")");
+    l.mass = in.mass();
+    l.f_min = c.f_min();
+    l.f_max = c.f_max();
+    l.frequency = c.frequency();
+    l.cycles = c.cycles();
+  } else if (in.has_servo()) {
+    const auto& sv = in.servo();
+    l.kind = LoadControl::Kind::Servo;
+    check.non_negative(path + ".servo.target", sv.target());
+    check.positive(path + ".servo.gain", sv.gain());
+    check.positive(path + ".servo.maxSpeed", sv.max_speed());
+    l.target = sv.target();
+    l.gain = sv.gain();
+    l.max_speed = sv.max_speed();
+    l.mass = in.mass();
+  } else {
+    check.fail(path, "needs a control: cyclic or servo");
+  }
+  return l;
+}
 
 double length_unit(const std::string& name, Checker& check) {
   if (name.empty() || name == "m") return 1.0;
@@ -159,7 +269,7 @@ api::JobSpec read_json_file(const std::string& path) {
   }
 }
 
-Scene to_scene(const api::JobSpec& spec) {
+Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   Checker check;
   Scene scene;
   scene.name = spec.name();
@@ -335,9 +445,14 @@ Scene to_scene(const api::JobSpec& spec) {
       // The shape checks mean nothing (NaN compares false) unless every corner is finite.
       if (check.problems.size() == before) check_plate(plate.corners, path + ".plate", check);
       w.shape = plate;
+    } else if (in.has_mesh()) {
+      load_mesh(in.mesh(), path + ".mesh", base_dir, check, w);
     } else {
-      check.fail(path, "needs a shape: plane or plate");
+      check.fail(path, "needs a shape: plane, plate or mesh");
     }
+    if (in.has_motion() && in.has_load()) check.fail(path, "has both a motion and a load: give one");
+    if (in.has_motion()) w.motion = motion(in.motion(), path + ".motion", check);
+    if (in.has_load()) w.load = load(in.load(), path + ".load", check);
     scene.walls.push_back(w);
   }
 

@@ -27,7 +27,8 @@ api::JobSpec parse_binary(const std::string& bytes);
 // Reads a JSON spec file (errors name the file).
 api::JobSpec read_json_file(const std::string& path);
 
-// Checks the spec and builds the scene; throws SpecError listing every problem found.
-Scene to_scene(const api::JobSpec& spec);
+// Checks the spec and builds the scene; throws SpecError listing every problem found. Mesh files
+// are read relative to `base_dir` (the spec file's folder; empty: the working directory).
+Scene to_scene(const api::JobSpec& spec, const std::string& base_dir = "");
 
 }  // namespace dem::spec

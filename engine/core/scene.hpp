@@ -58,10 +58,52 @@ struct PlateShape {
   std::array<Vec3, 4> corners;  // planar, in order around the edge
 };
 
+// A triangle mesh, already read and placed in the scene's frame (metres).
+struct MeshShape {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;  // 0-based
+  std::string source;                         // the file it came from, for messages and outputs
+};
+
+// Prescribed motion of a wall: its reference point moves with
+// v(t) = velocity + amplitude sin(2 pi frequency t + phase), and the wall turns about that point
+// with a constant angular velocity.
+struct PrescribedMotion {
+  Vec3 velocity = Vec3::Zero();
+  Vec3 amplitude = Vec3::Zero();
+  double frequency = 0;  // Hz
+  double phase = 0;      // rad
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s
+  std::optional<Vec3> center;            // rotation centre at t = 0; default the wall's centroid
+};
+
+// A wall driven by a force along `direction` (the direction it pushes the particles), free to
+// move only along it. Cyclic: F(t) = F_min + (F_max - F_min) (1 - cos 2 pi f t) / 2 for `cycles`
+// cycles, then F_min (the ballast test: 1.5 kN to 51.84 kN at 3 Hz, 15 cycles); the wall has a
+// mass and moves under F(t), its weight and the particles' reaction. Servo: the wall moves at
+// v = gain (target - F_contact), at most max_speed, until the particles push back with `target`.
+struct LoadControl {
+  enum class Kind { Cyclic, Servo };
+  Kind kind = Kind::Cyclic;
+  Vec3 direction = -Vec3::UnitZ();  // unit
+  double mass = 0;                  // kg (cyclic)
+  double f_min = 0, f_max = 0;      // N (cyclic)
+  double frequency = 0;             // Hz (cyclic)
+  int cycles = 0;                   // (cyclic)
+  double target = 0;                // N (servo)
+  double gain = 0;                  // m/s per N (servo)
+  double max_speed = 0;             // m/s (servo)
+
+  // The prescribed force at time t (cyclic).
+  double force_at(double t) const;
+};
+
 struct WallInit {
   std::string name;
   int material = 0;
-  std::variant<PlaneShape, PlateShape> shape;
+  std::variant<PlaneShape, PlateShape, MeshShape> shape;
+  std::optional<PrescribedMotion> motion;
+  std::optional<LoadControl> load;
 };
 
 struct Box {

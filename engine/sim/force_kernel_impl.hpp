@@ -54,6 +54,15 @@ class ForceKernelImpl final : public ForceKernel {
           note(i, delta, p.radius[i],
                Law::NormalLaw::elastic_energy(s.table(p.material[i], wall.material), delta, p.radius[i]));
         }
+        if (!s.mesh_contacts.slots.empty()) {
+          for (int k = 0; k < MeshContacts::kSlots; ++k) {
+            const MeshSlot& slot = s.mesh_contacts.slots[static_cast<std::size_t>(i) * MeshContacts::kSlots + k];
+            if (slot.mesh < 0) break;
+            note(i, slot.delta, p.radius[i],
+                 Law::NormalLaw::elastic_energy(s.table(p.material[i], s.meshes[slot.mesh].material), slot.delta,
+                                                p.radius[i]));
+          }
+        }
       }
     }
     return sum;
@@ -283,6 +292,7 @@ class ForceKernelImpl final : public ForceKernel {
       }
       if constexpr (kWalls) {
         if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) add_wall_forces(s, i, f, t);
+        if (!s.meshes.empty()) add_mesh_forces(s, i, f, t);
       }
       f = f + mass[i] * g;
       force[i] = f;
@@ -290,6 +300,40 @@ class ForceKernelImpl final : public ForceKernel {
       v[i] = v[i] + (half_dt * inv_mass[i]) * f;
       w[i] = w[i] + (half_dt * inv_inertia[i]) * t;
     }
+  }
+
+  // One sphere against a boundary (plane, plate or mesh) that moves with `pose`: the law with the
+  // wall's velocity at the contact point; returns the force on the sphere and adds it and its
+  // torque to f and t. shear and roll are the contact's springs, updated in place.
+  DEM_HOT static ContactOutput<double> wall_contact(const SimState& s, int i, const Vec3& normal, double delta,
+                                                    const Vec3& point, const WallPose& pose, int wall_material,
+                                                    const PairConstants& pc, Vec3& shear, Vec3& roll, Vec3& f,
+                                                    Vec3& t) {
+    const Particles& p = s.particles;
+    const double ri = p.radius[i];
+    ContactInput<double> c;
+    c.n = to_v3(normal);
+    c.delta = delta;
+    c.v_rel = to_v3(p.v[i]) - ri * cross(to_v3(p.w[i]), c.n);
+    if (pose.moving()) c.v_rel = c.v_rel - to_v3(pose.velocity_at(point));
+    const double vn = dot(c.v_rel, c.n);
+    c.vn_now = vn + dot(to_v3(s.half_kick[i]), c.n);
+    c.onset = boundary_share(c.delta, vn, s.dt);
+    c.w_rel = to_v3(p.w[i] - pose.angular_velocity);
+    c.sqrt_m_eff = pc.sqrt_m_eff;
+    c.r_eff = pc.r_eff;
+    c.i_roll = pc.i_roll;
+    c.dt = s.dt;
+    V3<double> spring = to_v3(shear), roll_spring = V3<double>::zero();
+    if constexpr (Law::kRollingSpring) roll_spring = to_v3(roll);
+    const auto params = LawParams<double>::all(s.table(p.material[i], wall_material));
+    const ContactOutput<double> r = Law::evaluate(params, c, spring, roll_spring);
+    shear = spring.get(0);
+    if constexpr (Law::kRollingSpring) roll = roll_spring.get(0);
+    f += r.force.get(0);
+    t -= ri * cross(c.n, r.shear_force).get(0);
+    if constexpr (Law::kRolling) t += r.roll_moment.get(0);
+    return r;
   }
 
   static void add_wall_forces(SimState& s, int i, Vec3& f, Vec3& t) {
@@ -303,34 +347,84 @@ class ForceKernelImpl final : public ForceKernel {
       if (p.inv_mass[i] == 0 || !wall.contact(p.x[i], ri, normal, delta)) {
         wc.touching[e] = 0;
         wc.fn[e] = wc.ft[e] = 0;
+        wc.force[e].setZero();
         wc.shear[e].setZero();
         if constexpr (Law::kRollingSpring) wc.roll[e].setZero();
         continue;
       }
-      ContactInput<double> c;
-      c.n = to_v3(normal);
-      c.delta = delta;
-      c.v_rel = to_v3(p.v[i]) - ri * cross(to_v3(p.w[i]), c.n);
-      const double vn = dot(c.v_rel, c.n);
-      c.vn_now = vn + dot(to_v3(s.half_kick[i]), c.n);
-      c.onset = boundary_share(c.delta, vn, s.dt);
-      c.w_rel = to_v3(p.w[i]);
-      c.sqrt_m_eff = wc.constants[e].sqrt_m_eff;
-      c.r_eff = wc.constants[e].r_eff;
-      c.i_roll = wc.constants[e].i_roll;
-      c.dt = s.dt;
-      V3<double> spring = to_v3(wc.shear[e]), roll_spring = V3<double>::zero();
-      if constexpr (Law::kRollingSpring) roll_spring = to_v3(wc.roll[e]);
-      const auto params = LawParams<double>::all(s.table(p.material[i], wall.material));
-      const ContactOutput<double> r = Law::evaluate(params, c, spring, roll_spring);
-      wc.shear[e] = spring.get(0);
-      if constexpr (Law::kRollingSpring) wc.roll[e] = roll_spring.get(0);
-      f += r.force.get(0);
-      t -= ri * cross(c.n, r.shear_force).get(0);
-      if constexpr (Law::kRolling) t += r.roll_moment.get(0);
+      Vec3 unused_roll = Vec3::Zero();
+      Vec3& roll = Law::kRollingSpring ? wc.roll[e] : unused_roll;
+      const Vec3 point = p.x[i] - (ri - delta) * normal;
+      const ContactOutput<double> r =
+          wall_contact(s, i, normal, delta, point, wall.pose, wall.material, wc.constants[e], wc.shear[e], roll, f, t);
       wc.fn[e] = r.fn;
-      if (s.record_contacts) wc.ft[e] = std::sqrt(squared_norm(r.shear_force));
+      wc.ft[e] = std::sqrt(squared_norm(r.shear_force));
+      wc.force[e] = r.force.get(0);
+      wc.point[e] = point;
       wc.touching[e] = 1;
+    }
+  }
+
+  // Mesh contacts: the touches of mesh_touches, each taking the history of the last step's slot
+  // with the same mesh and the closest normal (at most 60 degrees away): the spring carries over
+  // as the sphere crosses from triangle to triangle.
+  static void add_mesh_forces(SimState& s, int i, Vec3& f, Vec3& t) {
+    const Particles& p = s.particles;
+    MeshContacts& mc = s.mesh_contacts;
+    constexpr int kSlots = MeshContacts::kSlots;
+    MeshSlot* now = &mc.slots[static_cast<std::size_t>(i) * kSlots];
+    if (mc.row_start[i] == mc.row_start[i + 1]) {  // no triangle within reach (most particles)
+      for (int k = 0; k < kSlots && now[k].mesh >= 0; ++k) now[k] = MeshSlot{};
+      return;
+    }
+    MeshSlot before[kSlots];
+    bool taken[kSlots] = {};
+    for (int k = 0; k < kSlots; ++k) {
+      before[k] = now[k];
+      now[k] = MeshSlot{};
+    }
+    if (p.inv_mass[i] == 0) return;
+    const double ri = p.radius[i];
+    const PairConstants pc = wall_constants(p, i);
+    int filled = 0;
+    const int end = mc.row_start[i + 1];
+    for (int a = mc.row_start[i]; a < end;) {
+      const int m = mc.mesh[a];
+      int b = a;
+      while (b < end && mc.mesh[b] == m) ++b;
+      constexpr int kTouches = 8;
+      MeshTouch touches[kTouches];
+      const int count = mesh_touches(s.meshes[m], &mc.triangle[a], b - a, p.x[i], ri, touches, kTouches);
+      for (int k = 0; k < count; ++k) {
+        const MeshTouch& touch = touches[k];
+        int best = -1;
+        double best_dot = 0.5;
+        for (int o = 0; o < kSlots; ++o) {
+          if (taken[o] || before[o].mesh != m) continue;
+          const double alignment = before[o].normal.dot(touch.normal);
+          if (alignment > best_dot) {
+            best_dot = alignment;
+            best = o;
+          }
+        }
+        MeshSlot slot;
+        slot.mesh = m;
+        if (best >= 0) {
+          taken[best] = true;
+          slot.shear = before[best].shear;
+          slot.roll = before[best].roll;
+        }
+        const ContactOutput<double> r = wall_contact(s, i, touch.normal, touch.delta, touch.point, s.meshes[m].pose,
+                                                     s.meshes[m].material, pc, slot.shear, slot.roll, f, t);
+        slot.normal = touch.normal;
+        slot.force = r.force.get(0);
+        slot.point = touch.point;
+        slot.fn = r.fn;
+        slot.ft = std::sqrt(squared_norm(r.shear_force));
+        slot.delta = touch.delta;
+        if (filled < kSlots) now[filled++] = slot;
+      }
+      a = b;
     }
   }
 };

@@ -69,22 +69,119 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
   state_.f_next.assign(state_.particles.size(), Vec3::Zero());
   state_.half_kick.assign(state_.particles.size(), Vec3::Zero());
   state_.gravity = scene_.gravity;
-  for (const WallInit& w : scene_.walls) state_.walls.push_back(Wall::from(w));
+  const int boundaries = static_cast<int>(scene_.walls.size());
+  plane_index_.assign(boundaries, -1);
+  mesh_index_.assign(boundaries, -1);
+  wall_extent_.assign(boundaries, 0.0);
+  for (int k = 0; k < boundaries; ++k) {
+    const WallInit& w = scene_.walls[k];
+    Vec3 centroid;
+    if (std::holds_alternative<MeshShape>(w.shape)) {
+      mesh_index_[k] = static_cast<int>(state_.meshes.size());
+      state_.meshes.push_back(MeshWall::from(w, k));
+      centroid = state_.meshes.back().centroid();
+    } else {
+      plane_index_[k] = static_cast<int>(state_.walls.size());
+      state_.walls.push_back(Wall::from(w));
+      centroid = state_.walls.back().centroid();
+    }
+    drivers_.emplace_back(w, centroid, scene_.gravity);
+    const Vec3 c0 = drivers_.back().pose().center0;
+    if (mesh_index_[k] >= 0) {
+      for (const Vec3& v : state_.meshes.back().vertices0) wall_extent_[k] = std::max(wall_extent_[k], (v - c0).norm());
+    } else if (state_.walls.back().kind == Wall::Kind::Plate) {
+      for (const Vec3& v : state_.walls.back().corners) wall_extent_[k] = std::max(wall_extent_[k], (v - c0).norm());
+    }
+  }
+  boundary_loads_.assign(boundaries, BoundaryLoad{});
   skin_ = scene_.numerics.skin_fraction * mean_diameter(state_.particles.radius);
-  kernel_ = select_kernel(scene_, !state_.walls.empty());
+  kernel_ = select_kernel(scene_, boundaries > 0);
+  move_walls(0, 0);
   build_neighbors();
   // Forces at t = 0 for the first half kick: a zero step leaves history and velocities unchanged.
   state_.dt = 0;
   kernel_->compute_and_kick(state_);
+  settle_walls(0, 0);
   state_.dt = time_step_.dt;
 }
 
+bool Simulation::has_moving_walls() const {
+  for (const WallDriver& d : drivers_)
+    if (d.moves()) return true;
+  return false;
+}
+
+void Simulation::move_walls(double t_new, double dt) {
+  for (std::size_t k = 0; k < drivers_.size(); ++k) {
+    if (!drivers_[k].moves()) continue;
+    drivers_[k].begin_step(t_new, dt);
+    if (plane_index_[k] >= 0) state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
+    else state_.meshes[mesh_index_[k]].move_to(drivers_[k].pose());
+  }
+}
+
+void Simulation::settle_walls(double t_new, double dt) {
+  // Sums over particles in index order: the same totals for any number of threads.
+  for (BoundaryLoad& load : boundary_loads_) load = BoundaryLoad{};
+  const Particles& p = state_.particles;
+  const WallContacts& wc = state_.wall_contacts;
+  const int n = static_cast<int>(p.size());
+  auto add = [&](int k, const Vec3& force_on_particle, const Vec3& point) {
+    BoundaryLoad& load = boundary_loads_[k];
+    const Vec3 centre = drivers_[k].pose().center0 + drivers_[k].pose().displacement;
+    load.force -= force_on_particle;
+    load.torque -= (point - centre).cross(force_on_particle);
+    ++load.contacts;
+  };
+  std::vector<int> boundary_of_plane(state_.walls.size());
+  for (std::size_t k = 0; k < plane_index_.size(); ++k)
+    if (plane_index_[k] >= 0) boundary_of_plane[plane_index_[k]] = static_cast<int>(k);
+  if (!wc.row_start.empty())
+    for (int i = 0; i < n; ++i)
+      for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
+        if (wc.touching[e]) add(boundary_of_plane[wc.wall[e]], wc.force[e], wc.point[e]);
+  const MeshContacts& mc = state_.mesh_contacts;
+  if (!mc.slots.empty())
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < MeshContacts::kSlots; ++k) {
+        const MeshSlot& slot = mc.slots[static_cast<std::size_t>(i) * MeshContacts::kSlots + k];
+        if (slot.mesh < 0) break;
+        add(state_.meshes[slot.mesh].boundary, slot.force, slot.point);
+      }
+  for (std::size_t k = 0; k < drivers_.size(); ++k) {
+    if (!drivers_[k].load_controlled()) continue;
+    drivers_[k].end_step(t_new, dt, boundary_loads_[k].force);
+    if (plane_index_[k] >= 0) state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
+    else state_.meshes[mesh_index_[k]].move_to(drivers_[k].pose());
+  }
+}
+
+// How far any wall point may have moved since the last neighbour build: the shift of its centre
+// plus the arc its farthest point has turned through.
+double Simulation::wall_shift_since_build() const {
+  double shift = 0;
+  for (std::size_t k = 0; k < drivers_.size(); ++k) {
+    if (!drivers_[k].moves()) continue;
+    const WallPose& now = drivers_[k].pose();
+    const WallPose& then = pose_at_build_[k];
+    const Eigen::Matrix3d turn = then.rotation.transpose() * now.rotation;
+    const double angle = std::acos(std::clamp((turn.trace() - 1) / 2, -1.0, 1.0));
+    shift = std::max(shift, (now.displacement - then.displacement).norm() + angle * wall_extent_[k]);
+  }
+  return shift;
+}
+
 void Simulation::step() {
+  const double t_new = static_cast<double>(step_ + 1) * state_.dt;
+  move_walls(t_new, state_.dt);
   const double moved2 = half_kick_and_drift();
   const double half_skin = 0.5 * skin_;
   const int interval = scene_.numerics.search_interval;
-  if (moved2 > half_skin * half_skin || (interval > 0 && step_ + 1 - last_build_step_ >= interval)) build_neighbors();
+  if (moved2 > half_skin * half_skin || wall_shift_since_build() > half_skin ||
+      (interval > 0 && step_ + 1 - last_build_step_ >= interval))
+    build_neighbors();
   kernel_->compute_and_kick(state_);
+  settle_walls(t_new, state_.dt);
   contacts_recorded_ = state_.record_contacts;
   ++step_;
 }
@@ -147,6 +244,9 @@ void Simulation::build_neighbors() {
   plan_blocks();
   WallContacts previous = std::move(state_.wall_contacts);
   build_wall_contacts(previous, order);
+  build_mesh_contacts(order);
+  pose_at_build_.clear();
+  for (const WallDriver& d : drivers_) pose_at_build_.push_back(d.pose());
   x_at_build_ = p.x;
   last_build_step_ = step_;
 }
@@ -200,6 +300,60 @@ void Simulation::build_wall_contacts(const WallContacts& previous, const std::ve
   wc.fn.assign(wc.wall.size(), 0.0);
   wc.ft.assign(wc.wall.size(), 0.0);
   wc.touching.assign(wc.wall.size(), 0);
+  wc.force.assign(wc.wall.size(), Vec3::Zero());
+  wc.point.assign(wc.wall.size(), Vec3::Zero());
+}
+
+void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
+  MeshContacts& mc = state_.mesh_contacts;
+  const Particles& p = state_.particles;
+  const int n = static_cast<int>(p.size());
+  if (state_.meshes.empty()) return;
+  constexpr int kSlots = MeshContacts::kSlots;
+  if (!new_to_old.empty() && !mc.slots.empty()) {  // the slots follow their particles
+    std::vector<MeshSlot> moved(mc.slots.size());
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < kSlots; ++k)
+        moved[static_cast<std::size_t>(i) * kSlots + k] = mc.slots[static_cast<std::size_t>(new_to_old[i]) * kSlots + k];
+    mc.slots.swap(moved);
+  }
+  mc.slots.resize(static_cast<std::size_t>(n) * kSlots);
+  const double r_max = n > 0 ? *std::max_element(p.radius.begin(), p.radius.end()) : 0.0;
+  for (MeshWall& mesh : state_.meshes) mesh.grid.build(mesh.vertices, mesh.triangles, 2 * r_max + skin_);
+  // Candidates per particle in fixed blocks (any thread count gives the same rows), then joined.
+  constexpr int kBlock = 512;
+  const int blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::vector<std::array<int, 3>>> found(blocks);  // (particle, mesh, triangle)
+#pragma omp parallel for schedule(dynamic) if (n >= kParallelMinParticles)
+  for (int b = 0; b < blocks; ++b) {
+    std::vector<int> near;
+    for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      const double reach = p.radius[i] + skin_;
+      const Vec3 lo = p.x[i] - Vec3::Constant(reach), hi = p.x[i] + Vec3::Constant(reach);
+      for (int m = 0; m < static_cast<int>(state_.meshes.size()); ++m) {
+        const MeshWall& mesh = state_.meshes[m];
+        near.clear();
+        mesh.grid.for_each_in_box(lo, hi, [&](int t) { near.push_back(t); });
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+        for (int t : near) {
+          const auto& tri = mesh.triangles[t];
+          const Vec3 q = closest_on_triangle(p.x[i], mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]).point;
+          if ((p.x[i] - q).squaredNorm() < reach * reach) found[b].push_back({i, m, t});
+        }
+      }
+    }
+  }
+  mc.row_start.assign(n + 1, 0);
+  mc.mesh.clear();
+  mc.triangle.clear();
+  for (const auto& block : found)
+    for (const auto& [i, m, t] : block) {
+      ++mc.row_start[i + 1];
+      mc.mesh.push_back(m);
+      mc.triangle.push_back(t);
+    }
+  for (int i = 0; i < n; ++i) mc.row_start[i + 1] += mc.row_start[i];
 }
 
 double Simulation::kinetic_energy() const {
@@ -237,7 +391,33 @@ std::vector<int> Simulation::contact_counts() const {
   const WallContacts& wc = state_.wall_contacts;
   for (std::size_t i = 0; i + 1 < wc.row_start.size(); ++i)
     for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) count[i] += wc.touching[e];
+  const MeshContacts& mc = state_.mesh_contacts;
+  for (std::size_t i = 0; i < mc.slots.size(); ++i) count[i / MeshContacts::kSlots] += mc.slots[i].mesh >= 0;
   return count;
+}
+
+std::vector<WallContact> Simulation::wall_contacts() const {
+  std::vector<int> boundary_of_plane(state_.walls.size());
+  for (std::size_t k = 0; k < plane_index_.size(); ++k)
+    if (plane_index_[k] >= 0) boundary_of_plane[plane_index_[k]] = static_cast<int>(k);
+  std::vector<WallContact> out;
+  const WallContacts& wc = state_.wall_contacts;
+  const MeshContacts& mc = state_.mesh_contacts;
+  for (int i = 0; i < static_cast<int>(state_.particles.size()); ++i) {
+    std::vector<WallContact> mine;
+    if (!wc.row_start.empty())
+      for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
+        if (wc.touching[e]) mine.push_back({i, boundary_of_plane[wc.wall[e]], wc.fn[e], wc.ft[e]});
+    if (!mc.slots.empty())
+      for (int k = 0; k < MeshContacts::kSlots; ++k) {
+        const MeshSlot& slot = mc.slots[static_cast<std::size_t>(i) * MeshContacts::kSlots + k];
+        if (slot.mesh < 0) break;
+        mine.push_back({i, state_.meshes[slot.mesh].boundary, slot.fn, slot.ft});
+      }
+    std::stable_sort(mine.begin(), mine.end(), [](const WallContact& a, const WallContact& b) { return a.wall < b.wall; });
+    out.insert(out.end(), mine.begin(), mine.end());
+  }
+  return out;
 }
 
 std::vector<PairContact> Simulation::pair_contacts() const {

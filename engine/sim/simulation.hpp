@@ -12,6 +12,22 @@
 
 namespace dem {
 
+// What the particles do to one wall (in Scene::walls order) this step: the force on the wall and
+// its torque about the wall's centre (the rotation centre of its motion).
+struct BoundaryLoad {
+  Vec3 force = Vec3::Zero();
+  Vec3 torque = Vec3::Zero();
+  int contacts = 0;
+};
+
+// A particle touching a wall, for the wall force-chain file.
+struct WallContact {
+  int i;      // particle index (not id)
+  int wall;   // index in Scene::walls
+  double fn;  // normal force, N
+  double ft;  // tangential force magnitude, N
+};
+
 struct PairContact {
   int i;      // particle index (not id)
   int j;
@@ -49,12 +65,27 @@ class Simulation {
   // Both throw std::logic_error when the last step did not record contacts.
   std::vector<int> contact_counts() const;  // per particle index: touching pairs and walls
   std::vector<PairContact> pair_contacts() const;
+  std::vector<WallContact> wall_contacts() const;  // touching ones, by particle then wall
+
+  // Per wall of the scene, updated every step.
+  const std::vector<BoundaryLoad>& boundary_loads() const { return boundary_loads_; }
+  const WallDriver& wall_driver(int wall) const { return drivers_[wall]; }
+  const std::vector<Wall>& walls() const { return state_.walls; }     // planes and plates
+  const std::vector<MeshWall>& meshes() const { return state_.meshes; }
+  // Index in walls() or meshes() of scene wall k (-1 when it is the other kind).
+  int plane_index(int k) const { return plane_index_[k]; }
+  int mesh_index(int k) const { return mesh_index_[k]; }
+  bool has_moving_walls() const;
 
  private:
   double half_kick_and_drift();  // returns the largest squared displacement since the last build
   void build_neighbors();
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);
   void plan_blocks();
+  void build_mesh_contacts(const std::vector<int>& new_to_old);
+  void move_walls(double t_new, double dt);  // the walls' first half of the step
+  void settle_walls(double t_new, double dt);  // loads from this step's forces, then their second half
+  double wall_shift_since_build() const;
 
   Scene scene_;
   SimState state_;
@@ -67,6 +98,11 @@ class Simulation {
   int builds_ = 0;
   bool contacts_recorded_ = true;
   std::int64_t last_build_step_ = 0;
+  std::vector<WallDriver> drivers_;         // per scene wall
+  std::vector<int> plane_index_, mesh_index_;
+  std::vector<WallPose> pose_at_build_;     // per scene wall
+  std::vector<double> wall_extent_;         // largest distance of a wall's points from its centre
+  std::vector<BoundaryLoad> boundary_loads_;
 };
 
 }  // namespace dem

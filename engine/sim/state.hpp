@@ -7,6 +7,7 @@
 #include "contact/pair_params.hpp"
 #include "core/particles.hpp"
 #include "neighbor/neighbor_list.hpp"
+#include "mesh/mesh_wall.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
@@ -21,6 +22,30 @@ struct WallContacts {
   std::vector<double> fn;      // normal force of the last step (0 when apart)
   std::vector<double> ft;      // tangential force magnitude of the last step
   std::vector<std::uint8_t> touching;
+  std::vector<Vec3> force;     // on the particle, last step (zero when apart)
+  std::vector<Vec3> point;     // contact point on the wall, last step
+};
+
+// A particle's contact with a mesh, kept from step to step: the spring history follows the contact
+// as it moves from triangle to triangle (matched by its normal), not the triangle.
+struct MeshSlot {
+  int mesh = -1;  // -1: empty
+  Vec3 normal = Vec3::Zero();
+  Vec3 shear = Vec3::Zero();
+  Vec3 roll = Vec3::Zero();
+  Vec3 force = Vec3::Zero();  // on the particle
+  Vec3 point = Vec3::Zero();  // on the mesh
+  double fn = 0, ft = 0, delta = 0;
+};
+
+// Particle-mesh candidates (triangles within reach, rebuilt with the neighbour list, grouped by
+// mesh) and each particle's contact slots.
+struct MeshContacts {
+  static constexpr int kSlots = 4;  // contacts with history per particle; more still push, fresh each step
+  std::vector<int> row_start;  // size n + 1
+  std::vector<int> mesh;       // per candidate
+  std::vector<int> triangle;   // per candidate
+  std::vector<MeshSlot> slots; // n * kSlots
 };
 
 // Results of the last force evaluation per listed pair, for observers (force chains, contact counts).
@@ -49,8 +74,10 @@ struct SimState {
   BlockPlan blocks;
   std::vector<Vec3> f_next;     // forces being summed this step (the last step's stay in particles.f)
   std::vector<Vec3> half_kick;  // velocity change of this step's first half kick, dt/2 f/m
-  std::vector<Wall> walls;
+  std::vector<Wall> walls;         // planes and plates
   WallContacts wall_contacts;
+  std::vector<MeshWall> meshes;
+  MeshContacts mesh_contacts;
   PairTable table;
   Vec3 gravity = Vec3::Zero();
   double dt = 0;

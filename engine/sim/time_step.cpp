@@ -51,8 +51,11 @@ double reference_speed(const Scene& scene) {
     bottom = std::min(bottom, -p.position.dot(down));
   }
   for (const WallInit& w : scene.walls) {
+    if (w.motion) v0 = std::max(v0, w.motion->velocity.norm() + w.motion->amplitude.norm());
     if (const auto* plate = std::get_if<PlateShape>(&w.shape)) {
       for (const Vec3& c : plate->corners) bottom = std::min(bottom, -c.dot(down));
+    } else if (const auto* mesh = std::get_if<MeshShape>(&w.shape)) {
+      for (const Vec3& v : mesh->vertices) bottom = std::min(bottom, -v.dot(down));
     } else if (const auto* plane = std::get_if<PlaneShape>(&w.shape)) {
       // height of the plane below each particle, along the vertical
       const double facing = -down.dot(plane->normal);

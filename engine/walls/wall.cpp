@@ -35,7 +35,23 @@ Wall Wall::from(const WallInit& init) {
     for (int k = 0; k < 4; ++k) n += (w.corners[k] - w.point).cross(w.corners[(k + 1) % 4] - w.point);
     w.normal = n.normalized();
   }
+  w.point0_ = w.point;
+  w.normal0_ = w.normal;
+  w.corners0_ = w.corners;
   return w;
+}
+
+Vec3 Wall::centroid() const {
+  if (kind == Kind::Plane) return point;
+  return 0.25 * (corners[0] + corners[1] + corners[2] + corners[3]);
+}
+
+void Wall::move_to(const WallPose& next) {
+  pose = next;
+  point = next.place(point0_);
+  normal = next.turn(normal0_);
+  if (kind == Kind::Plate)
+    for (int k = 0; k < 4; ++k) corners[k] = next.place(corners0_[k]);
 }
 
 Vec3 Wall::closest_on_plate(const Vec3& x) const {

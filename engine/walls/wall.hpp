@@ -5,6 +5,7 @@
 #include <array>
 
 #include "core/scene.hpp"
+#include "walls/wall_motion.hpp"
 
 namespace dem {
 
@@ -15,8 +16,14 @@ struct Wall {
   Vec3 point = Vec3::Zero();   // plane: a point; plate: corner 1
   Vec3 normal = Vec3::UnitZ(); // unit
   std::array<Vec3, 4> corners; // plate only, counter-clockwise about `normal`
+  WallPose pose;               // where it is relative to its start, and how fast it moves
 
   static Wall from(const WallInit& init);
+
+  // Centre of the plate's corners, or the plane's point.
+  Vec3 centroid() const;
+  // Places the wall at `pose` (from the geometry it started with).
+  void move_to(const WallPose& next);
 
   // For a sphere at x of radius r: true if it overlaps the wall; then n (unit, wall -> sphere) and
   // the overlap delta. A sphere behind a plane still touches it (pushed back out along the normal).
@@ -27,6 +34,9 @@ struct Wall {
 
  private:
   Vec3 closest_on_plate(const Vec3& x) const;
+
+  Vec3 point0_ = Vec3::Zero(), normal0_ = Vec3::UnitZ();
+  std::array<Vec3, 4> corners0_;
 };
 
 }  // namespace dem

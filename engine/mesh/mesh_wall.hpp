@@ -1,0 +1,87 @@
+// A triangle-mesh wall at run time: its triangles where they are now, binned in a cell grid so that
+// a sphere finds the few triangles near it whatever the size of the mesh, and the contact test that
+// gives a sphere one contact per touching surface patch, not one per triangle.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "mesh/triangle_mesh.hpp"
+#include "walls/wall_motion.hpp"
+
+namespace dem {
+
+// Triangles binned by their bounding boxes in a uniform grid. Cells are at least `min_cell` (the
+// particles' reach) and at least the typical triangle's extent, so that a triangle covers a few
+// cells and a sphere's query visits a few.
+class TriangleGrid {
+ public:
+  void build(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles, double min_cell);
+
+  // Calls visit(t) for the triangles binned in the cells overlapping [lo, hi]; a triangle in
+  // several of those cells is visited once per cell.
+  template <class Visit>
+  void for_each_in_box(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
+    std::array<int, 3> a, b;
+    for (int d = 0; d < 3; ++d) {
+      const double from = (lo[d] - origin_[d]) / cell_, to = (hi[d] - origin_[d]) / cell_;
+      if (to < 0 || from >= dims_[d]) return;  // the box misses the mesh
+      a[d] = from < 0 ? 0 : static_cast<int>(from);
+      b[d] = to >= dims_[d] ? dims_[d] - 1 : static_cast<int>(to);
+    }
+    for (int iz = a[2]; iz <= b[2]; ++iz)
+      for (int iy = a[1]; iy <= b[1]; ++iy)
+        for (int ix = a[0]; ix <= b[0]; ++ix) {
+          const std::size_t c = ix + static_cast<std::size_t>(dims_[0]) * (iy + static_cast<std::size_t>(dims_[1]) * iz);
+          for (int k = start_[c]; k < start_[c + 1]; ++k) visit(items_[k]);
+        }
+  }
+
+  double cell_size() const { return cell_; }
+
+ private:
+  Vec3 origin_ = Vec3::Zero();
+  double cell_ = 1;
+  std::array<int, 3> dims_{1, 1, 1};
+  std::vector<int> start_;
+  std::vector<int> items_;
+};
+
+struct MeshWall {
+  int material = 0;
+  int boundary = 0;  // index of the wall in Scene::walls
+  std::vector<Vec3> vertices0;  // at the start
+  std::vector<std::array<int, 3>> triangles;
+  MeshTopology topology;
+  std::vector<Vec3> vertices;   // now
+  WallPose pose;
+  TriangleGrid grid;            // of `vertices` at the last neighbour build
+
+  static MeshWall from(const WallInit& init, int boundary);
+  Vec3 centroid() const;
+  void move_to(const WallPose& next);  // rigid motion from vertices0
+};
+
+// One contact of a sphere with a mesh: a face, edge or vertex that is a local minimum of the
+// distance from the sphere's centre to the mesh surface.
+struct MeshTouch {
+  Feature feature;
+  int key;       // triangle (face), edge id (edge) or vertex index (vertex)
+  int triangle;  // a triangle the point lies on
+  Vec3 point;    // closest point on the mesh
+  Vec3 normal;   // unit, mesh -> sphere
+  double delta;  // overlap
+};
+
+// The contacts of a sphere (centre x, radius r) with `mesh`, testing the given candidate triangles.
+// Sound across edges and vertices (seeds 4.1.2, the finite-wall method, with the mesh's
+// connectivity): an edge or vertex point counts only when the centre lies in that feature's own
+// Voronoi region of the surface, a feature is counted once however many triangles share it, and an
+// edge (vertex) that borders a touched face (edge) is not counted again. A sphere resting across
+// two coplanar triangles therefore gets one contact with the plane's normal, not two.
+// Returns the number written to `out` (at most out_capacity; further contacts are dropped).
+int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_count, const Vec3& x, double r,
+                 MeshTouch* out, int out_capacity);
+
+}  // namespace dem

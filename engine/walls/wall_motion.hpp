@@ -1,0 +1,57 @@
+// How a wall (plane, plate or mesh) moves: where it is relative to its start, how fast each of its
+// points moves, and what drives it (a prescribed motion, a cyclic load, a servo).
+#pragma once
+
+#include <optional>
+
+#include "core/scene.hpp"
+
+namespace dem {
+
+// A rigid displacement from the wall's start: x = R (x0 - c0) + c0 + displacement.
+struct WallPose {
+  Vec3 center0 = Vec3::Zero();  // rotation centre at the start
+  Vec3 displacement = Vec3::Zero();
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Vec3 velocity = Vec3::Zero();          // of the centre
+  Vec3 angular_velocity = Vec3::Zero();  // about the centre
+
+  Vec3 place(const Vec3& x0) const { return rotation * (x0 - center0) + center0 + displacement; }
+  Vec3 turn(const Vec3& direction0) const { return rotation * direction0; }
+  Vec3 velocity_at(const Vec3& x) const { return velocity + angular_velocity.cross(x - (center0 + displacement)); }
+  bool moving() const { return !velocity.isZero(0) || !angular_velocity.isZero(0); }
+};
+
+// Advances one wall's pose through a step. Velocity Verlet like the particles: begin_step moves the
+// wall to t + dt (a load-controlled wall with the force of the last step), end_step takes the
+// particles' new reaction on the wall (the force the wall receives, N) and completes its velocity.
+class WallDriver {
+ public:
+  WallDriver() = default;
+  WallDriver(const WallInit& init, const Vec3& centroid, const Vec3& gravity);
+
+  bool moves() const { return motion_.has_value() || load_.has_value(); }
+  bool load_controlled() const { return load_.has_value(); }
+  const WallPose& pose() const { return pose_; }
+
+  void begin_step(double t_new, double dt);
+  void end_step(double t_new, double dt, const Vec3& reaction);
+
+  // Displacement along the load direction, and the force the wall applies to the particles along
+  // it (the reaction's component against the direction); both 0 for walls without a load.
+  double load_displacement() const;
+  double applied_force() const { return applied_force_; }
+  // The force the load prescribes at time t (the servo's target), N.
+  double prescribed_force(double t) const;
+
+ private:
+  std::optional<PrescribedMotion> motion_;
+  std::optional<LoadControl> load_;
+  WallPose pose_;
+  double gravity_along_ = 0;  // g . direction
+  double speed_ = 0;          // along the load direction
+  double accel_ = 0;
+  double applied_force_ = 0;
+};
+
+}  // namespace dem
