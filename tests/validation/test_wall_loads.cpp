@@ -1,0 +1,94 @@
+// Load-controlled walls on a bed of spheres (the ballast test's loading plate): a plate pushed by
+// a cyclic force passes that force to the bed, and a servo plate holds its target force.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/report.hpp"
+#include "support/scenes.hpp"
+
+namespace dem::test {
+namespace {
+
+constexpr double kR = 0.005, kG = 9.81, kPlateMass = 1.0;
+
+// A 4 x 4 x 4 stack of touching spheres in a 4 cm box (settled from the start: the columns rest
+// on each other), under a plate lying on the top layer, pushed down by `load`.
+Scene loaded_bed(const LoadControl& load, double plate_gap) {
+  Scene s = base_scene(NormalModel::Linear, 2500, 1e8, 0.25, 0.3, 0.3, 1e5);
+  s.gravity = {0, 0, -kG};
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) s.particles.push_back(sphere({kR + 2 * kR * i, kR + 2 * kR * j, kR + 2 * kR * k}, kR));
+  const double side = 8 * kR;
+  s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}, "floor"));
+  s.walls.push_back(plane({0, 0, 0}, {1, 0, 0}, "x-low"));
+  s.walls.push_back(plane({side, 0, 0}, {-1, 0, 0}, "x-high"));
+  s.walls.push_back(plane({0, 0, 0}, {0, 1, 0}, "y-low"));
+  s.walls.push_back(plane({0, side, 0}, {0, -1, 0}, "y-high"));
+  const double z = side + plate_gap;
+  WallInit plate{"sleeper", 1, PlateShape{{Vec3(-kR, -kR, z), Vec3(side + kR, -kR, z), Vec3(side + kR, side + kR, z),
+                                           Vec3(-kR, side + kR, z)}}};
+  plate.load = load;
+  s.walls.push_back(plate);
+  return s;
+}
+
+// F between 100 N and 1000 N at 5 Hz for 3 cycles; over the third cycle the force the plate
+// applies to the bed must follow F(t) + its weight within 1% of F_max.
+TEST(LoadedPlate, FollowsItsForceCycle) {
+  LoadControl load;
+  load.kind = LoadControl::Kind::Cyclic;
+  load.direction = {0, 0, -1};
+  load.mass = kPlateMass;
+  load.f_min = 100;
+  load.f_max = 1000;
+  load.frequency = 5;
+  load.cycles = 3;
+  Simulation sim(loaded_bed(load, 0));
+  const int plate = static_cast<int>(sim.scene().walls.size()) - 1;
+  double worst = 0, peak = 0, lowest = 1e9, deepest = 0;
+  while (sim.time() < 0.6) {
+    sim.step();
+    if (sim.time() < 0.4) continue;  // two cycles settle the bed (it starts with a step load of F_min)
+    const double applied = sim.wall_driver(plate).applied_force();
+    const double want = load.force_at(sim.time()) + kPlateMass * kG;
+    worst = std::max(worst, std::abs(applied - want));
+    peak = std::max(peak, applied);
+    lowest = std::min(lowest, applied);
+    deepest = std::max(deepest, sim.wall_driver(plate).load_displacement());
+    // the boundary total seen by observers is the bed's push on the plate: up, the same size
+    ASSERT_NEAR(sim.boundary_loads()[plate].force.z(), applied, 1e-9 * load.f_max);
+  }
+  report("cyclic plate: largest |applied - prescribed| / F_max", worst / load.f_max, 0.0);
+  EXPECT_LT(worst, 0.01 * load.f_max);
+  EXPECT_NEAR(peak, load.f_max + kPlateMass * kG, 0.01 * load.f_max);
+  EXPECT_NEAR(lowest, load.f_min + kPlateMass * kG, 0.01 * load.f_max);
+  EXPECT_GT(deepest, 0);  // it pressed the bed down
+  // the floor carries the plate's push and the bed's weight, downwards
+  const double bed_weight = 64 * sphere_mass(2500, kR) * kG;
+  EXPECT_NEAR(sim.boundary_loads()[0].force.z(), -(sim.wall_driver(plate).applied_force() + bed_weight),
+              0.01 * load.f_max);
+}
+
+// A servo plate starting 2 mm above the bed closes the gap and holds 500 N within 1%.
+TEST(ServoPlate, HoldsItsTargetForce) {
+  LoadControl load;
+  load.kind = LoadControl::Kind::Servo;
+  load.direction = {0, 0, -1};
+  load.target = 500;
+  load.gain = 1e-3;
+  load.max_speed = 0.05;
+  Simulation sim(loaded_bed(load, 0.002));
+  const int plate = static_cast<int>(sim.scene().walls.size()) - 1;
+  double worst = 0;
+  while (sim.time() < 0.2) {
+    sim.step();
+    if (sim.time() >= 0.15) worst = std::max(worst, std::abs(sim.wall_driver(plate).applied_force() - load.target));
+  }
+  report("servo plate: largest |force - target| / target over the last 50 ms", worst / load.target, 0.0);
+  EXPECT_LT(worst, 0.01 * load.target);
+}
+
+}  // namespace
+}  // namespace dem::test
