@@ -44,7 +44,7 @@ inline ParticleInit sphere(const Vec3& x, double r, const Vec3& v = Vec3::Zero()
 }
 
 inline WallInit plane(const Vec3& point, const Vec3& normal, const std::string& name = "plane") {
-  return WallInit{name, 1, PlaneShape{point, normal.normalized()}};
+  return WallInit{name, 1, PlaneShape{point, normal.normalized()}, {}, {}};
 }
 
 // Runs until `done(sim)` or max_steps; returns the number of steps taken.

@@ -41,7 +41,7 @@ Scene heap(const LawCase& law) {
         p.material = (i + 2 * j + k) % 2;
         s.particles.push_back(p);
       }
-  s.walls.push_back(WallInit{"floor", 2, PlaneShape{{0, 0, 0}, {0, 0, 1}}});
+  s.walls.push_back(WallInit{"floor", 2, PlaneShape{{0, 0, 0}, {0, 0, 1}}, {}, {}});
   s.time.steps = 400;
   return s;
 }

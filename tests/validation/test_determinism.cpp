@@ -30,7 +30,7 @@ Scene falling_heap() {
   s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
   // a side plate the heap drifts towards (x = -0.01, facing +x)
   s.walls.push_back(WallInit{"plate", 1, PlateShape{{Vec3(-0.01, -0.1, 0), Vec3(-0.01, 0.3, 0), Vec3(-0.01, 0.3, 0.3),
-                                                       Vec3(-0.01, -0.1, 0.3)}}});
+                                                       Vec3(-0.01, -0.1, 0.3)}}, {}, {}});
   s.time.steps = 3000;
   s.outputs.every_steps = 500;
   s.outputs.animation = true;

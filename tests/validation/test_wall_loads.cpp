@@ -28,7 +28,9 @@ Scene loaded_bed(const LoadControl& load, double plate_gap) {
   s.walls.push_back(plane({0, side, 0}, {0, -1, 0}, "y-high"));
   const double z = side + plate_gap;
   WallInit plate{"sleeper", 1, PlateShape{{Vec3(-kR, -kR, z), Vec3(side + kR, -kR, z), Vec3(side + kR, side + kR, z),
-                                           Vec3(-kR, side + kR, z)}}};
+                                           Vec3(-kR, side + kR, z)}},
+                 {},
+                 {}};
   plate.load = load;
   s.walls.push_back(plate);
   return s;
