@@ -103,7 +103,7 @@ int run_command(const std::vector<std::string>& args) {
     Simulation sim(std::move(scene));
     std::filesystem::create_directories(a.out);
     std::printf("%s: %zu particles, %zu walls, %lld steps; %s\n", a.spec.c_str(), sim.particles().size(),
-                sim.state().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
+                sim.scene().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
     std::fflush(stdout);
 
     std::vector<std::unique_ptr<Observer>> writers;
@@ -112,6 +112,11 @@ int run_command(const std::vector<std::string>& args) {
       writers.push_back(std::make_unique<AnimationWriter>((dir / "ANIMATION_3D.dat").string(), sim));
     if (sim.scene().outputs.force_chains)
       writers.push_back(std::make_unique<ForceChainWriter>((dir / "ForceChain_3D.dat").string()));
+    if (WallWriter::wanted(sim)) writers.push_back(std::make_unique<WallWriter>(dir.string(), sim));
+    if (sim.scene().outputs.force_chains && !sim.scene().walls.empty())
+      writers.push_back(std::make_unique<WallForceChainWriter>((dir / "Wall_ForceChain_3D.dat").string()));
+    if (ForceDisplacementWriter::loading_wall(sim) >= 0)
+      writers.push_back(std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string()));
     std::vector<Observer*> observers;
     for (auto& w : writers) observers.push_back(w.get());
 

@@ -13,6 +13,8 @@ namespace {
 
 constexpr std::string_view animation_header = "3DA:";
 constexpr std::string_view force_chain_header = "3DF:";
+constexpr std::string_view wall_header = "3DW:";
+constexpr std::string_view wall_force_chain_header = "3DWF:";
 constexpr std::string_view plate_word = "rplate";
 constexpr std::string_view triangle_word = "tri";
 
@@ -292,6 +294,21 @@ class FrameLines {
                      std::to_string(lines_.token_count()));
   }
 
+  // Moves to the next line whatever its column count (the caller checks it): fails only at the end
+  // of the input or at the next frame's header.
+  std::optional<Stop> next_any(const Expected& expected) {
+    if (!lines_.next()) return ended(expected);
+    if (lines_.token(0) == header_) {
+      return malformed(line_prefix(lines_.line_number()) + "a new frame starts here, but the frame that starts at line " +
+                       std::to_string(first_line_) + " is incomplete: its " + expected.describe() + " is missing");
+    }
+    return std::nullopt;
+  }
+
+  std::size_t token_count() const { return lines_.token_count(); }
+  std::string_view token(std::size_t k) const { return lines_.token(k); }
+  std::int64_t line_number() const { return lines_.line_number(); }
+
   // Checks the word in a column (the "rplate" of a plate line).
   std::optional<Stop> check_word(std::size_t column, std::string_view word) const {
     if (lines_.token(column) == word) return std::nullopt;
@@ -454,7 +471,135 @@ std::optional<Stop> read_force_chain_frame(TokenLines& lines, ForceChainFrame& f
   return std::nullopt;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Wall_Animation_3D.dat, Wall_ForceChain_3D.dat, Force_Displacement.dat
+
+constexpr std::string_view wall_line_layout = "id rplate x1 y1 z1 ... x4 y4 z4, or id tri x1 y1 z1 ... x3 y3 z3";
+
+std::optional<Stop> read_wall_frame(TokenLines& lines, WallFrame& frame) {
+  if (auto stop = check_frame_header(lines, wall_header, 3, "3DW: step NW")) return stop;
+  LineValues header = LineValues(lines);
+  frame.step = header.integer64(1);
+  const std::size_t count = header.count(2);
+  if (!header.ok()) return malformed(header.problem());
+  FrameLines frame_lines(lines, wall_header);
+  for (std::size_t k = 0; k < count; ++k) {
+    const Expected expected{"wall line", wall_line_layout, 0, k + 1, count};
+    if (auto stop = frame_lines.next_any(expected)) return stop;
+    const bool plate = frame_lines.token_count() >= 2 && frame_lines.token(1) == plate_word;
+    const bool triangle = frame_lines.token_count() >= 2 && frame_lines.token(1) == triangle_word;
+    const std::size_t corners = plate ? 4 : 3;
+    if ((!plate && !triangle) || frame_lines.token_count() != 2 + 3 * corners)
+      return malformed(line_prefix(frame_lines.line_number()) + "expected a wall line (" + std::string(wall_line_layout) +
+                       "), found " + std::to_string(frame_lines.token_count()) + " values");
+    LineValues values = frame_lines.values();
+    if (plate) {
+      AnimationPlate& p = frame.plates.emplace_back();
+      p.id = values.integer(0);
+      for (std::size_t c = 0; c < 4; ++c) p.corners[c] = values.vec3(2 + 3 * c);
+    } else {
+      AnimationTriangle& t = frame.triangles.emplace_back();
+      t.id = values.integer(0);
+      for (std::size_t c = 0; c < 3; ++c) t.corners[c] = values.vec3(2 + 3 * c);
+    }
+    if (!values.ok()) return malformed(values.problem());
+  }
+  return std::nullopt;
+}
+
+std::optional<Stop> read_wall_force_chain_frame(TokenLines& lines, WallForceChainFrame& frame) {
+  if (auto stop = check_frame_header(lines, wall_force_chain_header, 3, "3DWF: step NC")) return stop;
+  LineValues header = LineValues(lines);
+  frame.step = header.integer64(1);
+  const std::size_t count = header.count(2);
+  if (!header.ok()) return malformed(header.problem());
+  FrameLines frame_lines(lines, wall_force_chain_header);
+  frame.chains.reserve(safe_reserve(count));
+  for (std::size_t k = 0; k < count; ++k) {
+    if (auto stop = frame_lines.next({"wall chain line", "i wall Fn Ft", 4, k + 1, count})) return stop;
+    LineValues values = frame_lines.values();
+    WallForceChain& chain = frame.chains.emplace_back();
+    chain.i = values.integer(0);
+    chain.wall = values.integer(1);
+    chain.normal_force = values.real(2);
+    chain.tangential_force = values.real(3);
+    if (!values.ok()) return malformed(values.problem());
+  }
+  return std::nullopt;
+}
+
+std::optional<Stop> read_force_displacement_row(TokenLines& lines, ForceDisplacementRow& row) {
+  if (lines.token_count() != 3)
+    return malformed(line_prefix(lines.line_number()) + "expected 3 values (time displacement force), found " +
+                     std::to_string(lines.token_count()));
+  LineValues values(lines);
+  row.time = values.real(0);
+  row.displacement = values.real(1);
+  row.force = values.real(2);
+  if (!values.ok()) return malformed(values.problem());
+  return std::nullopt;
+}
+
 }  // namespace
+
+void write_wall_frame(std::FILE* out, const WallFrame& frame, NumberFormat format) {
+  const RealStyle style = animation_styles(format).corner;
+  FrameText text(1 + frame.plates.size() + frame.triangles.size());
+  text.word(wall_header);
+  text.integer(frame.step);
+  text.integer(static_cast<long long>(frame.plates.size() + frame.triangles.size()));
+  text.end_line();
+  for (const AnimationPlate& plate : frame.plates) {
+    text.integer(plate.id);
+    text.word(plate_word);
+    for (const Vec3& corner : plate.corners) text.reals(corner, style);
+    text.end_line();
+  }
+  for (const AnimationTriangle& triangle : frame.triangles) {
+    text.integer(triangle.id);
+    text.word(triangle_word);
+    for (const Vec3& corner : triangle.corners) text.reals(corner, style);
+    text.end_line();
+  }
+  text.write_to(out);
+}
+
+void write_wall_force_chain_frame(std::FILE* out, const WallForceChainFrame& frame, NumberFormat format) {
+  const RealStyle style = force_style(format);
+  FrameText text(1 + frame.chains.size());
+  text.word(wall_force_chain_header);
+  text.integer(frame.step);
+  text.integer(static_cast<long long>(frame.chains.size()));
+  text.end_line();
+  for (const WallForceChain& chain : frame.chains) {
+    text.integer(chain.i);
+    text.integer(chain.wall);
+    text.real(chain.normal_force, style);
+    text.real(chain.tangential_force, style);
+    text.end_line();
+  }
+  text.write_to(out);
+}
+
+void write_force_displacement_row(std::FILE* out, const ForceDisplacementRow& row, NumberFormat format) {
+  const RealStyle style = format == NumberFormat::Scientific ? scientific : fixed(4);
+  FrameText text(1);
+  text.real(row.time, style);
+  text.real(row.displacement, style);
+  text.real(row.force, force_style(format));
+  text.end_line();
+  text.write_to(out);
+}
+
+ReadResult<WallFrame> read_wall_frames(std::istream& in) { return read_frames<WallFrame>(in, read_wall_frame); }
+
+ReadResult<WallForceChainFrame> read_wall_force_chains(std::istream& in) {
+  return read_frames<WallForceChainFrame>(in, read_wall_force_chain_frame);
+}
+
+ReadResult<ForceDisplacementRow> read_force_displacement(std::istream& in) {
+  return read_frames<ForceDisplacementRow>(in, read_force_displacement_row);
+}
 
 void write_animation_frame(std::FILE* out, const AnimationFrame& frame, NumberFormat format) {
   const AnimationStyles styles = animation_styles(format);

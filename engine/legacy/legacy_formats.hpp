@@ -70,6 +70,37 @@ struct ReadResult {
   std::string problem;        // why reading stopped early, with the line number; empty if clean
 };
 
+// Wall_Animation_3D.dat (project-defined, legacy-formats.md section 5): per frame "3DW: step NW",
+// then NW lines, each a plate ("id rplate" + 4 corners) or a triangle ("id tri" + 3 corners) in the
+// format of ANIMATION_3D.dat; plates first.
+struct WallFrame {
+  std::int64_t step = 0;
+  std::vector<AnimationPlate> plates;
+  std::vector<AnimationTriangle> triangles;
+};
+
+// Wall_ForceChain_3D.dat: per frame "3DWF: step NC", then NC lines "i wall Fn Ft" (1-based particle
+// id, 1-based wall number in the job spec's order), sorted by i then wall.
+struct WallForceChain {
+  int i = 0;
+  int wall = 0;
+  double normal_force = 0;
+  double tangential_force = 0;
+};
+
+struct WallForceChainFrame {
+  std::int64_t step = 0;
+  std::vector<WallForceChain> chains;
+};
+
+// Force_Displacement.dat: one row per output time, "time displacement force" (s, file length
+// unit, N) of the loading plate.
+struct ForceDisplacementRow {
+  double time = 0;
+  double displacement = 0;
+  double force = 0;
+};
+
 // Parses a Fortran-style real: 7.547503e+002, 1.0E9, 1.0D9, 1.0d-3, .5, 5., +3, -3.25, and the
 // exponent without a letter that Fortran prints for three-digit exponents (1.0-100 = 1.0e-100).
 // Nothing else may follow. Rejects nan, inf and values outside the range of double. Locale-independent.
@@ -99,5 +130,13 @@ void write_force_chain_frame(std::FILE* out, const ForceChainFrame& frame, Numbe
 //   boundaries after it cannot be trusted.
 ReadResult<AnimationFrame> read_animation(std::istream& in);
 ReadResult<ForceChainFrame> read_force_chains(std::istream& in);
+
+void write_wall_frame(std::FILE* out, const WallFrame& frame, NumberFormat format);
+void write_wall_force_chain_frame(std::FILE* out, const WallForceChainFrame& frame, NumberFormat format);
+void write_force_displacement_row(std::FILE* out, const ForceDisplacementRow& row, NumberFormat format);
+ReadResult<WallFrame> read_wall_frames(std::istream& in);
+ReadResult<WallForceChainFrame> read_wall_force_chains(std::istream& in);
+// Each row is one "frame" here: a cut last row sets truncated, like the other readers.
+ReadResult<ForceDisplacementRow> read_force_displacement(std::istream& in);
 
 }  // namespace dem::legacy

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "mesh/mesh_io.hpp"
+
 namespace dem {
 namespace {
 
@@ -42,6 +44,11 @@ std::array<double, 6> frame_domain(const Simulation& sim) {
         hi = hi.cwiseMax(c);
       }
     }
+    for (const MeshWall& m : sim.meshes())
+      for (const Vec3& v : m.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
     if (lo[0] > hi[0]) lo = hi = Vec3::Zero();
   }
   return {lo[0] / unit, hi[0] / unit, lo[1] / unit, hi[1] / unit, lo[2] / unit, hi[2] / unit};
@@ -55,17 +62,15 @@ legacy::AnimationFrame AnimationWriter::make_frame(const Simulation& sim, const 
   const Particles& p = sim.particles();
   legacy::AnimationFrame frame;
   frame.domain = domain;
-  // time, loading-plate displacement and force (no loading plate yet), kinetic energy
-  frame.scalars = {sim.time(), 0.0, 0.0, sim.kinetic_energy()};
+  // time, loading-plate displacement and force, kinetic energy
+  const int loading = ForceDisplacementWriter::loading_wall(sim);
+  const double displacement = loading >= 0 ? sim.wall_driver(loading).load_displacement() / unit : 0.0;
+  const double force = loading >= 0 ? sim.wall_driver(loading).applied_force() : 0.0;
+  frame.scalars = {sim.time(), displacement, force, sim.kinetic_energy()};
   frame.step = sim.step_count();
-  int plate_id = 0;
-  for (const Wall& w : sim.state().walls) {
-    if (w.kind != Wall::Kind::Plate) continue;
-    legacy::AnimationPlate plate;
-    plate.id = ++plate_id;
-    for (int k = 0; k < 4; ++k) plate.corners[k] = w.corners[k] / unit;
-    frame.plates.push_back(plate);
-  }
+  const legacy::WallFrame walls = WallWriter::make_frame(sim);
+  frame.plates = walls.plates;
+  frame.triangles = walls.triangles;
   const std::vector<int> contacts = sim.contact_counts();
   frame.particles.resize(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -79,6 +84,93 @@ legacy::AnimationFrame AnimationWriter::make_frame(const Simulation& sim, const 
     out.part = 0;  // no bonded fragments or clumps in this scene
   }
   return frame;
+}
+
+bool WallWriter::wanted(const Simulation& sim) { return !sim.meshes().empty() || sim.has_moving_walls(); }
+
+WallWriter::WallWriter(const std::string& folder, const Simulation& sim) {
+  const double unit = sim.scene().outputs.length_unit;
+  if (!sim.meshes().empty()) {
+    TriangleMesh all;
+    for (const MeshWall& m : sim.meshes()) {
+      const int base = static_cast<int>(all.vertices.size());
+      all.vertices.insert(all.vertices.end(), m.vertices.begin(), m.vertices.end());
+      for (const auto& t : m.triangles) all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    }
+    FilePtr mesh_file = open_for_writing(folder + "/Wall.dat");
+    write_legacy_mesh(mesh_file.get(), all, unit);
+    if (std::ferror(mesh_file.get())) throw std::runtime_error("cannot write " + folder + "/Wall.dat");
+  }
+  if (sim.has_moving_walls()) animation_ = open_for_writing(folder + "/Wall_Animation_3D.dat");
+}
+
+// Every plate (numbered 1.. in scene order among plates), then the triangles of moving meshes
+// (numbered 1.. across those meshes).
+legacy::WallFrame WallWriter::make_frame(const Simulation& sim) {
+  const double unit = sim.scene().outputs.length_unit;
+  legacy::WallFrame frame;
+  frame.step = sim.step_count();
+  int plate_id = 0;
+  for (const Wall& w : sim.walls()) {
+    if (w.kind != Wall::Kind::Plate) continue;
+    legacy::AnimationPlate plate;
+    plate.id = ++plate_id;
+    for (int k = 0; k < 4; ++k) plate.corners[k] = w.corners[k] / unit;
+    frame.plates.push_back(plate);
+  }
+  int triangle_id = 0;
+  for (const MeshWall& m : sim.meshes()) {
+    if (!sim.wall_driver(m.boundary).moves()) continue;
+    for (const auto& t : m.triangles) {
+      legacy::AnimationTriangle tri;
+      tri.id = ++triangle_id;
+      for (int k = 0; k < 3; ++k) tri.corners[k] = m.vertices[t[k]] / unit;
+      frame.triangles.push_back(tri);
+    }
+  }
+  return frame;
+}
+
+void WallWriter::frame(const Simulation& sim) {
+  if (!animation_) return;
+  legacy::write_wall_frame(animation_.get(), make_frame(sim), file_format(sim));
+  std::fflush(animation_.get());
+}
+
+WallForceChainWriter::WallForceChainWriter(const std::string& path) : file_(open_for_writing(path)) {}
+
+legacy::WallForceChainFrame WallForceChainWriter::make_frame(const Simulation& sim) {
+  const std::vector<int>& id = sim.particles().id;
+  legacy::WallForceChainFrame frame;
+  frame.step = sim.step_count();
+  for (const WallContact& c : sim.wall_contacts()) frame.chains.push_back({id[c.i] + 1, c.wall + 1, c.fn, c.ft});
+  std::stable_sort(frame.chains.begin(), frame.chains.end(), [](const auto& a, const auto& b) {
+    return a.i != b.i ? a.i < b.i : a.wall < b.wall;
+  });
+  return frame;
+}
+
+void WallForceChainWriter::frame(const Simulation& sim) {
+  legacy::write_wall_force_chain_frame(file_.get(), make_frame(sim), file_format(sim));
+  std::fflush(file_.get());
+}
+
+ForceDisplacementWriter::ForceDisplacementWriter(const std::string& path) : file_(open_for_writing(path)) {}
+
+int ForceDisplacementWriter::loading_wall(const Simulation& sim) {
+  for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k)
+    if (sim.wall_driver(k).load_controlled()) return k;
+  return -1;
+}
+
+void ForceDisplacementWriter::frame(const Simulation& sim) {
+  const int k = loading_wall(sim);
+  if (k < 0) return;
+  const double unit = sim.scene().outputs.length_unit;
+  legacy::write_force_displacement_row(
+      file_.get(), {sim.time(), sim.wall_driver(k).load_displacement() / unit, sim.wall_driver(k).applied_force()},
+      file_format(sim));
+  std::fflush(file_.get());
 }
 
 void AnimationWriter::frame(const Simulation& sim) {

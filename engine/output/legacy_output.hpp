@@ -46,6 +46,45 @@ class ForceChainWriter final : public Observer {
   FilePtr file_;
 };
 
+// Wall.dat (the meshes at the start, merged into one, in the file length unit), written once, and
+// Wall_Animation_3D.dat: each frame, every plate and the triangles of every moving mesh.
+class WallWriter final : public Observer {
+ public:
+  // Writes Wall.dat at once when the scene has meshes; opens Wall_Animation_3D.dat when any
+  // plate or mesh moves. `folder` is the run folder.
+  WallWriter(const std::string& folder, const Simulation& sim);
+  void frame(const Simulation& sim) override;
+
+  static legacy::WallFrame make_frame(const Simulation& sim);
+  static bool wanted(const Simulation& sim);  // the scene has meshes or moving walls
+
+ private:
+  FilePtr animation_;
+};
+
+// Wall_ForceChain_3D.dat: particle-wall contacts of each frame.
+class WallForceChainWriter final : public Observer {
+ public:
+  explicit WallForceChainWriter(const std::string& path);
+  void frame(const Simulation& sim) override;
+  static legacy::WallForceChainFrame make_frame(const Simulation& sim);
+
+ private:
+  FilePtr file_;
+};
+
+// Force_Displacement.dat: time, displacement and force of the loading plate (the first
+// load-controlled wall) at each output time.
+class ForceDisplacementWriter final : public Observer {
+ public:
+  explicit ForceDisplacementWriter(const std::string& path);
+  void frame(const Simulation& sim) override;
+  static int loading_wall(const Simulation& sim);  // index in Scene::walls, or -1
+
+ private:
+  FilePtr file_;
+};
+
 // The domain box written in each frame header: the scene's, or the initial extent of the bodies.
 std::array<double, 6> frame_domain(const Simulation& sim);
 

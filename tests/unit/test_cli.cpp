@@ -166,6 +166,72 @@ TEST_F(Cli, RunWritesTheAnimationFrames) {
   EXPECT_FALSE(fs::exists(out / "ForceChain_3D.dat"));
 }
 
+// A bed of 8 spheres on a floor given as an STL file, pressed by a cyclic plate (the ballast box
+// in miniature): every wall file is written and reads back.
+TEST_F(Cli, RunWithAMeshFloorAndALoadedPlateWritesTheWallFiles) {
+  {
+    std::ofstream stl(dir_ / "floor.stl");
+    stl << "solid floor\n"
+           "facet normal 0 0 1\nouter loop\nvertex -10 -10 0\nvertex 50 -10 0\nvertex 50 50 0\nendloop\nendfacet\n"
+           "facet normal 0 0 1\nouter loop\nvertex -10 -10 0\nvertex 50 50 0\nvertex -10 50 0\nendloop\nendfacet\n"
+           "endsolid floor\n";
+  }
+  const std::string spec = R"({
+  "materials": [{"name": "stone", "density": 2600, "normalStiffness": 1e5}, {"name": "steel", "rigid": true}],
+  "interactions": [{"a": "stone", "b": "stone", "restitution": 0.3, "friction": 0.5},
+                   {"a": "stone", "b": "steel", "restitution": 0.3, "friction": 0.5}],
+  "lattices": [{"kind": "CUBIC", "min": {"x": 0, "y": 0, "z": 0}, "max": {"x": 0.04, "y": 0.04, "z": 0.04},
+                "radius": 0.01, "spacing": 1.0, "material": "stone"}],
+  "walls": [
+    {"name": "floor", "material": "steel", "mesh": {"file": "floor.stl", "scale": 0.001}},
+    {"name": "sleeper", "material": "steel",
+     "plate": {"c1": {"x": -0.01, "y": -0.01, "z": 0.04}, "c2": {"x": 0.05, "y": -0.01, "z": 0.04},
+               "c3": {"x": 0.05, "y": 0.05, "z": 0.04}, "c4": {"x": -0.01, "y": 0.05, "z": 0.04}},
+     "load": {"mass": 0.5, "cyclic": {"fMin": 10, "fMax": 100, "frequency": 50, "cycles": 1}}}
+  ],
+  "gravity": {"z": -9.81},
+  "time": {"duration": 0.01},
+  "outputs": {"interval": 0.002, "forceChains": true, "lengthUnit": "mm"}
+})";
+  const fs::path out = dir_ / "out";
+  const Result r = dem("run " + shell_quoted(write_spec("box.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* name : {"ANIMATION_3D.dat", "ForceChain_3D.dat", "Wall.dat", "Wall_Animation_3D.dat",
+                           "Wall_ForceChain_3D.dat", "Force_Displacement.dat"})
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  // Wall.dat: the floor, in mm
+  std::ifstream wall_in(out / "Wall.dat");
+  std::string first;
+  std::getline(wall_in, first);
+  EXPECT_EQ(first, "4 2");
+  // the plate moves: in every animation frame, with its displacement and force in the scalars
+  std::ifstream anim(out / "ANIMATION_3D.dat");
+  const auto frames = dem::legacy::read_animation(anim);
+  ASSERT_TRUE(frames.problem.empty()) << frames.problem;
+  ASSERT_GE(frames.frames.size(), 5u);
+  const auto& last = frames.frames.back();
+  ASSERT_EQ(last.plates.size(), 1u);
+  EXPECT_GT(last.scalars[2], 5.0);  // the plate pushes the bed (N)
+  EXPECT_NEAR(last.plates[0].corners[0].z(), 40.0 - last.scalars[1], 1e-3);  // displacement in mm, downwards
+  std::ifstream wall_anim(out / "Wall_Animation_3D.dat");
+  const auto wall_frames = dem::legacy::read_wall_frames(wall_anim);
+  ASSERT_TRUE(wall_frames.problem.empty()) << wall_frames.problem;
+  EXPECT_EQ(wall_frames.frames.size(), frames.frames.size());
+  // the bed touches the floor (wall 1) and the plate (wall 2)
+  std::ifstream chains_in(out / "Wall_ForceChain_3D.dat");
+  const auto chains = dem::legacy::read_wall_force_chains(chains_in);
+  ASSERT_TRUE(chains.problem.empty()) << chains.problem;
+  int floor = 0, plate = 0;
+  for (const auto& c : chains.frames.back().chains) (c.wall == 1 ? floor : plate) += c.wall <= 2;
+  EXPECT_EQ(floor, 4);
+  EXPECT_EQ(plate, 4);
+  std::ifstream fd_in(out / "Force_Displacement.dat");
+  const auto rows = dem::legacy::read_force_displacement(fd_in);
+  ASSERT_TRUE(rows.problem.empty()) << rows.problem;
+  EXPECT_EQ(rows.frames.size(), frames.frames.size());
+  EXPECT_EQ(rows.frames.back().force, last.scalars[2]);
+}
+
 TEST_F(Cli, RunOfALatticeWritesEveryParticle) {
   // An fcc lattice of 2 x 2 x 2 cells (32 spheres, see test_lattice.cpp) at spacing 1.1, at rest,
   // 1 m away from the two listed spheres. The box holds 4 half-cell layers of h per axis plus a

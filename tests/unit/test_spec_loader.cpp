@@ -3,7 +3,12 @@
 // name the field (its JSON path) and say what is wrong.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
 #include <string>
 #include <variant>
 #include <vector>
@@ -482,6 +487,113 @@ TEST(SpecLoader, EmptyBytesAreAnEmptySpecThatFailsTheChecks) {
     EXPECT_TRUE(has_problem(e.problems(), "materials:", "at least one material"));
     EXPECT_TRUE(has_problem(e.problems(), "particles:", "no particles"));
   }
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// Meshes, motions and loads
+
+const char* kMeshFloor =
+    R"({"name": "floor", "material": "steel", "mesh": {"vertices": [{"x": 0, "y": 0}, {"x": 1000}, {"x": 1000, "y": 1000}, {"y": 1000}],
+        "triangles": [{"i": 1, "j": 2, "k": 3}, {"i": 1, "j": 3, "k": 4}], "scale": 0.001,
+        "rotationAxis": {"z": 1}, "rotationDegrees": 90, "translation": {"z": -0.5}}})";
+
+std::string with_wall(const std::string& wall) {
+  return good_with(R"({"name": "floor", "material": "steel", "plane": {"point": {"z": 0}, "normal": {"z": 2}}})", wall);
+}
+
+TEST(SpecLoader, InlineMeshIsScaledRotatedAndMoved) {
+  const Scene s = to_scene(parse_json(with_wall(kMeshFloor)));
+  const auto* mesh = std::get_if<MeshShape>(&s.walls[0].shape);
+  ASSERT_NE(mesh, nullptr);
+  ASSERT_EQ(mesh->vertices.size(), 4u);
+  EXPECT_TRUE(mesh->vertices[1].isApprox(Vec3(0, 1, -0.5), 1e-12)) << mesh->vertices[1].transpose();  // (1, 0) turned 90 deg
+  EXPECT_EQ(mesh->triangles[1], (std::array<int, 3>{0, 2, 3}));
+}
+
+TEST(SpecLoader, MeshFileIsReadNextToTheSpec) {
+  const auto dir = std::filesystem::temp_directory_path() / ("dem_spec_mesh_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream out(dir / "terrain.dat");
+    out << "3 1\n0 0 0\n1 0 0\n0 1 0\n1 2 3\n";
+  }
+  const std::string wall = R"({"name": "floor", "material": "steel", "mesh": {"file": "terrain.dat"}})";
+  const Scene s = to_scene(parse_json(with_wall(wall)), dir.string());
+  EXPECT_EQ(std::get<MeshShape>(s.walls[0].shape).triangles.size(), 1u);
+  // a bad file: the error names the field, the file, the line and the reason
+  {
+    std::ofstream out(dir / "terrain.dat");
+    out << "3 1\n0 0 0\n1 0 0\n0 1 0\n1 2 7\n";
+  }
+  try {
+    to_scene(parse_json(with_wall(wall)), dir.string());
+    ADD_FAILURE() << "accepted a triangle with vertex 7 of 3";
+  } catch (const SpecError& e) {
+    EXPECT_TRUE(has_problem(e.problems(), "walls[0].mesh.file:", "terrain.dat line 5: triangle 1 refers to vertex 7"))
+        << listing(e.problems());
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SpecLoader, MissingMeshFileIsNamed) {
+  const auto problems = problems_of(with_wall(R"({"material": "steel", "mesh": {"file": "/nowhere/t.stl"}})"));
+  EXPECT_TRUE(has_problem(problems, "walls[0].mesh.file:", "/nowhere/t.stl: cannot open the file"));
+}
+
+TEST(SpecLoader, MeshWithFileAndInlineTriangles) {
+  const auto problems = problems_of(with_wall(
+      R"({"material": "steel", "mesh": {"file": "t.stl", "vertices": [{"x": 1}], "triangles": [{"i": 1, "j": 1, "k": 1}]}})"));
+  EXPECT_TRUE(has_problem(problems, "walls[0].mesh:", "has both a file and inline vertices/triangles"));
+}
+
+TEST(SpecLoader, DegenerateInlineTriangle) {
+  const auto problems = problems_of(with_wall(
+      R"({"material": "steel", "mesh": {"vertices": [{"x": 0}, {"x": 1}, {"x": 2}], "triangles": [{"i": 1, "j": 2, "k": 3}]}})"));
+  EXPECT_TRUE(has_problem(problems, "walls[0].mesh:", "walls[0].mesh.triangles[0]: triangle 1 is degenerate"));
+}
+
+TEST(SpecLoader, RotationWithoutAnAxis) {
+  std::string wall = kMeshFloor;
+  wall = replaced(wall, R"("rotationAxis": {"z": 1}, )", "");
+  const auto problems = problems_of(with_wall(wall));
+  EXPECT_TRUE(has_problem(problems, "walls[0].mesh.rotationAxis:", "must be a non-zero vector"));
+}
+
+TEST(SpecLoader, MotionAndLoadAreRead) {
+  const std::string moving = R"({"name": "floor", "material": "steel", "plane": {"point": {"z": 0}, "normal": {"z": 1}},
+      "motion": {"velocity": {"x": 0.1}, "amplitude": {"z": 0.01}, "frequency": 2, "phaseDegrees": 90}})";
+  const Scene s = to_scene(parse_json(with_wall(moving)));
+  ASSERT_TRUE(s.walls[0].motion.has_value());
+  EXPECT_EQ(s.walls[0].motion->velocity, Vec3(0.1, 0, 0));
+  EXPECT_NEAR(s.walls[0].motion->phase, std::numbers::pi / 2, 1e-15);
+  const std::string loaded = R"({"name": "sleeper", "material": "steel", "plate": {"c1": {}, "c2": {"x": 1}, "c3": {"x": 1, "y": 1}, "c4": {"y": 1}},
+      "load": {"mass": 2, "cyclic": {"fMin": 1500, "fMax": 51840, "frequency": 3, "cycles": 15}}})";
+  const Scene t = to_scene(parse_json(with_wall(loaded)));
+  ASSERT_TRUE(t.walls[0].load.has_value());
+  EXPECT_EQ(t.walls[0].load->f_max, 51840);
+  EXPECT_EQ(t.walls[0].load->direction, Vec3(0, 0, -1));
+  EXPECT_NEAR(t.walls[0].load->force_at(1.0 / 6), 51840, 1e-6);  // the top of the first cycle
+  EXPECT_EQ(t.walls[0].load->force_at(5.01), 1500);              // after 15 cycles at 3 Hz
+}
+
+TEST(SpecLoader, BadLoadsAreNamed) {
+  const std::string plate = R"("plate": {"c1": {}, "c2": {"x": 1}, "c3": {"x": 1, "y": 1}, "c4": {"y": 1}})";
+  auto wall = [&](const std::string& load) {
+    return with_wall(R"({"name": "sleeper", "material": "steel", )" + plate + ", " + load + "}");
+  };
+  auto p = problems_of(wall(R"("load": {"mass": 0, "cyclic": {"fMin": 10, "fMax": 5, "frequency": 3, "cycles": 0}})"));
+  EXPECT_TRUE(has_problem(p, "walls[0].load.mass:", "must be a positive number"));
+  EXPECT_TRUE(has_problem(p, "walls[0].load.cyclic.fMax:", "must be >= fMin"));
+  EXPECT_TRUE(has_problem(p, "walls[0].load.cyclic.cycles:", "must be >= 1"));
+  p = problems_of(wall(R"("load": {"mass": 1})"));
+  EXPECT_TRUE(has_problem(p, "walls[0].load:", "needs a control: cyclic or servo"));
+  p = problems_of(wall(R"("load": {"servo": {"target": 100, "gain": -1, "maxSpeed": 0.1}})"));
+  EXPECT_TRUE(has_problem(p, "walls[0].load.servo.gain:", "must be a positive number"));
+  p = problems_of(wall(R"("motion": {"velocity": {"x": 1}}, "load": {"servo": {"target": 1, "gain": 1, "maxSpeed": 1}})"));
+  EXPECT_TRUE(has_problem(p, "walls[0]:", "has both a motion and a load"));
+  p = problems_of(wall(R"("motion": {"amplitude": {"x": 1}})"));
+  EXPECT_TRUE(has_problem(p, "walls[0].motion.frequency:", "must be > 0 when an amplitude is given"));
 }
 
 }  // namespace
