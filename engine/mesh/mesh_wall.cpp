@@ -79,6 +79,7 @@ Vec3 MeshWall::centroid() const {
 
 void MeshWall::move_to(const WallPose& next) {
   pose = next;
+  grid_stale = true;
   for (std::size_t v = 0; v < vertices.size(); ++v) vertices[v] = next.place(vertices0[v]);
 }
 
@@ -132,60 +133,63 @@ bool triangle_has_vertex(const MeshWall& mesh, int t, int v) {
 
 int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_count, const Vec3& x, double r,
                  MeshTouch* out, int out_capacity) {
-  constexpr int kFound = 32;
-  MeshTouch found[kFound];
-  int count = 0;
-  for (int c = 0; c < candidate_count && count < kFound; ++c) {
+  // The triangles within r, then their contacts by feature: faces first, so that an edge or vertex
+  // of a touched face (the common case on a flat patch) is dismissed before its Voronoi test.
+  constexpr int kNear = 32;
+  struct Near {
+    int triangle;
+    ClosestPoint cp;
+    double d2;
+  } near[kNear];
+  int near_count = 0;
+  for (int c = 0; c < candidate_count && near_count < kNear; ++c) {
     const int t = candidates[c];
     const auto& tri = mesh.triangles[t];
-    const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &cc = mesh.vertices[tri[2]];
-    const ClosestPoint cp = closest_on_triangle(x, a, b, cc);
-    const Vec3 d = x - cp.point;
-    const double d2 = d.squaredNorm();
-    if (d2 >= r * r) continue;
-    MeshTouch touch;
-    touch.feature = cp.feature;
-    touch.triangle = t;
-    touch.point = cp.point;
-    if (cp.feature == Feature::Face) {
-      touch.key = t;
-    } else if (cp.feature == Feature::Edge) {
-      touch.key = mesh.topology.triangle_edges[t][cp.index];
-      if (!in_edge_region(mesh, touch.key, d)) continue;
-    } else {
-      touch.key = tri[cp.index];
-      if (!in_vertex_region(mesh, touch.key, d)) continue;
-    }
-    bool seen = false;
-    for (int k = 0; k < count && !seen; ++k)
-      seen = (found[k].feature == touch.feature && found[k].key == touch.key) ||
-             (found[k].point - touch.point).squaredNorm() <= kSlack * kSlack * r * r;
-    if (seen) continue;
-    const double dist = std::sqrt(d2);
+    const ClosestPoint cp = closest_on_triangle(x, mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]);
+    const double d2 = (x - cp.point).squaredNorm();
+    if (d2 < r * r) near[near_count++] = {t, cp, d2};
+  }
+  int written = 0;
+  auto accept = [&](const Near& n, int key) {
+    for (int k = 0; k < written; ++k)  // the same point reached through another triangle
+      if ((out[k].point - n.cp.point).squaredNorm() <= kSlack * kSlack * r * r) return;
+    if (written == out_capacity) return;
+    MeshTouch& touch = out[written++];
+    touch.feature = n.cp.feature;
+    touch.key = key;
+    touch.triangle = n.triangle;
+    touch.point = n.cp.point;
+    const double dist = std::sqrt(n.d2);
     if (dist > 0) {
-      touch.normal = d / dist;
+      touch.normal = (x - n.cp.point) / dist;
     } else {  // centre on the surface: the face normal, either side will do
-      touch.normal = (b - a).cross(cc - a).normalized();
+      const auto& tri = mesh.triangles[n.triangle];
+      touch.normal = (mesh.vertices[tri[1]] - mesh.vertices[tri[0]]).cross(mesh.vertices[tri[2]] - mesh.vertices[tri[0]]).normalized();
     }
     touch.delta = r - dist;
-    found[count++] = touch;
-  }
-  // An edge bordering a touched face, or a vertex of a touched face or edge, is the same contact.
-  int written = 0;
-  for (int k = 0; k < count; ++k) {
-    const MeshTouch& touch = found[k];
+  };
+  for (int k = 0; k < near_count; ++k)
+    if (near[k].cp.feature == Feature::Face) accept(near[k], near[k].triangle);
+  for (int k = 0; k < near_count; ++k) {
+    if (near[k].cp.feature != Feature::Edge) continue;
+    const int e = mesh.topology.triangle_edges[near[k].triangle][near[k].cp.index];
     bool covered = false;
-    for (int o = 0; o < count && !covered; ++o) {
-      if (o == k) continue;
-      const MeshTouch& other = found[o];
-      if (touch.feature == Feature::Edge && other.feature == Feature::Face)
-        covered = triangle_has_edge(mesh, other.key, touch.key);
-      else if (touch.feature == Feature::Vertex && other.feature == Feature::Face)
-        covered = triangle_has_vertex(mesh, other.key, touch.key);
-      else if (touch.feature == Feature::Vertex && other.feature == Feature::Edge)
-        covered = mesh.topology.edges[other.key][0] == touch.key || mesh.topology.edges[other.key][1] == touch.key;
+    for (int o = 0; o < written && !covered; ++o)
+      covered = (out[o].feature == Feature::Face && triangle_has_edge(mesh, out[o].key, e)) ||
+                (out[o].feature == Feature::Edge && out[o].key == e);
+    if (!covered && in_edge_region(mesh, e, x - near[k].cp.point)) accept(near[k], e);
+  }
+  for (int k = 0; k < near_count; ++k) {
+    if (near[k].cp.feature != Feature::Vertex) continue;
+    const int v = mesh.triangles[near[k].triangle][near[k].cp.index];
+    bool covered = false;
+    for (int o = 0; o < written && !covered; ++o) {
+      if (out[o].feature == Feature::Face) covered = triangle_has_vertex(mesh, out[o].key, v);
+      else if (out[o].feature == Feature::Edge)
+        covered = mesh.topology.edges[out[o].key][0] == v || mesh.topology.edges[out[o].key][1] == v;
+      else covered = out[o].key == v;
     }
-    if (!covered && written < out_capacity) out[written++] = touch;
+    if (!covered && in_vertex_region(mesh, v, x - near[k].cp.point)) accept(near[k], v);
   }
   return written;
 }

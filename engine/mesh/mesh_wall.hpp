@@ -56,7 +56,8 @@ struct MeshWall {
   MeshTopology topology;
   std::vector<Vec3> vertices;   // now
   WallPose pose;
-  TriangleGrid grid;            // of `vertices` at the last neighbour build
+  TriangleGrid grid;            // of `vertices` when it was built
+  bool grid_stale = true;       // the mesh moved since (a fixed mesh is binned once)
 
   static MeshWall from(const WallInit& init, int boundary);
   Vec3 centroid() const;
@@ -80,7 +81,8 @@ struct MeshTouch {
 // Voronoi region of the surface, a feature is counted once however many triangles share it, and an
 // edge (vertex) that borders a touched face (edge) is not counted again. A sphere resting across
 // two coplanar triangles therefore gets one contact with the plane's normal, not two.
-// Returns the number written to `out` (at most out_capacity; further contacts are dropped).
+// Returns the number written to `out` (at most out_capacity; further contacts are dropped). At most
+// 32 triangles within r are considered (a sphere touches far fewer on any sane mesh).
 int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_count, const Vec3& x, double r,
                  MeshTouch* out, int out_capacity);
 

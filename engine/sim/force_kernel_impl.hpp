@@ -54,14 +54,12 @@ class ForceKernelImpl final : public ForceKernel {
           note(i, delta, p.radius[i],
                Law::NormalLaw::elastic_energy(s.table(p.material[i], wall.material), delta, p.radius[i]));
         }
-        if (!s.mesh_contacts.slots.empty()) {
-          for (int k = 0; k < MeshContacts::kSlots; ++k) {
-            const MeshSlot& slot = s.mesh_contacts.slots[static_cast<std::size_t>(i) * MeshContacts::kSlots + k];
-            if (slot.mesh < 0) break;
-            note(i, slot.delta, p.radius[i],
-                 Law::NormalLaw::elastic_energy(s.table(p.material[i], s.meshes[slot.mesh].material), slot.delta,
-                                                p.radius[i]));
-          }
+        const MeshContacts& mc = s.mesh_contacts;
+        for (int k = 0, used = mc.count(i); k < used; ++k) {
+          const MeshSlot& slot = mc.slot(i, k);
+          note(i, slot.delta, p.radius[i],
+               Law::NormalLaw::elastic_energy(s.table(p.material[i], s.meshes[slot.mesh].material), slot.delta,
+                                              p.radius[i]));
         }
       }
     }
@@ -358,7 +356,7 @@ class ForceKernelImpl final : public ForceKernel {
       const ContactOutput<double> r =
           wall_contact(s, i, normal, delta, point, wall.pose, wall.material, wc.constants[e], wc.shear[e], roll, f, t);
       wc.fn[e] = r.fn;
-      wc.ft[e] = std::sqrt(squared_norm(r.shear_force));
+      if (s.record_contacts) wc.ft[e] = std::sqrt(squared_norm(r.shear_force));
       wc.force[e] = r.force.get(0);
       wc.point[e] = point;
       wc.touching[e] = 1;
@@ -372,20 +370,24 @@ class ForceKernelImpl final : public ForceKernel {
     const Particles& p = s.particles;
     MeshContacts& mc = s.mesh_contacts;
     constexpr int kSlots = MeshContacts::kSlots;
+    // Slots in use come first; the first unused one (if any) has mesh = -1.
     MeshSlot* now = &mc.slots[static_cast<std::size_t>(i) * kSlots];
-    if (mc.row_start[i] == mc.row_start[i + 1]) {  // no triangle within reach (most particles)
-      for (int k = 0; k < kSlots && now[k].mesh >= 0; ++k) now[k] = MeshSlot{};
+    if (mc.row_start[i] == mc.row_start[i + 1] || p.inv_mass[i] == 0) {  // nothing within reach (most particles)
+      if (mc.used[i]) {  // the slots are touched only when they hold something: they are large
+        now[0].mesh = -1;
+        mc.used[i] = 0;
+      }
       return;
     }
-    MeshSlot before[kSlots];
+    struct History {
+      int mesh;
+      Vec3 normal, shear, roll;
+    } before[kSlots];
     bool taken[kSlots] = {};
-    for (int k = 0; k < kSlots; ++k) {
-      before[k] = now[k];
-      now[k] = MeshSlot{};
-    }
-    if (p.inv_mass[i] == 0) return;
+    int had = 0;
+    for (; mc.used[i] && had < kSlots && now[had].mesh >= 0; ++had) before[had] = {now[had].mesh, now[had].normal, now[had].shear, now[had].roll};
     const double ri = p.radius[i];
-    const PairConstants pc = wall_constants(p, i);
+    const PairConstants& pc = mc.constants[i];
     int filled = 0;
     const int end = mc.row_start[i + 1];
     for (int a = mc.row_start[i]; a < end;) {
@@ -399,7 +401,7 @@ class ForceKernelImpl final : public ForceKernel {
         const MeshTouch& touch = touches[k];
         int best = -1;
         double best_dot = 0.5;
-        for (int o = 0; o < kSlots; ++o) {
+        for (int o = 0; o < had; ++o) {
           if (taken[o] || before[o].mesh != m) continue;
           const double alignment = before[o].normal.dot(touch.normal);
           if (alignment > best_dot) {
@@ -420,12 +422,14 @@ class ForceKernelImpl final : public ForceKernel {
         slot.force = r.force.get(0);
         slot.point = touch.point;
         slot.fn = r.fn;
-        slot.ft = std::sqrt(squared_norm(r.shear_force));
+        if (s.record_contacts) slot.ft = std::sqrt(squared_norm(r.shear_force));
         slot.delta = touch.delta;
         if (filled < kSlots) now[filled++] = slot;
       }
       a = b;
     }
+    if (filled < kSlots && (filled > 0 || mc.used[i])) now[filled].mesh = -1;
+    mc.used[i] = filled > 0;
   }
 };
 

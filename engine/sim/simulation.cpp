@@ -94,6 +94,9 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
     }
   }
   boundary_loads_.assign(boundaries, BoundaryLoad{});
+  boundary_of_plane_.assign(state_.walls.size(), 0);
+  for (int k = 0; k < boundaries; ++k)
+    if (plane_index_[k] >= 0) boundary_of_plane_[plane_index_[k]] = k;
   skin_ = scene_.numerics.skin_fraction * mean_diameter(state_.particles.radius);
   kernel_ = select_kernel(scene_, boundaries > 0);
   move_walls(0, 0);
@@ -133,21 +136,14 @@ void Simulation::settle_walls(double t_new, double dt) {
     load.torque -= (point - centre).cross(force_on_particle);
     ++load.contacts;
   };
-  std::vector<int> boundary_of_plane(state_.walls.size());
-  for (std::size_t k = 0; k < plane_index_.size(); ++k)
-    if (plane_index_[k] >= 0) boundary_of_plane[plane_index_[k]] = static_cast<int>(k);
   if (!wc.row_start.empty())
     for (int i = 0; i < n; ++i)
       for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
-        if (wc.touching[e]) add(boundary_of_plane[wc.wall[e]], wc.force[e], wc.point[e]);
+        if (wc.touching[e]) add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e]);
   const MeshContacts& mc = state_.mesh_contacts;
-  if (!mc.slots.empty())
-    for (int i = 0; i < n; ++i)
-      for (int k = 0; k < MeshContacts::kSlots; ++k) {
-        const MeshSlot& slot = mc.slots[static_cast<std::size_t>(i) * MeshContacts::kSlots + k];
-        if (slot.mesh < 0) break;
-        add(state_.meshes[slot.mesh].boundary, slot.force, slot.point);
-      }
+  for (int i = 0; i < n && !mc.used.empty(); ++i)
+    for (int k = 0, used = mc.count(i); k < used; ++k)
+      add(state_.meshes[mc.slot(i, k).mesh].boundary, mc.slot(i, k).force, mc.slot(i, k).point);
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
     if (!drivers_[k].load_controlled()) continue;
     drivers_[k].end_step(t_new, dt, boundary_loads_[k].force);
@@ -316,10 +312,18 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
       for (int k = 0; k < kSlots; ++k)
         moved[static_cast<std::size_t>(i) * kSlots + k] = mc.slots[static_cast<std::size_t>(new_to_old[i]) * kSlots + k];
     mc.slots.swap(moved);
+    permute_array(mc.used, new_to_old);
   }
-  mc.slots.resize(static_cast<std::size_t>(n) * kSlots);
+  mc.used.resize(n, 0);
+  mc.slots.resize(static_cast<std::size_t>(n) * kSlots);  // new slots are empty (mesh = -1)
+  mc.constants.resize(n);
+  for (int i = 0; i < n; ++i) mc.constants[i] = wall_constants(p, i);
   const double r_max = n > 0 ? *std::max_element(p.radius.begin(), p.radius.end()) : 0.0;
-  for (MeshWall& mesh : state_.meshes) mesh.grid.build(mesh.vertices, mesh.triangles, 2 * r_max + skin_);
+  for (MeshWall& mesh : state_.meshes) {
+    if (!mesh.grid_stale) continue;
+    mesh.grid.build(mesh.vertices, mesh.triangles, 2 * r_max + skin_);
+    mesh.grid_stale = false;
+  }
   // Candidates per particle in fixed blocks (any thread count gives the same rows), then joined.
   constexpr int kBlock = 512;
   const int blocks = (n + kBlock - 1) / kBlock;
@@ -392,14 +396,12 @@ std::vector<int> Simulation::contact_counts() const {
   for (std::size_t i = 0; i + 1 < wc.row_start.size(); ++i)
     for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e) count[i] += wc.touching[e];
   const MeshContacts& mc = state_.mesh_contacts;
-  for (std::size_t i = 0; i < mc.slots.size(); ++i) count[i / MeshContacts::kSlots] += mc.slots[i].mesh >= 0;
+  for (std::size_t i = 0; i < p.size(); ++i) count[i] += mc.count(static_cast<int>(i));
   return count;
 }
 
 std::vector<WallContact> Simulation::wall_contacts() const {
-  std::vector<int> boundary_of_plane(state_.walls.size());
-  for (std::size_t k = 0; k < plane_index_.size(); ++k)
-    if (plane_index_[k] >= 0) boundary_of_plane[plane_index_[k]] = static_cast<int>(k);
+  const std::vector<int>& boundary_of_plane = boundary_of_plane_;
   std::vector<WallContact> out;
   const WallContacts& wc = state_.wall_contacts;
   const MeshContacts& mc = state_.mesh_contacts;
@@ -408,12 +410,8 @@ std::vector<WallContact> Simulation::wall_contacts() const {
     if (!wc.row_start.empty())
       for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
         if (wc.touching[e]) mine.push_back({i, boundary_of_plane[wc.wall[e]], wc.fn[e], wc.ft[e]});
-    if (!mc.slots.empty())
-      for (int k = 0; k < MeshContacts::kSlots; ++k) {
-        const MeshSlot& slot = mc.slots[static_cast<std::size_t>(i) * MeshContacts::kSlots + k];
-        if (slot.mesh < 0) break;
-        mine.push_back({i, state_.meshes[slot.mesh].boundary, slot.fn, slot.ft});
-      }
+    for (int k = 0, used = mc.count(i); k < used; ++k)
+      mine.push_back({i, state_.meshes[mc.slot(i, k).mesh].boundary, mc.slot(i, k).fn, mc.slot(i, k).ft});
     std::stable_sort(mine.begin(), mine.end(), [](const WallContact& a, const WallContact& b) { return a.wall < b.wall; });
     out.insert(out.end(), mine.begin(), mine.end());
   }

@@ -100,6 +100,7 @@ class Simulation {
   std::int64_t last_build_step_ = 0;
   std::vector<WallDriver> drivers_;         // per scene wall
   std::vector<int> plane_index_, mesh_index_;
+  std::vector<int> boundary_of_plane_;      // scene wall of each plane or plate
   std::vector<WallPose> pose_at_build_;     // per scene wall
   std::vector<double> wall_extent_;         // largest distance of a wall's points from its centre
   std::vector<BoundaryLoad> boundary_loads_;

@@ -45,7 +45,18 @@ struct MeshContacts {
   std::vector<int> row_start;  // size n + 1
   std::vector<int> mesh;       // per candidate
   std::vector<int> triangle;   // per candidate
-  std::vector<MeshSlot> slots; // n * kSlots
+  std::vector<MeshSlot> slots; // n * kSlots; in use first, then (if room) one with mesh = -1
+  std::vector<std::uint8_t> used;  // per particle: any slot in use (the slots are not read otherwise)
+  std::vector<PairConstants> constants;  // per particle, against any wall (computed at the build)
+
+  // The slots of particle i in use.
+  int count(int i) const {
+    if (used.empty() || !used[i]) return 0;
+    int k = 0;
+    while (k < kSlots && slots[static_cast<std::size_t>(i) * kSlots + k].mesh >= 0) ++k;
+    return k;
+  }
+  const MeshSlot& slot(int i, int k) const { return slots[static_cast<std::size_t>(i) * kSlots + k]; }
 };
 
 // Results of the last force evaluation per listed pair, for observers (force chains, contact counts).
