@@ -68,7 +68,18 @@ MeshWall MeshWall::from(const WallInit& init, int boundary) {
   m.triangles = shape.triangles;
   m.topology = MeshTopology(TriangleMesh{shape.vertices, shape.triangles});
   m.vertices = shape.vertices;
+  m.update_planes();
   return m;
+}
+
+void MeshWall::update_planes() {
+  normals.resize(triangles.size());
+  offsets.resize(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& tri = triangles[t];
+    normals[t] = (vertices[tri[1]] - vertices[tri[0]]).cross(vertices[tri[2]] - vertices[tri[0]]).normalized();
+    offsets[t] = normals[t].dot(vertices[tri[0]]);
+  }
 }
 
 Vec3 MeshWall::centroid() const {
@@ -81,6 +92,7 @@ void MeshWall::move_to(const WallPose& next) {
   pose = next;
   grid_stale = true;
   for (std::size_t v = 0; v < vertices.size(); ++v) vertices[v] = next.place(vertices0[v]);
+  update_planes();
 }
 
 namespace {
@@ -142,12 +154,28 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
     double d2;
   } near[kNear];
   int near_count = 0;
+  // Planes of the touched faces found so far: a triangle in one of them cannot add a contact (an
+  // edge or vertex point there is dominated or outside its region), so it is not tested at all.
+  // This is what keeps a terrain cheap: most candidates are coplanar neighbours of the face below.
+  // Candidates come nearest first (ordered at the list build), so the face is usually found first.
+  constexpr int kPlanes = 4;
+  int face_tri[kPlanes];
+  int planes = 0;
   for (int c = 0; c < candidate_count && near_count < kNear; ++c) {
     const int t = candidates[c];
+    bool in_touched_plane = false;
+    for (int k = 0; k < planes && !in_touched_plane; ++k) {
+      const int f = face_tri[k];
+      in_touched_plane = mesh.normals[t].dot(mesh.normals[f]) > 1 - 1e-12 &&
+                         std::abs(mesh.offsets[t] - mesh.offsets[f]) <= kSlack * r;
+    }
+    if (in_touched_plane) continue;
     const auto& tri = mesh.triangles[t];
     const ClosestPoint cp = closest_on_triangle(x, mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]);
     const double d2 = (x - cp.point).squaredNorm();
-    if (d2 < r * r) near[near_count++] = {t, cp, d2};
+    if (d2 >= r * r) continue;
+    near[near_count++] = {t, cp, d2};
+    if (cp.feature == Feature::Face && planes < kPlanes) face_tri[planes++] = t;
   }
   int written = 0;
   auto accept = [&](const Near& n, int key) {

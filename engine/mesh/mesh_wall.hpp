@@ -55,6 +55,8 @@ struct MeshWall {
   std::vector<std::array<int, 3>> triangles;
   MeshTopology topology;
   std::vector<Vec3> vertices;   // now
+  std::vector<Vec3> normals;    // unit normal of each triangle now (v1 - v0) x (v2 - v0)
+  std::vector<double> offsets;  // normal . v0
   WallPose pose;
   TriangleGrid grid;            // of `vertices` when it was built
   bool grid_stale = true;       // the mesh moved since (a fixed mesh is binned once)
@@ -62,6 +64,7 @@ struct MeshWall {
   static MeshWall from(const WallInit& init, int boundary);
   Vec3 centroid() const;
   void move_to(const WallPose& next);  // rigid motion from vertices0
+  void update_planes();
 };
 
 // One contact of a sphere with a mesh: a face, edge or vertex that is a local minimum of the

@@ -331,6 +331,7 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
 #pragma omp parallel for schedule(dynamic) if (n >= kParallelMinParticles)
   for (int b = 0; b < blocks; ++b) {
     std::vector<int> near;
+    std::vector<std::pair<double, int>> within;  // (squared distance, triangle): nearest first
     for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
       const double reach = p.radius[i] + skin_;
       const Vec3 lo = p.x[i] - Vec3::Constant(reach), hi = p.x[i] + Vec3::Constant(reach);
@@ -340,11 +341,20 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
         mesh.grid.for_each_in_box(lo, hi, [&](int t) { near.push_back(t); });
         std::sort(near.begin(), near.end());
         near.erase(std::unique(near.begin(), near.end()), near.end());
+        within.clear();
         for (int t : near) {
           const auto& tri = mesh.triangles[t];
-          const Vec3 q = closest_on_triangle(p.x[i], mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]).point;
-          if ((p.x[i] - q).squaredNorm() < reach * reach) found[b].push_back({i, m, t});
+          const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
+          // the cell held it, but its box may still miss the sphere's: cheaper than the closest point
+          if ((a.cwiseMin(b).cwiseMin(c).array() > hi.array()).any() ||
+              (a.cwiseMax(b).cwiseMax(c).array() < lo.array()).any())
+            continue;
+          const Vec3 q = closest_on_triangle(p.x[i], a, b, c).point;
+          const double d2 = (p.x[i] - q).squaredNorm();
+          if (d2 < reach * reach) within.emplace_back(d2, t);
         }
+        std::sort(within.begin(), within.end());
+        for (const auto& [d2, t] : within) found[b].push_back({i, m, t});
       }
     }
   }
