@@ -1,6 +1,7 @@
 // Determinism: the same spec gives bit-identical ANIMATION_3D.dat on 1 and 2 threads, run after run.
 // The scene is big enough for several particle blocks, neighbour rebuilds and spatial re-sorts, and
-// has walls, friction and rolling springs, so every parallel path is exercised.
+// has walls (a plate and a mesh floor), friction and rolling springs, so every parallel path is
+// exercised.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "output/legacy_output.hpp"
+#include "support/meshes.hpp"
 #include "support/scenes.hpp"
 
 namespace dem::test {
@@ -24,10 +26,11 @@ Scene falling_heap() {
     for (int j = 0; j < 20; ++j)
       for (int i = 0; i < 25; ++i) {
         const double r = (i + j + k) % 3 == 0 ? 0.004 : 0.0025;  // two sizes: two grid levels
-        s.particles.push_back(sphere({0.01 * i + jitter(rng), 0.01 * j + jitter(rng), 0.01 * k + 0.01}, r,
+        s.particles.push_back(sphere({0.01 * i + jitter(rng), 0.01 * j + jitter(rng), 0.01 * k + 0.005}, r,
                                      {-0.5 + 0.2 * jitter(rng) * 1000, 0, 0}));
       }
-  s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+  // the floor as a triangle mesh (mesh contacts are summed per particle, walls' totals serially)
+  s.walls.push_back(mesh_wall(grid_rectangle({-0.05, -0.05, 0}, {0.4, 0, 0}, {0, 0.3, 0}, 16, 12), "floor"));
   // a side plate the heap drifts towards (x = -0.01, facing +x)
   s.walls.push_back(WallInit{"plate", 1, PlateShape{{Vec3(-0.01, -0.1, 0), Vec3(-0.01, 0.3, 0), Vec3(-0.01, 0.3, 0.3),
                                                        Vec3(-0.01, -0.1, 0.3)}}, {}, {}});
@@ -48,6 +51,9 @@ std::string run_to_text(int threads) {
     const RunOutcome outcome = run(sim, {&writer});
     EXPECT_TRUE(outcome.ok) << outcome.error;
     EXPECT_GT(sim.neighbor_builds(), 2);
+    int on_floor = 0;
+    for (const WallContact& c : sim.wall_contacts()) on_floor += c.wall == 0;
+    EXPECT_GT(on_floor, 0);  // the heap has reached the mesh floor
   }
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
