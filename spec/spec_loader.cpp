@@ -456,6 +456,43 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     scene.walls.push_back(w);
   }
 
+  // bonds
+  if (spec.has_bonds()) {
+    const auto& in = spec.bonds();
+    BondSettings b;
+    b.parallel = in.model() == api::Bonds::PARALLEL;
+    b.radius_multiplier = in.radius_multiplier() == 0 ? 1.0 : in.radius_multiplier();
+    check.positive("bonds.radiusMultiplier", b.radius_multiplier);
+    check.positive("bonds.youngsModulus", in.youngs_modulus());
+    b.youngs_modulus = in.youngs_modulus();
+    b.shear_stiffness_ratio = in.shear_stiffness_ratio() == 0 ? 1.0 : in.shear_stiffness_ratio();
+    check.positive("bonds.shearStiffnessRatio", b.shear_stiffness_ratio);
+    check.non_negative("bonds.tensileStrength", in.tensile_strength());
+    check.non_negative("bonds.shearStrength", in.shear_strength());
+    check.non_negative("bonds.strengthSpread", in.strength_spread());
+    b.tensile_strength = in.tensile_strength();
+    b.shear_strength = in.shear_strength();
+    b.strength_spread = in.strength_spread();
+    b.seed = in.seed() == 0 ? 1u : in.seed();
+    b.gap_tolerance = in.gap_tolerance() == 0 ? 1e-3 : in.gap_tolerance();
+    check.positive("bonds.gapTolerance", b.gap_tolerance);
+    if (in.has_region()) {
+      check.finite("bonds.region.min", in.region().min());
+      check.finite("bonds.region.max", in.region().max());
+      b.region = Box{vec(in.region().min()), vec(in.region().max())};
+      if ((b.region->max.array() < b.region->min.array()).any()) check.fail("bonds.region", "max is below min");
+    }
+    for (int k = 0; k < in.zones_size(); ++k) {
+      const auto& z = in.zones(k);
+      const std::string path = at("bonds.zones", k);
+      check.finite(path + ".min", z.min());
+      check.finite(path + ".max", z.max());
+      check.non_negative(path + ".strengthRatio", z.strength_ratio());
+      b.zones.push_back({Box{vec(z.min()), vec(z.max())}, z.strength_ratio()});
+    }
+    scene.bonds = b;
+  }
+
   // every pair that can meet needs an interaction
   for (int a : particle_materials) {
     for (int b : particle_materials)

@@ -109,6 +109,28 @@ struct WallInit {
 struct Box {
   Vec3 min = Vec3::Zero();
   Vec3 max = Vec3::Zero();
+  bool contains(const Vec3& x) const { return (x.array() >= min.array()).all() && (x.array() <= max.array()).all(); }
+};
+
+// Bonds glued at the start between neighbours whose gap is at most gap_tolerance times the smaller
+// radius (both centres inside `region` when given): parallel bonds (Potyondy & Cundall 2004), or
+// contact bonds (forces only). The seeds' BOND_MODEL, RPBN/RPBS, BSTRENGTH and BRATIO.
+struct BondSettings {
+  bool parallel = true;              // false: contact bonds
+  double radius_multiplier = 1;      // lambda: Rb = lambda min(RA, RB)
+  double youngs_modulus = 0;         // Eb, Pa: normal stiffness per area Eb / (RA + RB)
+  double shear_stiffness_ratio = 1;  // ks / kn of the bond
+  double tensile_strength = 0;       // Pa
+  double shear_strength = 0;         // Pa
+  double strength_spread = 0;        // relative standard deviation of each bond's strengths
+  std::uint32_t seed = 1;
+  double gap_tolerance = 1e-3;
+  std::optional<Box> region;
+  struct Zone {
+    Box box;
+    double strength_ratio = 1;       // BRATIO: strengths of bonds with their centre here are scaled
+  };
+  std::vector<Zone> zones;
 };
 
 enum class FileNumberFormat { Scientific, LegacyFixed };
@@ -152,6 +174,7 @@ struct Scene {
   OutputSettings outputs;
   std::optional<Box> domain;
   NumericsSettings numerics;
+  std::optional<BondSettings> bonds;
 
   const Interaction& interaction(int a, int b) const {
     return interactions[static_cast<size_t>(a) * materials.size() + b];

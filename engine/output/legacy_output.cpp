@@ -72,6 +72,7 @@ legacy::AnimationFrame AnimationWriter::make_frame(const Simulation& sim, const 
   frame.plates = walls.plates;
   frame.triangles = walls.triangles;
   const std::vector<int> contacts = sim.contact_counts();
+  const std::vector<int> fragment = sim.fragments();
   frame.particles.resize(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
     legacy::AnimationParticle& out = frame.particles[p.id[i]];  // rows in scene order
@@ -81,7 +82,7 @@ legacy::AnimationFrame AnimationWriter::make_frame(const Simulation& sim, const 
     out.velocity = p.v[i] / unit;
     out.contacts = contacts[i];
     out.angular_velocity = p.w[i];
-    out.part = 0;  // no bonded fragments or clumps in this scene
+    out.part = fragment[i];  // bonded fragments (0 without bonds)
   }
   return frame;
 }

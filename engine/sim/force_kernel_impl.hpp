@@ -18,6 +18,7 @@ class ForceKernelImpl final : public ForceKernel {
   void compute_and_kick(SimState& s) override {
     if (s.record_contacts) evaluate_pairs<true>(s);
     else evaluate_pairs<false>(s);
+    if (!s.bonds.empty()) s.bonds.step(s.particles, s.dt, s.time, s.f_next, s.particles.t);
     gather_and_kick(s);
   }
 

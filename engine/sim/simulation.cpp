@@ -101,6 +101,7 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
   kernel_ = select_kernel(scene_, boundaries > 0);
   move_walls(0, 0);
   build_neighbors();
+  if (scene_.bonds) state_.bonds = BondSet(*scene_.bonds, state_.particles, state_.neighbors);
   // Forces at t = 0 for the first half kick: a zero step leaves history and velocities unchanged.
   state_.dt = 0;
   kernel_->compute_and_kick(state_);
@@ -170,6 +171,7 @@ double Simulation::wall_shift_since_build() const {
 void Simulation::step() {
   const double t_new = static_cast<double>(step_ + 1) * state_.dt;
   move_walls(t_new, state_.dt);
+  state_.time = t_new;
   const double moved2 = half_kick_and_drift();
   const double half_skin = 0.5 * skin_;
   const int interval = scene_.numerics.search_interval;
@@ -226,6 +228,7 @@ void Simulation::build_neighbors() {
     } else {
       p.permute(order);
       permute_array(state_.half_kick, order);  // this step's kick, already taken, feeds the prediction
+      state_.bonds.renumber(order);
     }
   }
   ++builds_;
@@ -408,6 +411,11 @@ std::vector<int> Simulation::contact_counts() const {
   const MeshContacts& mc = state_.mesh_contacts;
   for (std::size_t i = 0; i < p.size(); ++i) count[i] += mc.count(static_cast<int>(i));
   return count;
+}
+
+std::vector<int> Simulation::fragments() const {
+  if (state_.bonds.empty()) return std::vector<int>(state_.particles.size(), 0);
+  return state_.bonds.fragments(state_.particles.id);
 }
 
 std::vector<WallContact> Simulation::wall_contacts() const {

@@ -66,6 +66,10 @@ class Simulation {
   std::vector<int> contact_counts() const;  // per particle index: touching pairs and walls
   std::vector<PairContact> pair_contacts() const;
   std::vector<WallContact> wall_contacts() const;  // touching ones, by particle then wall
+  // Per particle index: its fragment (particles held together by intact bonds), numbered from 1
+  // by lowest id; all 0 in a scene without bonds.
+  std::vector<int> fragments() const;
+  const BondSet& bonds() const { return state_.bonds; }
 
   // Per wall of the scene, updated every step.
   const std::vector<BoundaryLoad>& boundary_loads() const { return boundary_loads_; }

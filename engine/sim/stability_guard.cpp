@@ -32,11 +32,11 @@ StabilityGuard::StabilityGuard(const Simulation& sim) {
     hi = hi.cwiseMax(p.x[i]);
   }
   const double height = p.size() > 0 ? (hi - lo).norm() + 2 * p.radius[0] : 0;
-  energy_scale_ = sim.kinetic_energy() + contacts.elastic_energy + mass * sim.state().gravity.norm() * height;
+  energy_scale_ = sim.kinetic_energy() + contacts.elastic_energy + sim.bonds().elastic_energy() + mass * sim.state().gravity.norm() * height;
 }
 
 double StabilityGuard::mechanical_energy(const Simulation& sim, const ContactSummary& contacts) const {
-  return sim.kinetic_energy() + sim.gravitational_energy() + contacts.elastic_energy;
+  return sim.kinetic_energy() + sim.gravitational_energy() + contacts.elastic_energy + sim.bonds().elastic_energy();
 }
 
 void StabilityGuard::check(const Simulation& sim) const {

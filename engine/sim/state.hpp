@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "bonds/bond_set.hpp"
 #include "contact/pair_params.hpp"
 #include "core/particles.hpp"
 #include "neighbor/neighbor_list.hpp"
@@ -89,6 +90,8 @@ struct SimState {
   WallContacts wall_contacts;
   std::vector<MeshWall> meshes;
   MeshContacts mesh_contacts;
+  BondSet bonds;
+  double time = 0;  // of the forces being computed
   PairTable table;
   Vec3 gravity = Vec3::Zero();
   double dt = 0;

@@ -80,6 +80,10 @@ std::string TimeStepReport::describe() const {
     std::snprintf(buf, sizeof buf, " at %.3g m/s; Rayleigh time %.6e s", reference_speed, rayleigh_time);
     s += buf;
   }
+  if (bond_time > 0) {
+    std::snprintf(buf, sizeof buf, "; shortest bond time %.6e s", bond_time);
+    s += buf;
+  }
   std::snprintf(buf, sizeof buf, "; stable limit %.6e s", stable_limit);
   return s + buf;
 }
@@ -119,8 +123,25 @@ TimeStepReport choose_time_step(const Scene& scene, const PairTable& table) {
                                                 (0.1631 * m.poisson_ratio + 0.8766));
     }
   }
+  if (scene.bonds) {
+    // A bond between two of the smallest spheres is the stiffest per unit mass: its four springs
+    // (axial kn A, shear ks A, bending kn I, twist ks J) each get a contact time pi sqrt(m*/k).
+    const BondSettings& b = *scene.bonds;
+    double t_bond = kInf;
+    for (int a = 0; a < materials; ++a) {
+      if (smallest[a].mass == kInf) continue;
+      const double r = smallest[a].radius, m_eff = smallest[a].mass / 2, i_eff = 0.4 * smallest[a].mass * r * r / 2;
+      const double rb = b.radius_multiplier * r, kn = b.youngs_modulus / (2 * r), ks = b.shear_stiffness_ratio * kn;
+      const double area = std::numbers::pi * rb * rb, inertia = area * rb * rb / 4;
+      const double stiffest = std::max(kn, ks);
+      t_bond = std::min({t_bond, std::numbers::pi * std::sqrt(m_eff / (stiffest * area)),
+                         std::numbers::pi * std::sqrt(i_eff / (stiffest * 2 * inertia))});
+    }
+    if (t_bond < kInf && b.youngs_modulus > 0) r.bond_time = t_bond;
+  }
   if (t_min == kInf) t_min = 1.0;  // nothing can touch: any step resolves the free flight
   r.contact_time = t_min;
+  if (r.bond_time > 0) t_min = std::min(t_min, r.bond_time);  // the step resolves bonds and contacts
   r.rayleigh_time = hertz ? rayleigh_min : 0;
   // Fewer than 10 steps per contact does not resolve it; past ~t_c/3 velocity Verlet is unstable.
   r.stable_limit = hertz ? std::min(t_min / 10, rayleigh_min) : t_min / 10;

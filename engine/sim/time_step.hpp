@@ -14,6 +14,7 @@ struct TimeStepReport {
   double contact_time = 0;   // shortest binary contact time (linear: seeds' eq. 7; Hertz: at v_ref)
   double rayleigh_time = 0;  // Hertz only: pi R sqrt(rho/G) / (0.1631 nu + 0.8766)
   double reference_speed = 0;  // Hertz only: impact speed the contact time is taken at
+  double bond_time = 0;      // bonded scenes: shortest half-period of a bond's springs (0 without bonds)
   double stable_limit = 0;   // largest dt accepted without allow_unstable_dt
   std::string describe() const;
 };

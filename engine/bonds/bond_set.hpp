@@ -1,0 +1,47 @@
+// The bonds of a scene: created once between touching neighbours, stepped with the particles,
+// broken for good; and the fragments they hold together.
+#pragma once
+
+#include <vector>
+
+#include "bonds/parallel_bond.hpp"
+#include "core/particles.hpp"
+#include "core/scene.hpp"
+#include "neighbor/neighbor_list.hpp"
+
+namespace dem {
+
+struct BondCounts {
+  int intact = 0, tension = 0, shear = 0;
+};
+
+class BondSet {
+ public:
+  BondSet() = default;
+  // Glues every listed pair whose gap is within the tolerance (settings.region, zones, spread).
+  BondSet(const BondSettings& settings, const Particles& p, const NeighborList& pairs);
+
+  bool empty() const { return bonds_.empty(); }
+  const std::vector<Bond>& bonds() const { return bonds_; }
+
+  // One step: adds each intact bond's force and moments to f and t (in bond order, serially: the
+  // same sums for any thread count). Breaks bonds past their strength.
+  void step(const Particles& p, double dt, double time, std::vector<Vec3>& f, std::vector<Vec3>& t);
+
+  // After particles are re-sorted (new index k was old index new_to_old[k]).
+  void renumber(const std::vector<int>& new_to_old);
+
+  BondCounts counts() const;
+  // Energy stored in the intact bonds' springs, J.
+  double elastic_energy() const;
+
+  // Fragment of each particle (by particle index): particles joined by intact bonds share one;
+  // fragments are numbered from 1 in the order of their lowest particle id (`id`).
+  std::vector<int> fragments(const std::vector<int>& id) const;
+
+ private:
+  std::vector<Bond> bonds_;
+  bool moments_ = true;
+};
+
+}  // namespace dem

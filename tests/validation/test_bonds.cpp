@@ -1,0 +1,173 @@
+// Parallel bonds, two-particle checks of validation.md section 5 (Potyondy & Cundall 2004): axial,
+// shear, bending and twist stiffness, and the four break loads, whichever particle is listed first;
+// then a bonded pair in a simulation, which must oscillate at the bond's frequency.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "bonds/parallel_bond.hpp"
+#include "support/report.hpp"
+#include "support/scenes.hpp"
+
+namespace dem::test {
+namespace {
+
+constexpr double kRa = 0.01, kRb = 0.01, kEb = 1e8, kShearRatio = 0.4, kSigma = 2e6, kTau = 3e6;
+
+Bond make_bond() {
+  Bond b;
+  b.i = 0;
+  b.j = 1;
+  b.geometry = BondGeometry::of(std::min(kRa, kRb));
+  b.kn = kEb / (kRa + kRb);
+  b.ks = kShearRatio * b.kn;
+  b.tensile_strength = kSigma;
+  b.shear_strength = kTau;
+  return b;
+}
+
+// The motion of the two checks: body i moves (velocity u) and turns (spin w) relative to j, whose
+// direction from j is `axis`. `flip`: the same physical motion with the roles of i and j swapped.
+struct Drive {
+  Vec3 axis;
+  Vec3 velocity;
+  Vec3 spin;
+};
+
+// Steps the bond under a constant relative motion for `steps` steps of dt (or until it breaks);
+// returns the last load carried.
+BondLoad drive(Bond& b, const Drive& d, bool flip, int steps, double dt) {
+  BondLoad last{};
+  for (int k = 0; k < steps; ++k) {
+    BondMotion m;
+    m.normal = flip ? Vec3(-d.axis) : d.axis;
+    m.velocity = flip ? Vec3(-d.velocity) : d.velocity;
+    m.spin = flip ? Vec3(-d.spin) : d.spin;
+    const Vec3 lever_i = -kRa * m.normal, lever_j = kRb * m.normal;
+    const BondLoad load = bond_step(b, m, lever_i, lever_j, dt, k * dt);
+    if (b.state != BondBreak::Intact) break;
+    last = load;
+  }
+  return last;
+}
+
+const double kL = kRa + kRb;
+const BondGeometry kG = BondGeometry::of(0.01);
+
+class TwoParticleBond : public ::testing::TestWithParam<bool> {};
+
+TEST_P(TwoParticleBond, StiffnessesMatchTheBeamFormulas) {
+  const bool flip = GetParam();
+  const Vec3 n(0, 0, 1);
+  const double dt = 1e-6, du = 1e-7, dth = 1e-5;
+  const int steps = 100;
+  {  // axial: pulling i away by du: tension F = Eb A du / L
+    Bond b = make_bond();
+    drive(b, {n, (du / (steps * dt)) * n, Vec3::Zero()}, flip, steps, dt);
+    report("bond axial force", -b.normal_force, kEb * kG.area * du / kL);
+    EXPECT_NEAR(-b.normal_force, kEb * kG.area * du / kL, 5e-3 * kEb * kG.area * du / kL);
+  }
+  {  // shear: F = ks A du
+    Bond b = make_bond();
+    drive(b, {n, (du / (steps * dt)) * Vec3::UnitX(), Vec3::Zero()}, flip, steps, dt);
+    const double want = kShearRatio * kEb / kL * kG.area * du;
+    report("bond shear force", b.shear_force.norm(), want);
+    EXPECT_NEAR(b.shear_force.norm(), want, 5e-3 * want);
+  }
+  {  // bending: M = Eb I dth / L
+    Bond b = make_bond();
+    drive(b, {n, Vec3::Zero(), (dth / (steps * dt)) * Vec3::UnitY()}, flip, steps, dt);
+    const double want = kEb * kG.inertia * dth / kL;
+    report("bond bending moment", b.bending.norm(), want);
+    EXPECT_NEAR(b.bending.norm(), want, 5e-3 * want);
+  }
+  {  // twist: M = ks J dth
+    Bond b = make_bond();
+    drive(b, {n, Vec3::Zero(), (dth / (steps * dt)) * n}, flip, steps, dt);
+    const double want = kShearRatio * kEb / kL * kG.polar * dth;
+    report("bond twisting moment", b.twist.norm(), want);
+    EXPECT_NEAR(b.twist.norm(), want, 5e-3 * want);
+  }
+}
+
+TEST_P(TwoParticleBond, BreaksAtTheFourStrengthLoads) {
+  const bool flip = GetParam();
+  const Vec3 n(0, 0, 1);
+  const double dt = 1e-6;
+  const int steps = 200000;  // slow loading: the load at the break is resolved to ~1e-4
+  const double rb = kG.radius;
+  {
+    Bond b = make_bond();
+    const double u_break = kSigma * kL / kEb;
+    const BondLoad last = drive(b, {n, (2 * u_break / (steps * dt)) * n, Vec3::Zero()}, flip, steps, dt);
+    EXPECT_EQ(b.state, BondBreak::Tension);
+    report("bond break: tension force", last.force.norm(), kSigma * kG.area);
+    EXPECT_NEAR(last.force.norm(), kSigma * kG.area, 5e-3 * kSigma * kG.area);
+  }
+  {
+    Bond b = make_bond();
+    const double th_break = kSigma * kL / (kEb * rb);
+    drive(b, {n, Vec3::Zero(), (2 * th_break / (steps * dt)) * Vec3::UnitX()}, flip, steps, dt);
+    EXPECT_EQ(b.state, BondBreak::Tension);
+    // the moment carried at the break: the last intact step's, one increment below
+    const double want = kSigma * kG.inertia / rb;
+    report("bond break: bending moment", b.bending.norm(), want);
+    EXPECT_NEAR(b.bending.norm(), want, 5e-3 * want);
+  }
+  {
+    Bond b = make_bond();
+    const double th_break = kTau * kL / (kShearRatio * kEb * rb);
+    drive(b, {n, Vec3::Zero(), (2 * th_break / (steps * dt)) * n}, flip, steps, dt);
+    EXPECT_EQ(b.state, BondBreak::Shear);
+    const double want = kTau * kG.polar / rb;
+    report("bond break: twisting moment", b.twist.norm(), want);
+    EXPECT_NEAR(b.twist.norm(), want, 5e-3 * want);
+  }
+  {
+    Bond b = make_bond();
+    const double u_break = kTau * kL / (kShearRatio * kEb);
+    drive(b, {n, (2 * u_break / (steps * dt)) * Vec3::UnitY(), Vec3::Zero()}, flip, steps, dt);
+    EXPECT_EQ(b.state, BondBreak::Shear);
+    const double want = kTau * kG.area;
+    report("bond break: shear force", b.shear_force.norm(), want);
+    EXPECT_NEAR(b.shear_force.norm(), want, 5e-3 * want);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EitherParticleFirst, TwoParticleBond, ::testing::Values(false, true),
+                         [](const auto& info) { return std::string(info.param ? "j_first" : "i_first"); });
+
+// Two bonded spheres in a simulation, one held: the free one oscillates along the bond at
+// omega = sqrt(kn A / m) (the contact spring adds nothing at zero overlap and in tension).
+TEST(BondedPair, OscillatesAtTheBondFrequency) {
+  Scene s = base_scene(NormalModel::Linear, 2500, 1e8, 0.25, 0.5, 0.0, 1e4);
+  s.particles.push_back(sphere({0, 0, 0}, kRa));
+  s.particles.back().fixed = true;
+  s.particles.push_back(sphere({kRa + kRb, 0, 0}, kRb, {0.001, 0, 0}));
+  BondSettings bonds;
+  bonds.youngs_modulus = kEb;
+  bonds.tensile_strength = 1e12;
+  bonds.shear_strength = 1e12;
+  s.bonds = bonds;
+  Simulation sim(s);
+  ASSERT_EQ(sim.bonds().bonds().size(), 1u);
+  EXPECT_GT(sim.time_step().bond_time, 0);
+  const double m = sphere_mass(2500, kRb);
+  const double omega = std::sqrt(kEb / kL * kG.area / m);
+  // the first time the free sphere comes back through its start moving outwards: one period
+  double previous = 0, period = 0;
+  for (int k = 0; k < 1000000 && period == 0; ++k) {
+    sim.step();
+    const double x = sim.particles().x[1].x() - (kRa + kRb);
+    if (k > 10 && previous < 0 && x >= 0) period = sim.time() - sim.dt() * x / (x - previous);
+    previous = x;
+  }
+  const double want = 2 * std::numbers::pi / omega;
+  report("bonded pair: period of the axial oscillation", period, want);
+  EXPECT_NEAR(period, want, 5e-3 * want);
+  EXPECT_EQ(sim.bonds().counts().intact, 1);
+}
+
+}  // namespace
+}  // namespace dem::test
