@@ -27,8 +27,9 @@ BondSet::BondSet(const BondSettings& settings, const Particles& p, const Neighbo
       const Vec3 centre = 0.5 * (p.x[i] + p.x[j]);
       for (const BondSettings::Zone& zone : settings.zones)
         if (zone.box.contains(centre)) ratio = zone.strength_ratio;
-      // a spread strength is drawn once per bond, from the seed: the same bonds whatever the threads
-      const double draw = settings.strength_spread > 0 ? std::max(0.0, spread(rng)) : 1.0;
+      // a spread strength is drawn once per bond, from the seed: the same bonds whatever the threads;
+      // the normal distribution is cut at 5% of the mean (no bond is born broken)
+      const double draw = settings.strength_spread > 0 ? std::max(0.05, spread(rng)) : 1.0;
       b.tensile_strength = settings.tensile_strength * ratio * draw;
       b.shear_strength = settings.shear_strength * ratio * draw;
       b.moments = settings.parallel;
