@@ -15,6 +15,7 @@
 
 #include "mesh/mesh_io.hpp"
 #include "spec/lattice.hpp"
+#include "spec/packing.hpp"
 
 namespace dem::spec {
 namespace {
@@ -165,6 +166,64 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
     check.fail(path, "needs a control: cyclic or servo");
   }
   return l;
+}
+
+void add_packing(const api::Packing& in, const std::string& path, Checker& check, Scene& scene, int material) {
+  const std::size_t before = check.problems.size();
+  check.finite(path + ".min", in.min());
+  check.finite(path + ".max", in.max());
+  check.finite(path + ".velocity", in.velocity());
+  const Vec3 lo = vec(in.min()), hi = vec(in.max());
+  if (!(lo.array() < hi.array()).all()) check.fail(path + ".max", "must be above min in x, y and z");
+  const auto& sz = in.sizes();
+  SizeDistribution d;
+  d.kind = static_cast<SizeKind>(sz.kind());
+  d.mean = sz.mean();
+  d.spread = sz.spread();
+  d.d_min = sz.d_min();
+  d.d_max = sz.d_max();
+  d.small_fraction = sz.small_fraction() == 0 ? 0.5 : sz.small_fraction();
+  const std::string sp = path + ".sizes";
+  if (d.kind == SizeKind::One || d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) check.positive(sp + ".mean", d.mean);
+  if (d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) check.positive(sp + ".spread", d.spread);
+  if (d.kind != SizeKind::One) {
+    check.positive(sp + ".dMin", d.d_min);
+    if (!(d.d_max >= d.d_min)) check.fail(sp + ".dMax", "must be >= dMin (got " + num(d.d_max) + ")");
+  }
+  if ((d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) && !(d.mean >= d.d_min && d.mean <= d.d_max))
+    check.fail(sp + ".mean", "must lie in [dMin, dMax] (got " + num(d.mean) + ")");
+  check.in_range(sp + ".smallFraction", d.small_fraction, 0, 1, false, false);
+  if ((in.count() > 0) == (in.solid_fraction() > 0))
+    check.fail(path, "give count or solidFraction (one of them)");
+  check.in_range(path + ".solidFraction", in.solid_fraction(), 0, 0.74, false, false);
+  if (in.count() < 0 || in.count() > 10000000) check.fail(path + ".count", "must be in [1, 10000000] (got " + std::to_string(in.count()) + ")");
+  if (check.problems.size() != before) return;
+  std::mt19937_64 rng(in.seed() == 0 ? 1u : in.seed());
+  std::vector<double> diameters;
+  if (in.count() > 0) {
+    diameters = sample_diameters(d, in.count(), rng);
+  } else {  // draw until the spheres' volume makes the solid fraction
+    const double target = in.solid_fraction() * (hi - lo).prod();
+    double volume = 0;
+    while (volume < target && diameters.size() < 10000000) {
+      const double dia = sample_diameters(d, 1, rng)[0];
+      diameters.push_back(dia);
+      volume += std::numbers::pi / 6 * dia * dia * dia;
+    }
+  }
+  try {
+    const std::vector<Vec3> sites = random_packing(lo, hi, diameters, rng);
+    for (std::size_t k = 0; k < sites.size(); ++k) {
+      ParticleInit p;
+      p.position = sites[k];
+      p.radius = diameters[k] / 2;
+      p.velocity = vec(in.velocity());
+      p.material = material;
+      scene.particles.push_back(p);
+    }
+  } catch (const std::runtime_error& e) {
+    check.fail(path, e.what());
+  }
 }
 
 double length_unit(const std::string& name, Checker& check) {
@@ -417,7 +476,10 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
       scene.particles.push_back(p);
     }
   }
-  if (spec.particles().empty() && spec.lattices().empty()) check.fail("particles", "the scene has no particles");
+  for (int k = 0; k < spec.packings_size(); ++k) add_packing(spec.packings(k), at("packings", k), check, scene,
+                                                            particle_material(spec.packings(k).material(), at("packings", k) + ".material"));
+  if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty())
+    check.fail("particles", "the scene has no particles");
 
   // walls
   std::set<int> wall_materials;

@@ -596,5 +596,32 @@ TEST(SpecLoader, BadLoadsAreNamed) {
   EXPECT_TRUE(has_problem(p, "walls[0].motion.frequency:", "must be > 0 when an amplitude is given"));
 }
 
+
+TEST(SpecLoader, BondsAreRead) {
+  const std::string json = replaced(kGoodSpec, R"("gravity": {"z": -9.81},)", R"("gravity": {"z": -9.81},
+  "bonds": {"model": "CONTACT", "youngsModulus": 1e9, "tensileStrength": 16e6, "shearStrength": 20e6,
+            "zones": [{"min": {"x": -1, "y": -1, "z": -1}, "max": {"x": 1, "y": 1, "z": 0}, "strengthRatio": 0.2}]},)");
+  const Scene s = to_scene(parse_json(json));
+  ASSERT_TRUE(s.bonds.has_value());
+  EXPECT_FALSE(s.bonds->parallel);
+  EXPECT_EQ(s.bonds->radius_multiplier, 1.0);
+  EXPECT_EQ(s.bonds->shear_stiffness_ratio, 1.0);
+  EXPECT_EQ(s.bonds->gap_tolerance, 1e-3);
+  EXPECT_EQ(s.bonds->tensile_strength, 16e6);
+  ASSERT_EQ(s.bonds->zones.size(), 1u);
+  EXPECT_EQ(s.bonds->zones[0].strength_ratio, 0.2);
+}
+
+TEST(SpecLoader, BadBondsAreNamed) {
+  const std::string json = replaced(kGoodSpec, R"("gravity": {"z": -9.81},)", R"("gravity": {"z": -9.81},
+  "bonds": {"youngsModulus": -1, "tensileStrength": -5, "radiusMultiplier": -0.5,
+            "region": {"min": {"x": 1}, "max": {"x": 0}}},)");
+  const auto p = problems_of(json);
+  EXPECT_TRUE(has_problem(p, "bonds.youngsModulus:", "must be a positive number"));
+  EXPECT_TRUE(has_problem(p, "bonds.tensileStrength:", "must be >= 0"));
+  EXPECT_TRUE(has_problem(p, "bonds.radiusMultiplier:", "must be a positive number"));
+  EXPECT_TRUE(has_problem(p, "bonds.region:", "max is below min"));
+}
+
 }  // namespace
 }  // namespace dem::spec

@@ -1,0 +1,93 @@
+#include "spec/packing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <unordered_map>
+
+namespace dem::spec {
+
+std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::mt19937_64& rng) {
+  std::vector<double> out;
+  out.reserve(count);
+  std::function<double()> draw;
+  std::uniform_real_distribution<double> unit(0, 1);
+  switch (d.kind) {
+    case SizeKind::One:
+      draw = [&] { return d.mean; };
+      break;
+    case SizeKind::Two:
+      draw = [&] { return unit(rng) < d.small_fraction ? d.d_min : d.d_max; };
+      break;
+    case SizeKind::Uniform:
+      draw = [&] { return d.d_min + (d.d_max - d.d_min) * unit(rng); };
+      break;
+    case SizeKind::Normal: {
+      auto normal = std::make_shared<std::normal_distribution<double>>(d.mean, d.spread);
+      draw = [&, normal] { return (*normal)(rng); };
+      break;
+    }
+    case SizeKind::Lognormal: {
+      // mean m and standard deviation s of D: sigma^2 = ln(1 + s^2/m^2), mu = ln m - sigma^2 / 2
+      const double s2 = std::log(1 + d.spread * d.spread / (d.mean * d.mean));
+      auto lognormal = std::make_shared<std::lognormal_distribution<double>>(std::log(d.mean) - s2 / 2, std::sqrt(s2));
+      draw = [&, lognormal] { return (*lognormal)(rng); };
+      break;
+    }
+  }
+  const bool bounded = d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal;
+  while (static_cast<int>(out.size()) < count) {
+    const double x = draw();
+    if (bounded && (x < d.d_min || x > d.d_max)) continue;  // truncated: drawn again
+    out.push_back(x);
+  }
+  return out;
+}
+
+std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<double>& diameters, std::mt19937_64& rng) {
+  std::sort(diameters.begin(), diameters.end(), std::greater<>());
+  const int n = static_cast<int>(diameters.size());
+  std::vector<Vec3> placed;
+  placed.reserve(n);
+  if (n == 0) return placed;
+  // a hash grid of cell = largest diameter: a new sphere checks the 27 cells around it
+  const double cell = diameters[0];
+  auto key = [&](const Vec3& x) {
+    const auto c = ((x - lo) / cell).array().floor().cast<long long>();
+    return (c[0] * 73856093LL) ^ (c[1] * 19349663LL) ^ (c[2] * 83492791LL);
+  };
+  std::unordered_multimap<long long, int> grid;
+  constexpr int kAttempts = 2000;
+  for (int k = 0; k < n; ++k) {
+    const double r = diameters[k] / 2;
+    const Vec3 a = lo + Vec3::Constant(r), b = hi - Vec3::Constant(r);
+    if ((b.array() < a.array()).any()) throw std::runtime_error("a sphere of diameter " + std::to_string(diameters[k]) + " does not fit in the box");
+    bool ok = false;
+    for (int attempt = 0; attempt < kAttempts && !ok; ++attempt) {
+      Vec3 x;
+      for (int d = 0; d < 3; ++d) x[d] = std::uniform_real_distribution<double>(a[d], b[d])(rng);
+      ok = true;
+      for (int dz = -1; dz <= 1 && ok; ++dz)
+        for (int dy = -1; dy <= 1 && ok; ++dy)
+          for (int dx = -1; dx <= 1 && ok; ++dx) {
+            const auto range = grid.equal_range(key(x + cell * Vec3(dx, dy, dz)));
+            for (auto it = range.first; it != range.second && ok; ++it) {
+              const int o = it->second;
+              const double reach = r + diameters[o] / 2;
+              ok = (placed[o] - x).squaredNorm() >= reach * reach;
+            }
+          }
+      if (ok) {
+        grid.emplace(key(x), k);
+        placed.push_back(x);
+      }
+    }
+    if (!ok)
+      throw std::runtime_error("placed only " + std::to_string(k) + " of " + std::to_string(n) +
+                               " spheres: the box is too full for random placement (it stalls near a solid fraction of 0.35)");
+  }
+  return placed;
+}
+
+}  // namespace dem::spec

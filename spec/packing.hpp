@@ -1,0 +1,36 @@
+// Random loose packings (the seeds' pattern LOS) and particle size distributions (the seeds'
+// IPATTERN: one size, two sizes, uniform, normal, lognormal), reproducible from a seed.
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/vec.hpp"
+
+namespace dem::spec {
+
+enum class SizeKind { One, Two, Uniform, Normal, Lognormal };
+
+// Diameters: `mean` and `spread` (standard deviation) are those of the diameter itself, for every
+// kind (the lognormal's log-space parameters are derived from them); samples outside
+// [d_min, d_max] are drawn again. Two sizes: d_min and d_max, a `small_fraction` of them d_min.
+struct SizeDistribution {
+  SizeKind kind = SizeKind::One;
+  double mean = 0;
+  double spread = 0;
+  double d_min = 0;
+  double d_max = 0;
+  double small_fraction = 0.5;
+};
+
+std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::mt19937_64& rng);
+
+// Places spheres of the given diameters at random in the box [lo, hi] without overlap, largest
+// first (random sequential addition), each wholly inside. Throws std::runtime_error naming how many
+// could be placed when the box is too full (random addition stalls near a solid fraction of ~0.35).
+std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<double>& diameters, std::mt19937_64& rng);
+
+}  // namespace dem::spec

@@ -1,0 +1,135 @@
+// Size distributions and random loose packings: the samples have the requested mean and spread,
+// the spheres do not overlap and stay in their box, and a seed gives the same packing again.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "spec/packing.hpp"
+#include "spec/spec_loader.hpp"
+
+namespace dem::spec {
+namespace {
+
+struct Moments {
+  double mean = 0, spread = 0;
+};
+
+Moments moments(const std::vector<double>& x) {
+  Moments m;
+  m.mean = std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(x.size());
+  for (double v : x) m.spread += (v - m.mean) * (v - m.mean);
+  m.spread = std::sqrt(m.spread / static_cast<double>(x.size() - 1));
+  return m;
+}
+
+class Distribution : public ::testing::TestWithParam<SizeKind> {};
+
+// 10,000 diameters of mean 10 mm and spread 3 mm (bounds far out: 1 mm and 50 mm)
+TEST_P(Distribution, SampleHasTheRequestedMeanAndSpread) {
+  SizeDistribution d;
+  d.kind = GetParam();
+  d.mean = 0.010;
+  d.spread = 0.003;
+  d.d_min = 0.001;
+  d.d_max = 0.050;
+  std::mt19937_64 rng(42);
+  const std::vector<double> x = sample_diameters(d, 10000, rng);
+  const Moments m = moments(x);
+  EXPECT_NEAR(m.mean, d.mean, 0.02 * d.mean);
+  EXPECT_NEAR(m.spread, d.spread, 0.02 * d.spread);
+  for (double v : x) {
+    ASSERT_GE(v, d.d_min);
+    ASSERT_LE(v, d.d_max);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(NormalAndLognormal, Distribution, ::testing::Values(SizeKind::Normal, SizeKind::Lognormal),
+                         [](const auto& info) { return std::string(info.param == SizeKind::Normal ? "normal" : "lognormal"); });
+
+TEST(SizeSamples, TruncationDrawsAgainInsideTheBounds) {
+  SizeDistribution d{SizeKind::Normal, 0.010, 0.005, 0.008, 0.012, 0.5};
+  std::mt19937_64 rng(1);
+  for (double v : sample_diameters(d, 5000, rng)) {
+    ASSERT_GE(v, 0.008);
+    ASSERT_LE(v, 0.012);
+  }
+}
+
+TEST(SizeSamples, TwoSizesKeepTheirShares) {
+  SizeDistribution d{SizeKind::Two, 0, 0, 0.005, 0.02, 0.8};
+  std::mt19937_64 rng(3);
+  const std::vector<double> x = sample_diameters(d, 10000, rng);
+  const auto small = std::count(x.begin(), x.end(), 0.005);
+  EXPECT_NEAR(static_cast<double>(small) / 10000, 0.8, 0.015);
+  EXPECT_EQ(small + std::count(x.begin(), x.end(), 0.02), 10000);
+}
+
+TEST(RandomPacking, SpheresAreInsideAndApart) {
+  SizeDistribution d{SizeKind::Uniform, 0, 0, 0.004, 0.012, 0.5};
+  std::mt19937_64 rng(9);
+  std::vector<double> dia = sample_diameters(d, 2000, rng);
+  const Vec3 lo(0, 0, 0), hi(0.2, 0.2, 0.2);
+  const std::vector<Vec3> x = random_packing(lo, hi, dia, rng);
+  ASSERT_EQ(x.size(), 2000u);
+  for (std::size_t a = 0; a < x.size(); ++a) {
+    const double r = dia[a] / 2;
+    ASSERT_TRUE(((x[a].array() - r) >= lo.array()).all() && ((x[a].array() + r) <= hi.array()).all()) << a;
+    for (std::size_t b = a + 1; b < x.size(); ++b) ASSERT_GE((x[a] - x[b]).norm(), r + dia[b] / 2) << a << " " << b;
+  }
+}
+
+TEST(RandomPacking, TooFullABoxIsAnError) {
+  std::vector<double> dia(1000, 0.01);
+  std::mt19937_64 rng(1);
+  // 1000 spheres of 1 cm in a 6 cm cube: a solid fraction of 2.4
+  EXPECT_THROW(random_packing(Vec3::Zero(), Vec3::Constant(0.06), dia, rng), std::runtime_error);
+}
+
+const char* kPackingSpec = R"({
+  "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}],
+  "packings": [{"min": {}, "max": {"x": 0.1, "y": 0.1, "z": 0.1}, "material": "rock", "seed": SEED,
+                "solidFraction": 0.2, "sizes": {"kind": "LOGNORMAL", "mean": 0.01, "spread": 0.002, "dMin": 0.005, "dMax": 0.02}}],
+  "time": {"steps": 1}
+})";
+
+std::string with_seed(int seed) {
+  std::string text = kPackingSpec;
+  return text.replace(text.find("SEED"), 4, std::to_string(seed));
+}
+
+TEST(PackingSpec, ASeedGivesTheSamePackingAgain) {
+  const Scene a = to_scene(parse_json(with_seed(7))), b = to_scene(parse_json(with_seed(7))), c = to_scene(parse_json(with_seed(8)));
+  ASSERT_GT(a.particles.size(), 300u);
+  ASSERT_EQ(a.particles.size(), b.particles.size());
+  for (std::size_t k = 0; k < a.particles.size(); ++k) ASSERT_EQ(a.particles[k].position, b.particles[k].position);
+  EXPECT_NE(a.particles[0].position, c.particles[0].position);
+  double volume = 0;
+  for (const ParticleInit& p : a.particles) volume += 4.0 / 3.0 * M_PI * std::pow(p.radius, 3);
+  EXPECT_NEAR(volume / 1e-3, 0.2, 0.01);  // the requested solid fraction, to one sphere
+}
+
+TEST(PackingSpec, BadPackingsAreNamed) {
+  std::string text = with_seed(1);
+  text.replace(text.find("\"solidFraction\": 0.2"), 20, "\"solidFraction\": 0.6");
+  try {
+    to_scene(parse_json(text));
+    ADD_FAILURE() << "a solid fraction of 0.6 was placed at random";
+  } catch (const SpecError& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_EQ(e.problems()[0].rfind("packings[0]: placed only ", 0), 0u) << e.problems()[0];
+  }
+  text = with_seed(1);
+  text.replace(text.find("\"dMin\": 0.005"), 13, "\"dMin\": 0.015");
+  try {
+    to_scene(parse_json(text));
+    ADD_FAILURE() << "a mean below dMin was accepted";
+  } catch (const SpecError& e) {
+    EXPECT_NE(e.what(), std::string());
+    EXPECT_EQ(e.problems()[0], "packings[0].sizes.mean: must lie in [dMin, dMax] (got 0.01)");
+  }
+}
+
+}  // namespace
+}  // namespace dem::spec
