@@ -9,7 +9,10 @@ namespace {
 
 const char* kUsage =
     "usage:\n"
-    "  dem run SPEC.json --out DIR [--threads N] [--quiet]   run a job spec, writing the legacy files to DIR\n"
+    "  dem run SPEC.json --out DIR [--threads N] [--quiet] [--restart FILE]\n"
+    "                                   run a job spec, writing the legacy files and restart.dat to DIR;\n"
+    "                                   --restart FILE continues from a saved state (e.g. DIR/restart.dat),\n"
+    "                                   appending to DIR's files\n"
     "  dem validate SPEC.json                                 check a job spec and report every problem\n"
     "  dem help                                               this text\n";
 

@@ -9,6 +9,7 @@
 #include "cli/progress_bar.hpp"
 #include "core/errors.hpp"
 #include "output/legacy_output.hpp"
+#include "sim/state_io.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::cli {
@@ -19,6 +20,7 @@ struct RunArgs {
   std::string out;
   int threads = -1;
   bool quiet = false;
+  std::string restart;  // a saved state to continue from
 };
 
 // Returns false (after saying why) when the arguments are wrong.
@@ -48,6 +50,11 @@ bool parse_run_args(const std::vector<std::string>& args, RunArgs& out) {
         std::fprintf(stderr, "dem run: --threads must be a whole number >= 0 (got \"%s\")\n", v->c_str());
         return false;
       }
+    } else if (a == "--restart") {
+      const std::string* v = value("--restart");
+      if (v == nullptr) return false;
+      out.restart = *v;
+      ++k;
     } else if (a == "--quiet") {
       out.quiet = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -61,7 +68,7 @@ bool parse_run_args(const std::vector<std::string>& args, RunArgs& out) {
     }
   }
   if (out.spec.empty() || out.out.empty()) {
-    std::fprintf(stderr, "usage: dem run SPEC.json --out DIR [--threads N] [--quiet]\n");
+    std::fprintf(stderr, "usage: dem run SPEC.json --out DIR [--threads N] [--quiet] [--restart FILE]\n");
     return false;
   }
   return true;
@@ -101,6 +108,8 @@ int run_command(const std::vector<std::string>& args) {
     Scene scene = load(a.spec);
     if (a.threads >= 0) scene.numerics.threads = a.threads;
     Simulation sim(std::move(scene));
+    const bool append = !a.restart.empty();
+    if (append) StateIO::read_file(sim, a.restart);
     std::filesystem::create_directories(a.out);
     std::printf("%s: %zu particles, %zu walls, %lld steps; %s\n", a.spec.c_str(), sim.particles().size(),
                 sim.scene().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
@@ -109,14 +118,15 @@ int run_command(const std::vector<std::string>& args) {
     std::vector<std::unique_ptr<Observer>> writers;
     const std::filesystem::path dir(a.out);
     if (sim.scene().outputs.animation)
-      writers.push_back(std::make_unique<AnimationWriter>((dir / "ANIMATION_3D.dat").string(), sim));
+      writers.push_back(std::make_unique<AnimationWriter>((dir / "ANIMATION_3D.dat").string(), sim, append));
     if (sim.scene().outputs.force_chains)
-      writers.push_back(std::make_unique<ForceChainWriter>((dir / "ForceChain_3D.dat").string()));
-    if (WallWriter::wanted(sim)) writers.push_back(std::make_unique<WallWriter>(dir.string(), sim));
+      writers.push_back(std::make_unique<ForceChainWriter>((dir / "ForceChain_3D.dat").string(), append));
+    if (WallWriter::wanted(sim)) writers.push_back(std::make_unique<WallWriter>(dir.string(), sim, append));
     if (sim.scene().outputs.force_chains && !sim.scene().walls.empty())
-      writers.push_back(std::make_unique<WallForceChainWriter>((dir / "Wall_ForceChain_3D.dat").string()));
+      writers.push_back(std::make_unique<WallForceChainWriter>((dir / "Wall_ForceChain_3D.dat").string(), append));
     if (ForceDisplacementWriter::loading_wall(sim) >= 0)
-      writers.push_back(std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string()));
+      writers.push_back(std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string(), append));
+    writers.push_back(std::make_unique<StateWriter>((dir / "restart.dat").string()));
     std::vector<Observer*> observers;
     for (auto& w : writers) observers.push_back(w.get());
 

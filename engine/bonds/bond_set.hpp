@@ -22,6 +22,7 @@ class BondSet {
   BondSet(const BondSettings& settings, const Particles& p, const NeighborList& pairs);
 
   bool empty() const { return bonds_.empty(); }
+  void restore(std::vector<Bond> saved) { bonds_ = std::move(saved); }  // a saved state's bonds
   const std::vector<Bond>& bonds() const { return bonds_; }
 
   // One step: adds each intact bond's force and moments to f and t (in bond order, serially: the

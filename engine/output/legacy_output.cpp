@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "mesh/mesh_io.hpp"
+#include "sim/state_io.hpp"
 
 namespace dem {
 namespace {
@@ -17,13 +18,14 @@ legacy::NumberFormat file_format(const Simulation& sim) {
 
 }  // namespace
 
-FilePtr open_for_writing(const std::string& path) {
-  FilePtr f(std::fopen(path.c_str(), "wb"));
+FilePtr open_for_writing(const std::string& path, bool append) {
+  FilePtr f(std::fopen(path.c_str(), append ? "ab" : "wb"));
   if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
   return f;
 }
 
 std::array<double, 6> frame_domain(const Simulation& sim) {
+  // From the scene as given (the start), not the particles now: a continued run writes the same box.
   const double unit = sim.scene().outputs.length_unit;
   Vec3 lo, hi;
   if (sim.scene().domain) {
@@ -32,30 +34,27 @@ std::array<double, 6> frame_domain(const Simulation& sim) {
   } else {
     lo = Vec3::Constant(1e300);
     hi = -lo;
-    const Particles& p = sim.particles();
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      lo = lo.cwiseMin(p.x[i] - Vec3::Constant(p.radius[i]));
-      hi = hi.cwiseMax(p.x[i] + Vec3::Constant(p.radius[i]));
+    auto include = [&](const Vec3& x) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    };
+    for (const ParticleInit& p : sim.scene().particles) {
+      include(p.position - Vec3::Constant(p.radius));
+      include(p.position + Vec3::Constant(p.radius));
     }
-    for (const Wall& w : sim.state().walls) {
-      if (w.kind != Wall::Kind::Plate) continue;
-      for (const Vec3& c : w.corners) {
-        lo = lo.cwiseMin(c);
-        hi = hi.cwiseMax(c);
-      }
+    for (const WallInit& w : sim.scene().walls) {
+      if (const auto* plate = std::get_if<PlateShape>(&w.shape))
+        for (const Vec3& c : plate->corners) include(c);
+      if (const auto* mesh = std::get_if<MeshShape>(&w.shape))
+        for (const Vec3& v : mesh->vertices) include(v);
     }
-    for (const MeshWall& m : sim.meshes())
-      for (const Vec3& v : m.vertices) {
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
-      }
     if (lo[0] > hi[0]) lo = hi = Vec3::Zero();
   }
   return {lo[0] / unit, hi[0] / unit, lo[1] / unit, hi[1] / unit, lo[2] / unit, hi[2] / unit};
 }
 
-AnimationWriter::AnimationWriter(const std::string& path, const Simulation& sim)
-    : file_(open_for_writing(path)), domain_(frame_domain(sim)) {}
+AnimationWriter::AnimationWriter(const std::string& path, const Simulation& sim, bool append)
+    : file_(open_for_writing(path, append)), domain_(frame_domain(sim)) {}
 
 legacy::AnimationFrame AnimationWriter::make_frame(const Simulation& sim, const std::array<double, 6>& domain) {
   const double unit = sim.scene().outputs.length_unit;
@@ -89,9 +88,9 @@ legacy::AnimationFrame AnimationWriter::make_frame(const Simulation& sim, const 
 
 bool WallWriter::wanted(const Simulation& sim) { return !sim.meshes().empty() || sim.has_moving_walls(); }
 
-WallWriter::WallWriter(const std::string& folder, const Simulation& sim) {
+WallWriter::WallWriter(const std::string& folder, const Simulation& sim, bool append) {
   const double unit = sim.scene().outputs.length_unit;
-  if (!sim.meshes().empty()) {
+  if (!sim.meshes().empty() && !append) {
     TriangleMesh all;
     for (const MeshWall& m : sim.meshes()) {
       const int base = static_cast<int>(all.vertices.size());
@@ -102,7 +101,7 @@ WallWriter::WallWriter(const std::string& folder, const Simulation& sim) {
     write_legacy_mesh(mesh_file.get(), all, unit);
     if (std::ferror(mesh_file.get())) throw std::runtime_error("cannot write " + folder + "/Wall.dat");
   }
-  if (sim.has_moving_walls()) animation_ = open_for_writing(folder + "/Wall_Animation_3D.dat");
+  if (sim.has_moving_walls()) animation_ = open_for_writing(folder + "/Wall_Animation_3D.dat", append);
 }
 
 // Every plate (numbered 1.. in scene order among plates), then the triangles of moving meshes
@@ -138,7 +137,7 @@ void WallWriter::frame(const Simulation& sim) {
   std::fflush(animation_.get());
 }
 
-WallForceChainWriter::WallForceChainWriter(const std::string& path) : file_(open_for_writing(path)) {}
+WallForceChainWriter::WallForceChainWriter(const std::string& path, bool append) : file_(open_for_writing(path, append)) {}
 
 legacy::WallForceChainFrame WallForceChainWriter::make_frame(const Simulation& sim) {
   const std::vector<int>& id = sim.particles().id;
@@ -156,7 +155,8 @@ void WallForceChainWriter::frame(const Simulation& sim) {
   std::fflush(file_.get());
 }
 
-ForceDisplacementWriter::ForceDisplacementWriter(const std::string& path) : file_(open_for_writing(path)) {}
+ForceDisplacementWriter::ForceDisplacementWriter(const std::string& path, bool append)
+    : file_(open_for_writing(path, append)) {}
 
 int ForceDisplacementWriter::loading_wall(const Simulation& sim) {
   for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k)
@@ -179,7 +179,9 @@ void AnimationWriter::frame(const Simulation& sim) {
   std::fflush(file_.get());
 }
 
-ForceChainWriter::ForceChainWriter(const std::string& path) : file_(open_for_writing(path)) {}
+ForceChainWriter::ForceChainWriter(const std::string& path, bool append) : file_(open_for_writing(path, append)) {}
+
+void StateWriter::frame(const Simulation& sim) { StateIO::write_file(sim, path_); }
 
 legacy::ForceChainFrame ForceChainWriter::make_frame(const Simulation& sim) {
   const std::vector<int>& id = sim.particles().id;

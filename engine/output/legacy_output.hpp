@@ -17,13 +17,14 @@ struct FileCloser {
 };
 using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
-// Opens `path` for writing; throws std::runtime_error naming the path and the system's reason.
-FilePtr open_for_writing(const std::string& path);
+// Opens `path` for writing (appending: a run continued from a saved state adds to its files);
+// throws std::runtime_error naming the path and the system's reason.
+FilePtr open_for_writing(const std::string& path, bool append = false);
 
 // ANIMATION_3D.dat: particles (and plates) in the scene's file length unit.
 class AnimationWriter final : public Observer {
  public:
-  AnimationWriter(const std::string& path, const Simulation& sim);
+  AnimationWriter(const std::string& path, const Simulation& sim, bool append = false);
   void frame(const Simulation& sim) override;
 
   // The frame the writer would write now (exposed for the server's frame stream and for tests).
@@ -37,7 +38,7 @@ class AnimationWriter final : public Observer {
 // ForceChain_3D.dat: particle-particle contacts, i < j by 1-based particle id, sorted by i.
 class ForceChainWriter final : public Observer {
  public:
-  explicit ForceChainWriter(const std::string& path);
+  explicit ForceChainWriter(const std::string& path, bool append = false);
   void frame(const Simulation& sim) override;
 
   static legacy::ForceChainFrame make_frame(const Simulation& sim);
@@ -52,7 +53,7 @@ class WallWriter final : public Observer {
  public:
   // Writes Wall.dat at once when the scene has meshes; opens Wall_Animation_3D.dat when any
   // plate or mesh moves. `folder` is the run folder.
-  WallWriter(const std::string& folder, const Simulation& sim);
+  WallWriter(const std::string& folder, const Simulation& sim, bool append = false);
   void frame(const Simulation& sim) override;
 
   static legacy::WallFrame make_frame(const Simulation& sim);
@@ -65,7 +66,7 @@ class WallWriter final : public Observer {
 // Wall_ForceChain_3D.dat: particle-wall contacts of each frame.
 class WallForceChainWriter final : public Observer {
  public:
-  explicit WallForceChainWriter(const std::string& path);
+  explicit WallForceChainWriter(const std::string& path, bool append = false);
   void frame(const Simulation& sim) override;
   static legacy::WallForceChainFrame make_frame(const Simulation& sim);
 
@@ -77,12 +78,23 @@ class WallForceChainWriter final : public Observer {
 // load-controlled wall) at each output time.
 class ForceDisplacementWriter final : public Observer {
  public:
-  explicit ForceDisplacementWriter(const std::string& path);
+  explicit ForceDisplacementWriter(const std::string& path, bool append = false);
   void frame(const Simulation& sim) override;
   static int loading_wall(const Simulation& sim);  // index in Scene::walls, or -1
 
  private:
   FilePtr file_;
+};
+
+// restart.dat: the whole state at each frame (sim/state_io.hpp), replaced atomically, so that a run
+// stopped for any reason can be continued from its last frame (`dem run --restart`).
+class StateWriter final : public Observer {
+ public:
+  explicit StateWriter(std::string path) : path_(std::move(path)) {}
+  void frame(const Simulation& sim) override;
+
+ private:
+  std::string path_;
 };
 
 // The domain box written in each frame header: the scene's, or the initial extent of the bodies.

@@ -22,7 +22,7 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
   std::int64_t steps_at_report = sim.step_count();
   try {
     guard.check(sim);
-    frame();
+    if (sim.step_count() == 0) frame();  // a continued run's first frame is its saved state's last
     while (sim.step_count() < total) {
       if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
         outcome.cancelled = true;

@@ -82,6 +82,8 @@ class Simulation {
   bool has_moving_walls() const;
 
  private:
+  friend class StateIO;  // saves and restores everything below (sim/state_io.hpp)
+
   double half_kick_and_drift();  // returns the largest squared displacement since the last build
   void build_neighbors();
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);

@@ -232,6 +232,37 @@ TEST_F(Cli, RunWithAMeshFloorAndALoadedPlateWritesTheWallFiles) {
   EXPECT_EQ(rows.frames.back().force, last.scalars[2]);
 }
 
+// A run stopped at step 10 and continued from its restart.dat writes the same files as one run.
+TEST_F(Cli, RunContinuedFromItsSavedStateWritesTheSameFiles) {
+  const fs::path whole = dir_ / "whole", part = dir_ / "part";
+  const std::string spec12 = good_with(R"("outputs": {)", R"("outputs": {"forceChains": true, )");
+  std::string spec10 = spec12;
+  spec10.replace(spec10.find(R"("steps": 12)"), 11, R"("steps": 10)");
+  ASSERT_EQ(dem("run " + shell_quoted(write_spec("s12.json", spec12)) + " --out " + shell_quoted(whole) + " --quiet").exit_code, 0);
+  ASSERT_EQ(dem("run " + shell_quoted(write_spec("s10.json", spec10)) + " --out " + shell_quoted(part) + " --quiet").exit_code, 0);
+  ASSERT_TRUE(fs::exists(part / "restart.dat"));
+  const Result r = dem("run " + shell_quoted(dir_ / "s12.json") + " --out " + shell_quoted(part) + " --restart " +
+                       shell_quoted(part / "restart.dat") + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes(whole / "ANIMATION_3D.dat"), bytes(part / "ANIMATION_3D.dat"));
+  EXPECT_EQ(bytes(whole / "ForceChain_3D.dat"), bytes(part / "ForceChain_3D.dat"));
+  EXPECT_EQ(bytes(whole / "restart.dat"), bytes(part / "restart.dat"));
+  // a state from another job is refused, and the files are left as they were
+  const std::string other = good_with(R"("radius": 0.01, "material": "glass", "velocity": {"x": -1})",
+                                      R"("radius": 0.01, "material": "glass", "velocity": {"x": -1}},
+    {"position": {"y": 0.1}, "radius": 0.01, "material": "glass")");
+  const std::string before = bytes(part / "ANIMATION_3D.dat");
+  const Result bad = dem("run " + shell_quoted(write_spec("other.json", other)) + " --out " + shell_quoted(part) +
+                         " --restart " + shell_quoted(part / "restart.dat") + " --quiet");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.output.find("the saved state was written for another job: particles 2"), std::string::npos) << bad.output;
+  EXPECT_EQ(bytes(part / "ANIMATION_3D.dat"), before);
+}
+
 TEST_F(Cli, RunOfALatticeWritesEveryParticle) {
   // An fcc lattice of 2 x 2 x 2 cells (32 spheres, see test_lattice.cpp) at spacing 1.1, at rest,
   // 1 m away from the two listed spheres. The box holds 4 half-cell layers of h per axis plus a
