@@ -435,6 +435,8 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     p.radius = in.radius();
     p.material = particle_material(in.material(), path + ".material");
     p.fixed = in.fixed();
+    check.finite(path + ".force", in.force());
+    p.force = vec(in.force());
     scene.particles.push_back(p);
   }
   for (int k = 0; k < spec.lattices_size(); ++k) {
@@ -625,6 +627,8 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   }
   if (n.check_interval() > 0) scene.numerics.check_interval = n.check_interval();
   if (n.reorder_interval() > 0) scene.numerics.reorder_interval = n.reorder_interval();
+  check.in_range("numerics.localDamping", n.local_damping(), 0, 1, false, true);
+  scene.numerics.local_damping = n.local_damping();
 
   if (!check.problems.empty()) throw SpecError(check.problems);
   return scene;

@@ -24,6 +24,7 @@ struct Particles {
   std::vector<double> inv_inertia;  // 0 for a fixed particle
   std::vector<int> material;
   std::vector<int> id;              // index in the scene (files and observers use it)
+  std::vector<Vec3> external;       // constant external force; empty when no particle has one
 
   std::size_t size() const { return x.size(); }
 
@@ -51,6 +52,7 @@ inline void Particles::permute(const std::vector<int>& new_to_old) {
   permute_array(inv_inertia, new_to_old);
   permute_array(material, new_to_old);
   permute_array(id, new_to_old);
+  if (!external.empty()) permute_array(external, new_to_old);
 }
 
 }  // namespace dem

@@ -47,6 +47,7 @@ struct ParticleInit {
   double radius = 0;
   int material = 0;
   bool fixed = false;
+  Vec3 force = Vec3::Zero();  // constant external force, N
 };
 
 struct PlaneShape {
@@ -152,6 +153,10 @@ struct NumericsSettings {
   double max_overlap_fraction = 0.25;
   int check_interval = 100;
   int reorder_interval = 10;
+  // Local damping (Cundall; PFC's "local damping", YADE's NewtonIntegrator damping): each component
+  // of a particle's force and torque is reduced by alpha |F| against its velocity. For quasi-static
+  // loading (a cantilever, settling); 0 leaves the dynamics alone.
+  double local_damping = 0;
 };
 
 struct TimeSettings {

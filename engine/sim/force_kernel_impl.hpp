@@ -269,6 +269,7 @@ class ForceKernelImpl final : public ForceKernel {
     const int n = static_cast<int>(p.size());
     const double half_dt = 0.5 * s.dt;
     const Vec3 g = s.gravity;
+    const double alpha = s.local_damping;
     // Raw pointers: through the std::vectors the compiler reloaded their data pointers after every
     // store and called Eigen's assignment loops out of line.
     const Vec3* __restrict f_next = s.f_next.data();
@@ -294,6 +295,13 @@ class ForceKernelImpl final : public ForceKernel {
         if (!s.meshes.empty()) add_mesh_forces(s, i, f, t);
       }
       f = f + mass[i] * g;
+      if (!p.external.empty()) f = f + p.external[i];
+      if (alpha > 0) {  // local damping: each component loses alpha |F| against its velocity
+        for (int d = 0; d < 3; ++d) {
+          if (v[i][d] != 0) f[d] -= alpha * std::abs(f[d]) * (v[i][d] > 0 ? 1 : -1);
+          if (w[i][d] != 0) t[d] -= alpha * std::abs(t[d]) * (w[i][d] > 0 ? 1 : -1);
+        }
+      }
       force[i] = f;
       torque[i] = t;
       v[i] = v[i] + (half_dt * inv_mass[i]) * f;

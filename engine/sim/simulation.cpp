@@ -41,6 +41,10 @@ Particles make_particles(const Scene& scene) {
     p.inv_inertia[i] = in.fixed ? 0 : 1 / (0.4 * m * r * r);  // solid sphere
     p.material[i] = in.material;
     p.id[i] = static_cast<int>(i);
+    if (!in.force.isZero(0)) {
+      if (p.external.empty()) p.external.assign(n, Vec3::Zero());
+      p.external[i] = in.force;
+    }
   }
   return p;
 }
@@ -69,6 +73,7 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
   state_.f_next.assign(state_.particles.size(), Vec3::Zero());
   state_.half_kick.assign(state_.particles.size(), Vec3::Zero());
   state_.gravity = scene_.gravity;
+  state_.local_damping = scene_.numerics.local_damping;
   const int boundaries = static_cast<int>(scene_.walls.size());
   plane_index_.assign(boundaries, -1);
   mesh_index_.assign(boundaries, -1);

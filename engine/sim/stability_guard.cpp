@@ -59,8 +59,8 @@ void StabilityGuard::check(const Simulation& sim) const {
                            "too large (" + sim.time_step().describe() + ")");
   }
   // Damping and friction only take energy out; allow for integration error and unseen springs.
-  // Moving and loaded walls feed energy in: then only the NaN and overlap checks apply.
-  if (sim.has_moving_walls()) return;
+  // Moving and loaded walls and external forces feed energy in: then only the NaN and overlap checks apply.
+  if (sim.has_moving_walls() || !sim.particles().external.empty()) return;
   const double energy = mechanical_energy(sim, contacts);
   if (energy > initial_energy_ + 0.05 * energy_scale_ + 1e-300) {
     // name the fastest particle: that is where the energy went

@@ -92,6 +92,7 @@ struct SimState {
   MeshContacts mesh_contacts;
   BondSet bonds;
   double time = 0;  // of the forces being computed
+  double local_damping = 0;
   PairTable table;
   Vec3 gravity = Vec3::Zero();
   double dt = 0;

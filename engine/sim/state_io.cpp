@@ -69,7 +69,7 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   const Particles& p = s.particles;
   put(out, p.x); put(out, p.v); put(out, p.w); put(out, p.f); put(out, p.t);
   put(out, p.radius); put(out, p.mass); put(out, p.inv_mass); put(out, p.inv_inertia);
-  put(out, p.material); put(out, p.id);
+  put(out, p.material); put(out, p.id); put(out, p.external);
   put(out, s.half_kick);
   put(out, sim.x_at_build_);
   const NeighborList& nl = s.neighbors;
@@ -122,6 +122,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(p.f, "the particles"); r.get(p.t, "the particles");
   r.get(p.radius, "the particles"); r.get(p.mass, "the particles"); r.get(p.inv_mass, "the particles");
   r.get(p.inv_inertia, "the particles"); r.get(p.material, "the particles"); r.get(p.id, "the particles");
+  r.get(p.external, "the particles");
   r.get(s.half_kick, "the particles");
   r.get(sim.x_at_build_, "the particles");
   NeighborList& nl = s.neighbors;

@@ -623,5 +623,16 @@ TEST(SpecLoader, BadBondsAreNamed) {
   EXPECT_TRUE(has_problem(p, "bonds.region:", "max is below min"));
 }
 
+
+TEST(SpecLoader, ExternalForceAndLocalDamping) {
+  std::string json = replaced(kGoodSpec, R"("fixed": true})", R"("fixed": true, "force": {"z": -2.5}})");
+  json = replaced(json, R"("time": {"steps": 100})", R"("time": {"steps": 100}, "numerics": {"localDamping": 0.7})");
+  const Scene s = to_scene(parse_json(json));
+  EXPECT_EQ(s.particles[1].force, Vec3(0, 0, -2.5));
+  EXPECT_EQ(s.numerics.local_damping, 0.7);
+  const auto p = problems_of(replaced(json, R"("localDamping": 0.7)", R"("localDamping": 1.0)"));
+  EXPECT_TRUE(has_problem(p, "numerics.localDamping:", "must be in [0, 1)"));
+}
+
 }  // namespace
 }  // namespace dem::spec

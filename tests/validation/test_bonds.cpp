@@ -202,5 +202,46 @@ TEST(BondedLattice, KeepsItsEnergyOver1e5Steps) {
   EXPECT_EQ(sim.bonds().counts().intact, 54);
 }
 
+// A cantilever of N = 10 parallel bonds, clamped at one end (a held sphere), tip load P (validation
+// section 5): delta = P L^3 / (3 Eb I) (1 - 1/(4 N^2)) + N P / (ks A), L = N l. Local damping
+// brings it to rest; the deflection must not change when the step is halved.
+double cantilever_deflection(double dt_scale, double* want_out) {
+  constexpr int kBonds = 10;
+  const double r = 0.005, l = 2 * r * 1.0001, eb = 1e8, ratio = 0.5, load = 0.01;
+  Scene s = base_scene(NormalModel::Linear, 2500, 1e8, 0.25, 0.5, 0.0, 1e4);
+  for (int k = 0; k <= kBonds; ++k) s.particles.push_back(sphere({k * l, 0, 0}, r));
+  s.particles.front().fixed = true;
+  s.particles.back().force = {0, 0, -load};
+  BondSettings bonds;
+  bonds.youngs_modulus = eb;
+  bonds.shear_stiffness_ratio = ratio;
+  bonds.tensile_strength = bonds.shear_strength = 1e12;
+  s.bonds = bonds;
+  s.numerics.local_damping = 0.7;
+  {
+    Simulation probe(s);
+    s.time.dt = probe.dt() * dt_scale;
+  }
+  Simulation sim(s);
+  EXPECT_EQ(sim.bonds().bonds().size(), static_cast<std::size_t>(kBonds));
+  while (sim.time() < 0.4) sim.step();
+  const BondGeometry g = BondGeometry::of(r);
+  const double length = kBonds * l, kn = eb / (2 * r);
+  *want_out = load * length * length * length / (3 * eb * g.inertia) * (1 - 1.0 / (4 * kBonds * kBonds)) +
+              kBonds * load / (ratio * kn * g.area);
+  EXPECT_LT(std::abs(sim.particles().v[kBonds].z()), 1e-6) << "the tip has not come to rest";
+  return -sim.particles().x[kBonds].z();
+}
+
+TEST(BondedCantilever, TipDeflectionMatchesBeamTheoryAndNotTheStep) {
+  double want = 0;
+  const double delta = cantilever_deflection(1.0, &want);
+  const double delta_half = cantilever_deflection(0.5, &want);
+  report("cantilever tip deflection", delta, want);
+  report("cantilever tip deflection, half the step", delta_half, want);
+  EXPECT_NEAR(delta, want, 0.02 * want);
+  EXPECT_NEAR(delta_half, delta, 1e-3 * delta);
+}
+
 }  // namespace
 }  // namespace dem::test
