@@ -9,6 +9,7 @@
 #include "cli/progress_bar.hpp"
 #include "core/errors.hpp"
 #include "output/legacy_output.hpp"
+#include "output/statistics_output.hpp"
 #include "sim/state_io.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -126,6 +127,7 @@ int run_command(const std::vector<std::string>& args) {
       writers.push_back(std::make_unique<WallForceChainWriter>((dir / "Wall_ForceChain_3D.dat").string(), append));
     if (ForceDisplacementWriter::loading_wall(sim) >= 0)
       writers.push_back(std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string(), append));
+    writers.push_back(std::make_unique<StatisticsWriter>(dir.string(), sim, append));
     writers.push_back(std::make_unique<StateWriter>((dir / "restart.dat").string()));
     std::vector<Observer*> observers;
     for (auto& w : writers) observers.push_back(w.get());

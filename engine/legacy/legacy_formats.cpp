@@ -540,7 +540,33 @@ std::optional<Stop> read_force_displacement_row(TokenLines& lines, ForceDisplace
   return std::nullopt;
 }
 
+struct RowReader {
+  std::size_t columns;
+  std::optional<Stop> operator()(TokenLines& lines, std::vector<double>& row) const {
+    if (lines.token_count() != columns)
+      return malformed(line_prefix(lines.line_number()) + "expected " + std::to_string(columns) + " values, found " +
+                       std::to_string(lines.token_count()));
+    LineValues values(lines);
+    row.resize(columns);
+    for (std::size_t k = 0; k < columns; ++k) row[k] = values.real(k);
+    if (!values.ok()) return malformed(values.problem());
+    return std::nullopt;
+  }
+};
+
 }  // namespace
+
+void write_row(std::FILE* out, const std::vector<double>& values, NumberFormat format) {
+  const RealStyle style = format == NumberFormat::Scientific ? scientific : fixed(4);
+  FrameText text(1);
+  for (double v : values) text.real(v, style);
+  text.end_line();
+  text.write_to(out);
+}
+
+ReadResult<std::vector<double>> read_rows(std::istream& in, std::size_t columns) {
+  return read_frames<std::vector<double>>(in, RowReader{columns});
+}
 
 void write_wall_frame(std::FILE* out, const WallFrame& frame, NumberFormat format) {
   const RealStyle style = animation_styles(format).corner;

@@ -139,4 +139,9 @@ ReadResult<WallForceChainFrame> read_wall_force_chains(std::istream& in);
 // Each row is one "frame" here: a cut last row sets truncated, like the other readers.
 ReadResult<ForceDisplacementRow> read_force_displacement(std::istream& in);
 
+// The statistics files of section 5 (Masscenter.dat, Disp_Max.dat, Coord_OL.dat, Fragments.dat):
+// one row per output time, a fixed number of reals. The reader checks the column count.
+void write_row(std::FILE* out, const std::vector<double>& values, NumberFormat format);
+ReadResult<std::vector<double>> read_rows(std::istream& in, std::size_t columns);
+
 }  // namespace dem::legacy

@@ -263,6 +263,51 @@ TEST_F(Cli, RunContinuedFromItsSavedStateWritesTheSameFiles) {
   EXPECT_EQ(bytes(part / "ANIMATION_3D.dat"), before);
 }
 
+// A bonded 2 x 2 x 2 block dropped on a floor: the statistics files have a row per frame, and the
+// animation's part column names the block's fragment.
+TEST_F(Cli, RunOfABondedBlockWritesTheStatistics) {
+  const std::string spec = R"({
+  "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}, {"name": "ground", "rigid": true}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5, "friction": 0.5},
+                   {"a": "rock", "b": "ground", "restitution": 0.5, "friction": 0.5}],
+  "lattices": [{"kind": "CUBIC", "min": {"x": 0, "y": 0, "z": 0.001}, "max": {"x": 0.04, "y": 0.04, "z": 0.041},
+                "radius": 0.01, "spacing": 0.999, "material": "rock"}],
+  "walls": [{"material": "ground", "plane": {"normal": {"z": 1}}}],
+  "bonds": {"youngsModulus": 1e7, "tensileStrength": 1e9, "shearStrength": 1e9},
+  "gravity": {"z": -9.81},
+  "time": {"duration": 0.05},
+  "outputs": {"interval": 0.01}
+})";
+  const fs::path out = dir_ / "out";
+  const Result r = dem("run " + shell_quoted(write_spec("block.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto rows = [&](const char* name, std::size_t columns) {
+    std::ifstream in(out / name);
+    const auto read = dem::legacy::read_rows(in, columns);
+    EXPECT_TRUE(read.problem.empty()) << name << ": " << read.problem;
+    return read.frames;
+  };
+  const auto centre = rows("Masscenter.dat", 4), moved = rows("Disp_Max.dat", 2), coord = rows("Coord_OL.dat", 3),
+             parts = rows("Fragments.dat", 6);
+  ASSERT_EQ(centre.size(), 6u);  // t = 0, 0.01, ..., 0.05
+  EXPECT_EQ(moved.size(), 6u);
+  EXPECT_EQ(coord.size(), 6u);
+  ASSERT_EQ(parts.size(), 6u);
+  EXPECT_NEAR(centre[0][1], 0.01 + 0.00999, 1e-6);  // the block's centre, x
+  EXPECT_LT(centre.back()[3], centre.front()[3]);   // it fell
+  EXPECT_EQ(moved[0][1], 0.0);
+  EXPECT_GT(moved.back()[1], 0.0);
+  EXPECT_NEAR(coord[0][1], 3.0, 1e-12);  // 12 touching pairs among 8 spheres (none on the floor yet)
+  EXPECT_NEAR(coord[0][2], 0.001, 1e-9);  // overlap 0.001 d over r_i + r_j = d
+  EXPECT_EQ(parts.back()[1], 1.0);   // one fragment
+  EXPECT_EQ(parts.back()[2], 8.0);   // of all 8
+  EXPECT_EQ(parts.back()[3], 12.0);  // 12 intact bonds
+  std::ifstream anim(out / "ANIMATION_3D.dat");
+  const auto frames = dem::legacy::read_animation(anim);
+  ASSERT_FALSE(frames.frames.empty());
+  for (const auto& particle : frames.frames.back().particles) EXPECT_EQ(particle.part, 1);
+}
+
 TEST_F(Cli, RunOfALatticeWritesEveryParticle) {
   // An fcc lattice of 2 x 2 x 2 cells (32 spheres, see test_lattice.cpp) at spacing 1.1, at rest,
   // 1 m away from the two listed spheres. The box holds 4 half-cell layers of h per axis plus a

@@ -129,5 +129,23 @@ TEST(ForceDisplacementFile, RoundTripsAndStopsAtACutRow) {
   EXPECT_EQ(read_force_displacement(bad).problem, "line 1: expected 3 values (time displacement force), found 2");
 }
 
+TEST(StatisticsFiles, RowsRoundTripAndNameABadLine) {
+  const std::string text = written([&](std::FILE* out) {
+    write_row(out, {0.5, 1.25, -3e-7, 42}, NumberFormat::Scientific);
+    write_row(out, {1.0, 2.5, 0, 43}, NumberFormat::Scientific);
+  });
+  std::istringstream in(text);
+  const auto read = read_rows(in, 4);
+  ASSERT_TRUE(read.problem.empty()) << read.problem;
+  ASSERT_EQ(read.frames.size(), 2u);
+  EXPECT_EQ(read.frames[0], (std::vector<double>{0.5, 1.25, -3e-7, 42}));
+  std::istringstream bad("0 1 2\n");
+  EXPECT_EQ(read_rows(bad, 4).problem, "line 1: expected 4 values, found 3");
+  std::istringstream cut(text.substr(0, text.size() - 3));
+  const auto partial = read_rows(cut, 4);
+  EXPECT_EQ(partial.frames.size(), 1u);
+  EXPECT_TRUE(partial.truncated);
+}
+
 }  // namespace
 }  // namespace dem::legacy
