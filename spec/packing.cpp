@@ -45,7 +45,8 @@ std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::
   return out;
 }
 
-std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<double>& diameters, std::mt19937_64& rng) {
+std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<double>& diameters, std::mt19937_64& rng,
+                                 const std::function<bool(const Vec3&, double)>& accept) {
   std::sort(diameters.begin(), diameters.end(), std::greater<>());
   const int n = static_cast<int>(diameters.size());
   std::vector<Vec3> placed;
@@ -67,7 +68,7 @@ std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<dou
     for (int attempt = 0; attempt < kAttempts && !ok; ++attempt) {
       Vec3 x;
       for (int d = 0; d < 3; ++d) x[d] = std::uniform_real_distribution<double>(a[d], b[d])(rng);
-      ok = true;
+      ok = !accept || accept(x, r);
       for (int dz = -1; dz <= 1 && ok; ++dz)
         for (int dy = -1; dy <= 1 && ok; ++dy)
           for (int dx = -1; dx <= 1 && ok; ++dx) {
@@ -85,7 +86,7 @@ std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<dou
     }
     if (!ok)
       throw std::runtime_error("placed only " + std::to_string(k) + " of " + std::to_string(n) +
-                               " spheres: the box is too full for random placement (it stalls near a solid fraction of 0.35)");
+                               " spheres: the region is too full for random placement (it stalls near a solid fraction of 0.35)");
   }
   return placed;
 }

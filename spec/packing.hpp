@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,8 @@ std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::
 // Places spheres of the given diameters at random in the box [lo, hi] without overlap, largest
 // first (random sequential addition), each wholly inside. Throws std::runtime_error naming how many
 // could be placed when the box is too full (random addition stalls near a solid fraction of ~0.35).
-std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<double>& diameters, std::mt19937_64& rng);
+// `accept(x, r)`, when given, must also hold for each sphere (a region inside a mesh).
+std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<double>& diameters, std::mt19937_64& rng,
+                                 const std::function<bool(const Vec3&, double)>& accept = {});
 
 }  // namespace dem::spec

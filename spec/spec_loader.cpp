@@ -15,6 +15,7 @@
 
 #include "mesh/mesh_io.hpp"
 #include "spec/lattice.hpp"
+#include "spec/inside_mesh.hpp"
 #include "spec/packing.hpp"
 
 namespace dem::spec {
@@ -168,12 +169,27 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
   return l;
 }
 
-void add_packing(const api::Packing& in, const std::string& path, Checker& check, Scene& scene, int material) {
+void add_packing(const api::Packing& in, const std::string& path, const std::string& base_dir, Checker& check,
+                 Scene& scene, int material) {
   const std::size_t before = check.problems.size();
   check.finite(path + ".min", in.min());
   check.finite(path + ".max", in.max());
   check.finite(path + ".velocity", in.velocity());
-  const Vec3 lo = vec(in.min()), hi = vec(in.max());
+  std::optional<ClosedMesh> region;
+  double region_volume = 0;
+  if (in.has_inside()) {
+    WallInit holder;
+    load_mesh(in.inside(), path + ".inside", base_dir, check, holder);
+    if (check.problems.size() != before) return;
+    const MeshShape& shape = std::get<MeshShape>(holder.shape);
+    region.emplace(shape);
+    double six_v = 0;  // the enclosed volume by the divergence theorem: signed tetrahedra from the origin
+    for (const auto& t : shape.triangles) six_v += shape.vertices[t[0]].dot(shape.vertices[t[1]].cross(shape.vertices[t[2]]));
+    region_volume = std::abs(six_v) / 6;
+  }
+  const bool box_given = in.has_min() || in.has_max();
+  const Vec3 lo = region && !box_given ? region->min() : vec(in.min());
+  const Vec3 hi = region && !box_given ? region->max() : vec(in.max());
   if (!(lo.array() < hi.array()).all()) check.fail(path + ".max", "must be above min in x, y and z");
   const auto& sz = in.sizes();
   SizeDistribution d;
@@ -203,7 +219,7 @@ void add_packing(const api::Packing& in, const std::string& path, Checker& check
   if (in.count() > 0) {
     diameters = sample_diameters(d, in.count(), rng);
   } else {  // draw until the spheres' volume makes the solid fraction
-    const double target = in.solid_fraction() * (hi - lo).prod();
+    const double target = in.solid_fraction() * (region ? region_volume : (hi - lo).prod());
     double volume = 0;
     while (volume < target && diameters.size() < 10000000) {
       const double dia = sample_diameters(d, 1, rng)[0];
@@ -212,7 +228,9 @@ void add_packing(const api::Packing& in, const std::string& path, Checker& check
     }
   }
   try {
-    const std::vector<Vec3> sites = random_packing(lo, hi, diameters, rng);
+    std::function<bool(const Vec3&, double)> accept;
+    if (region) accept = [&](const Vec3& x, double r) { return region->holds(x, r); };
+    const std::vector<Vec3> sites = random_packing(lo, hi, diameters, rng, accept);
     for (std::size_t k = 0; k < sites.size(); ++k) {
       ParticleInit p;
       p.position = sites[k];
@@ -478,8 +496,9 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
       scene.particles.push_back(p);
     }
   }
-  for (int k = 0; k < spec.packings_size(); ++k) add_packing(spec.packings(k), at("packings", k), check, scene,
-                                                            particle_material(spec.packings(k).material(), at("packings", k) + ".material"));
+  for (int k = 0; k < spec.packings_size(); ++k)
+    add_packing(spec.packings(k), at("packings", k), base_dir, check, scene,
+                particle_material(spec.packings(k).material(), at("packings", k) + ".material"));
   if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty())
     check.fail("particles", "the scene has no particles");
 

@@ -131,5 +131,31 @@ TEST(PackingSpec, BadPackingsAreNamed) {
   }
 }
 
+// The key block: a tetrahedron (inline mesh) filled at a solid fraction of 0.2; every sphere lies
+// wholly inside (checked against the four face planes) and the volume matches.
+TEST(PackingSpec, FillsAClosedMesh) {
+  const char* spec = R"({
+  "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}],
+  "packings": [{"material": "rock", "solidFraction": 0.2, "sizes": {"kind": "UNIFORM", "dMin": 0.008, "dMax": 0.012},
+                "inside": {"vertices": [{}, {"x": 0.3}, {"y": 0.3}, {"z": 0.3}],
+                           "triangles": [{"i": 1, "j": 3, "k": 2}, {"i": 1, "j": 2, "k": 4}, {"i": 1, "j": 4, "k": 3}, {"i": 2, "j": 3, "k": 4}]}}],
+  "time": {"steps": 1}
+})";
+  const Scene s = to_scene(parse_json(spec));
+  ASSERT_GT(s.particles.size(), 500u);
+  double volume = 0;
+  for (const ParticleInit& p : s.particles) {
+    const Vec3& x = p.position;
+    const double r = p.radius;
+    ASSERT_GE(x.x(), r);
+    ASSERT_GE(x.y(), r);
+    ASSERT_GE(x.z(), r);
+    ASSERT_LE((x.sum() - 0.3) / std::sqrt(3.0), -r);  // below the slanted face
+    volume += 4.0 / 3.0 * M_PI * r * r * r;
+  }
+  EXPECT_NEAR(volume / (0.3 * 0.3 * 0.3 / 6), 0.2, 0.005);
+}
+
 }  // namespace
 }  // namespace dem::spec
