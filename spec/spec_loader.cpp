@@ -539,6 +539,12 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     scene.walls.push_back(w);
   }
 
+  if (spec.has_growth()) {
+    check.in_range("growth.factor", spec.growth().factor(), 1, 3, false, false);
+    if (spec.growth().steps() < 1) check.fail("growth.steps", "must be >= 1 (got " + std::to_string(spec.growth().steps()) + ")");
+    scene.growth = Scene::Growth{spec.growth().factor(), spec.growth().steps()};
+  }
+
   // bonds
   if (spec.has_bonds()) {
     const auto& in = spec.bonds();

@@ -180,6 +180,14 @@ struct Scene {
   std::optional<Box> domain;
   NumericsSettings numerics;
   std::optional<BondSettings> bonds;
+  // Radius growth (the seeds' GROWTH and NGROWTH): every radius grows uniformly from its given
+  // size to `factor` times it over the first `steps` steps, packing a loose assembly (a solid
+  // fraction cc grows to cc factor^3); masses follow, densities stay.
+  struct Growth {
+    double factor = 1;
+    std::int64_t steps = 0;
+  };
+  std::optional<Growth> growth;
 
   const Interaction& interaction(int a, int b) const {
     return interactions[static_cast<size_t>(a) * materials.size() + b];

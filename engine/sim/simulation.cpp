@@ -178,15 +178,43 @@ void Simulation::step() {
   move_walls(t_new, state_.dt);
   state_.time = t_new;
   const double moved2 = half_kick_and_drift();
+  const double grown = grow();
   const double half_skin = 0.5 * skin_;
   const int interval = scene_.numerics.search_interval;
-  if (moved2 > half_skin * half_skin || wall_shift_since_build() > half_skin ||
+  // a pair closes by at most twice (the largest move + the largest growth) since the build
+  if (std::sqrt(moved2) + grown > half_skin || wall_shift_since_build() > half_skin ||
       (interval > 0 && step_ + 1 - last_build_step_ >= interval))
     build_neighbors();
   kernel_->compute_and_kick(state_);
   settle_walls(t_new, state_.dt);
   contacts_recorded_ = state_.record_contacts;
   ++step_;
+}
+
+double Simulation::grow() {
+  if (!scene_.growth || scene_.growth->steps <= 0) return 0;
+  const Scene::Growth& g = *scene_.growth;
+  const double share = std::min(1.0, static_cast<double>(step_ + 1) / static_cast<double>(g.steps));
+  const double scale = 1 + (g.factor - 1) * share;
+  Particles& p = state_.particles;
+  double r_max = 0;
+  if (step_ < g.steps) {
+    growth_scale_ = scale;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const ParticleInit& init = scene_.particles[p.id[i]];
+      const double r = init.radius * scale;
+      const double m = scene_.materials[init.material].density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      p.radius[i] = r;
+      p.mass[i] = m;
+      if (p.inv_mass[i] > 0) {
+        p.inv_mass[i] = 1 / m;
+        p.inv_inertia[i] = 1 / (0.4 * m * r * r);
+      }
+    }
+  }
+  if (growth_scale_ == growth_at_build_) return 0;  // done growing and listed since
+  for (const ParticleInit& init : scene_.particles) r_max = std::max(r_max, init.radius);
+  return r_max * (growth_scale_ - growth_at_build_);
 }
 
 double Simulation::half_kick_and_drift() {
@@ -249,6 +277,7 @@ void Simulation::build_neighbors() {
   WallContacts previous = std::move(state_.wall_contacts);
   build_wall_contacts(previous, order);
   build_mesh_contacts(order);
+  growth_at_build_ = growth_scale_;
   pose_at_build_.clear();
   for (const WallDriver& d : drivers_) pose_at_build_.push_back(d.pose());
   x_at_build_ = p.x;

@@ -92,6 +92,7 @@ class Simulation {
   void move_walls(double t_new, double dt);  // the walls' first half of the step
   void settle_walls(double t_new, double dt);  // loads from this step's forces, then their second half
   double wall_shift_since_build() const;
+  double grow();  // the growth of this step (Scene::growth); returns how much the largest radius grew since the last build
 
   Scene scene_;
   SimState state_;
@@ -110,6 +111,8 @@ class Simulation {
   std::vector<WallPose> pose_at_build_;     // per scene wall
   std::vector<double> wall_extent_;         // largest distance of a wall's points from its centre
   std::vector<BoundaryLoad> boundary_loads_;
+  double growth_scale_ = 1;                 // radii now over their given sizes (Scene::growth)
+  double growth_at_build_ = 1;              // the same at the last build
 };
 
 }  // namespace dem

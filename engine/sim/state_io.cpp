@@ -88,6 +88,8 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   for (const WallDriver& d : sim.drivers_) put(out, d);
   put(out, sim.pose_at_build_);
   put(out, sim.boundary_loads_);
+  put(out, sim.growth_at_build_);
+  put(out, sim.growth_scale_);
   put(out, s.bonds.bonds());
   if (!out) throw std::runtime_error("cannot write the saved state");
 }
@@ -149,6 +151,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     if (sim.drivers_[s.meshes[m].boundary].moves()) s.meshes[m].move_to(mesh_poses[m]);
   r.get(sim.pose_at_build_, "the walls");
   r.get(sim.boundary_loads_, "the walls");
+  r.get(sim.growth_at_build_, "the walls");
+  r.get(sim.growth_scale_, "the walls");
   std::vector<Bond> saved_bonds;
   r.get(saved_bonds, "the bonds");
   s.bonds.restore(std::move(saved_bonds));

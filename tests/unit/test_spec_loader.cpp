@@ -634,5 +634,17 @@ TEST(SpecLoader, ExternalForceAndLocalDamping) {
   EXPECT_TRUE(has_problem(p, "numerics.localDamping:", "must be in [0, 1)"));
 }
 
+
+TEST(SpecLoader, GrowthIsCheckedAndRead) {
+  const std::string json = replaced(kGoodSpec, R"("time": {"steps": 100})", R"("time": {"steps": 100}, "growth": {"factor": 1.2, "steps": 50})");
+  const Scene s = to_scene(parse_json(json));
+  ASSERT_TRUE(s.growth.has_value());
+  EXPECT_EQ(s.growth->factor, 1.2);
+  EXPECT_EQ(s.growth->steps, 50);
+  const auto p = problems_of(replaced(json, R"("factor": 1.2, "steps": 50)", R"("factor": 0.5, "steps": 0)"));
+  EXPECT_TRUE(has_problem(p, "growth.factor:", "must be in [1, 3]"));
+  EXPECT_TRUE(has_problem(p, "growth.steps:", "must be >= 1"));
+}
+
 }  // namespace
 }  // namespace dem::spec

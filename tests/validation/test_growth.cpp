@@ -1,0 +1,49 @@
+// Radius growth (the seeds' GROWTH and NGROWTH): a loose random packing at a solid fraction of 0.25
+// grown by (0.5 / 0.25)^(1/3) in a closed box packs to 0.5 without excessive overlap.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sim/simulation.hpp"
+#include "spec/spec_loader.hpp"
+#include "support/report.hpp"
+
+namespace dem::test {
+namespace {
+
+TEST(Growth, LoosePackingGrowsToTheTargetSolidFraction) {
+  const double factor = std::cbrt(0.5 / 0.25);
+  const std::string json = R"({
+  "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}, {"name": "box", "rigid": true}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.3, "friction": 0.3},
+                   {"a": "rock", "b": "box", "restitution": 0.3, "friction": 0.3}],
+  "packings": [{"min": {}, "max": {"x": 0.1, "y": 0.1, "z": 0.1}, "material": "rock", "solidFraction": 0.25,
+                "sizes": {"kind": "UNIFORM", "dMin": 0.008, "dMax": 0.012}}],
+  "walls": [{"material": "box", "plane": {"normal": {"z": 1}}}, {"material": "box", "plane": {"point": {"z": 0.1}, "normal": {"z": -1}}},
+            {"material": "box", "plane": {"normal": {"x": 1}}}, {"material": "box", "plane": {"point": {"x": 0.1}, "normal": {"x": -1}}},
+            {"material": "box", "plane": {"normal": {"y": 1}}}, {"material": "box", "plane": {"point": {"y": 0.1}, "normal": {"y": -1}}}],
+  "growth": {"factor": FACTOR, "steps": 20000},
+  "numerics": {"localDamping": 0.5},
+  "time": {"steps": 30000}
+})";
+  std::string text = json;
+  text.replace(text.find("FACTOR"), 6, std::to_string(factor));
+  Simulation sim(spec::to_scene(spec::parse_json(text)));
+  while (sim.step_count() < sim.total_steps()) sim.step();
+  double volume = 0;
+  for (double r : sim.particles().radius) volume += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double fraction = volume / 1e-3;
+  report("grown packing: solid fraction", fraction, 0.5);
+  EXPECT_NEAR(fraction, 0.5, 0.01 * 0.5);
+  const ContactSummary contacts = sim.contact_summary();
+  report("grown packing: largest overlap / radius", contacts.max_overlap_fraction, 0.0);
+  EXPECT_LT(contacts.max_overlap_fraction, 0.05);
+  for (std::size_t i = 0; i < sim.particles().size(); ++i) {  // all still in the box
+    const Vec3& x = sim.particles().x[i];
+    ASSERT_TRUE((x.array() > 0).all() && (x.array() < 0.1).all()) << i;
+  }
+}
+
+}  // namespace
+}  // namespace dem::test
