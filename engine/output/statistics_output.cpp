@@ -10,7 +10,16 @@ StatisticsWriter::StatisticsWriter(const std::string& folder, const Simulation& 
     : mass_centre_(open_for_writing(folder + "/Masscenter.dat", append)),
       max_displacement_(open_for_writing(folder + "/Disp_Max.dat", append)),
       coordination_(open_for_writing(folder + "/Coord_OL.dat", append)) {
-  if (!sim.bonds().empty()) fragments_ = open_for_writing(folder + "/Fragments.dat", append);
+  if (!sim.bonds().empty()) {
+    fragments_ = open_for_writing(folder + "/Fragments.dat", append);
+    fragment_sizes_ = open_for_writing(folder + "/Fragment_Sizes.dat", append);
+    breaks_ = open_for_writing(folder + "/Bond_Breaks.dat", append);
+    // a continued run has written the breaks before its saved state already
+    const std::vector<int>& id = sim.particles().id;
+    if (append)
+      for (const Bond& b : sim.bonds().bonds())
+        if (b.state != BondBreak::Intact) break_written_.insert(std::minmax(id[b.i], id[b.j]));
+  }
 }
 
 void StatisticsWriter::frame(const Simulation& sim) {
@@ -62,6 +71,31 @@ void StatisticsWriter::frame(const Simulation& sim) {
                        static_cast<double>(c.tension), static_cast<double>(c.shear)},
                       legacy::NumberFormat::Scientific);
     std::fflush(fragments_.get());
+    std::map<int, int> by_size;  // fragment size -> how many
+    for (const auto& [f, count] : size) ++by_size[count];
+    for (const auto& [s, count] : by_size)
+      legacy::write_row(fragment_sizes_.get(), {t, static_cast<double>(s), static_cast<double>(count)},
+                        legacy::NumberFormat::Scientific);
+    std::fflush(fragment_sizes_.get());
+    struct Break {
+      double time;
+      int i, j, mode;
+    };
+    std::vector<Break> fresh;
+    const std::vector<Bond>& bonds = sim.bonds().bonds();
+    for (const Bond& bond : bonds) {
+      if (bond.state == BondBreak::Intact) continue;
+      const auto ids = std::minmax(p.id[bond.i], p.id[bond.j]);
+      if (!break_written_.insert(ids).second) continue;
+      fresh.push_back({bond.broken_at, ids.first + 1, ids.second + 1, bond.state == BondBreak::Tension ? 1 : 2});
+    }
+    std::sort(fresh.begin(), fresh.end(), [](const Break& x, const Break& y) {
+      return x.time != y.time ? x.time < y.time : (x.i != y.i ? x.i < y.i : x.j < y.j);
+    });
+    for (const Break& b : fresh)
+      legacy::write_row(breaks_.get(), {b.time, static_cast<double>(b.i), static_cast<double>(b.j), static_cast<double>(b.mode)},
+                        legacy::NumberFormat::Scientific);
+    std::fflush(breaks_.get());
   }
 }
 

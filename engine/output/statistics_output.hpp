@@ -5,9 +5,15 @@
 //                   overlap / (r_i + r_j) over touching particle pairs              [s, -, -]
 //   Fragments.dat   (bonded scenes) time, fragments, particles in the largest, intact bonds, bonds
 //                   broken in tension, in shear                                      [s, counts]
+//   Fragment_Sizes.dat  (bonded scenes) per frame, one row per fragment size: time, size
+//                   (particles), number of fragments of that size                    [s, counts]
+//   Bond_Breaks.dat (bonded scenes) one row per bond broken since the last frame: time of the
+//                   break, 1-based ids i < j, mode (1 tension, 2 shear)              [s, -, -, -]
 #pragma once
 
+#include <set>
 #include <string>
+#include <utility>
 
 #include "output/legacy_output.hpp"
 
@@ -20,7 +26,8 @@ class StatisticsWriter final : public Observer {
   void frame(const Simulation& sim) override;
 
  private:
-  FilePtr mass_centre_, max_displacement_, coordination_, fragments_;
+  FilePtr mass_centre_, max_displacement_, coordination_, fragments_, fragment_sizes_, breaks_;
+  std::set<std::pair<int, int>> break_written_;  // broken bonds already written, by their particles' ids
 };
 
 }  // namespace dem

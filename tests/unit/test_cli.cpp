@@ -306,6 +306,31 @@ TEST_F(Cli, RunOfABondedBlockWritesTheStatistics) {
   const auto frames = dem::legacy::read_animation(anim);
   ASSERT_FALSE(frames.frames.empty());
   for (const auto& particle : frames.frames.back().particles) EXPECT_EQ(particle.part, 1);
+  const auto sizes = rows("Fragment_Sizes.dat", 3);
+  ASSERT_EQ(sizes.size(), 6u);  // one size (8 particles, 1 fragment) per frame
+  EXPECT_EQ(sizes.back()[1], 8.0);
+  EXPECT_EQ(sizes.back()[2], 1.0);
+  EXPECT_TRUE(rows("Bond_Breaks.dat", 4).empty());
+
+  // with no strength every bond breaks at once: 12 breaks at t = 0, then 8 loose grains
+  std::string weak = spec;
+  const std::string strong = R"("tensileStrength": 1e9, "shearStrength": 1e9)";
+  weak.replace(weak.find(strong), strong.size(), R"("tensileStrength": 0, "shearStrength": 0)");
+  const fs::path loose = dir_ / "loose";
+  ASSERT_EQ(dem("run " + shell_quoted(write_spec("weak.json", weak)) + " --out " + shell_quoted(loose) + " --quiet").exit_code, 0);
+  std::ifstream breaks_in(loose / "Bond_Breaks.dat");
+  const auto breaks = dem::legacy::read_rows(breaks_in, 4).frames;
+  ASSERT_EQ(breaks.size(), 12u);
+  for (const auto& b : breaks) {
+    EXPECT_EQ(b[0], 0.0);
+    EXPECT_LT(b[1], b[2]);
+    EXPECT_EQ(b[3], 1.0);  // in tension (sigma = 0 reaches a strength of 0 first)
+  }
+  std::ifstream sizes_in(loose / "Fragment_Sizes.dat");
+  const auto loose_sizes = dem::legacy::read_rows(sizes_in, 3).frames;
+  ASSERT_FALSE(loose_sizes.empty());
+  EXPECT_EQ(loose_sizes.back()[1], 1.0);
+  EXPECT_EQ(loose_sizes.back()[2], 8.0);
 }
 
 TEST_F(Cli, RunOfALatticeWritesEveryParticle) {
