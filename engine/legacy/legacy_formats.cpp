@@ -554,6 +554,23 @@ struct RowReader {
   }
 };
 
+// Plate lines ("id rplate" + 4 corners), then triangle lines ("id tri" + 3 corners).
+void write_polygons(FrameText& text, const std::vector<AnimationPlate>& plates,
+                    const std::vector<AnimationTriangle>& triangles, RealStyle style) {
+  for (const AnimationPlate& plate : plates) {
+    text.integer(plate.id);
+    text.word(plate_word);
+    for (const Vec3& corner : plate.corners) text.reals(corner, style);
+    text.end_line();
+  }
+  for (const AnimationTriangle& triangle : triangles) {
+    text.integer(triangle.id);
+    text.word(triangle_word);
+    for (const Vec3& corner : triangle.corners) text.reals(corner, style);
+    text.end_line();
+  }
+}
+
 }  // namespace
 
 void write_row(std::FILE* out, const std::vector<double>& values, NumberFormat format) {
@@ -575,18 +592,7 @@ void write_wall_frame(std::FILE* out, const WallFrame& frame, NumberFormat forma
   text.integer(frame.step);
   text.integer(static_cast<long long>(frame.plates.size() + frame.triangles.size()));
   text.end_line();
-  for (const AnimationPlate& plate : frame.plates) {
-    text.integer(plate.id);
-    text.word(plate_word);
-    for (const Vec3& corner : plate.corners) text.reals(corner, style);
-    text.end_line();
-  }
-  for (const AnimationTriangle& triangle : frame.triangles) {
-    text.integer(triangle.id);
-    text.word(triangle_word);
-    for (const Vec3& corner : triangle.corners) text.reals(corner, style);
-    text.end_line();
-  }
+  write_polygons(text, frame.plates, frame.triangles, style);
   text.write_to(out);
 }
 
@@ -644,18 +650,7 @@ void write_animation_frame(std::FILE* out, const AnimationFrame& frame, NumberFo
   text.integer(static_cast<long long>(frame.plates.size()));
   text.end_line();
 
-  for (const AnimationPlate& plate : frame.plates) {
-    text.integer(plate.id);
-    text.word(plate_word);
-    for (const Vec3& corner : plate.corners) text.reals(corner, styles.corner);
-    text.end_line();
-  }
-  for (const AnimationTriangle& triangle : frame.triangles) {
-    text.integer(triangle.id);
-    text.word(triangle_word);
-    for (const Vec3& corner : triangle.corners) text.reals(corner, styles.corner);
-    text.end_line();
-  }
+  write_polygons(text, frame.plates, frame.triangles, styles.corner);
   for (const AnimationParticle& particle : frame.particles) {
     text.integer(particle.id);
     text.reals(particle.position, styles.position);
