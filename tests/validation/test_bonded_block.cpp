@@ -13,7 +13,7 @@ namespace dem::test {
 namespace {
 
 constexpr double kR = 0.005;
-constexpr int kSide = 10;  // 1000 spheres
+constexpr int kSide = 13;  // 2197 spheres
 
 struct Outcome {
   int fragments = 0;
