@@ -12,15 +12,26 @@ BondGeometry BondGeometry::of(double bond_radius) {
 
 namespace {
 
-// Turns v by the rotation that takes unit vector a to unit vector b (Rodrigues): the stored shear
-// force and moments follow the bond plane exactly, keeping their length (no energy leak).
-Vec3 turn(const Vec3& v, const Vec3& a, const Vec3& b) {
-  const Vec3 axis = a.cross(b);
-  const double s = axis.norm(), c = a.dot(b);
-  if (s < 1e-300) return v;
-  const Vec3 k = axis / s;
-  return v * c + k.cross(v) * s + k * (k.dot(v) * (1 - c));
-}
+// The rotation that takes unit vector a to unit vector b (Rodrigues), found once per bond and step
+// and applied to the stored shear force and bending moment: they follow the bond plane exactly,
+// keeping their length (no energy leak).
+struct Turn {
+  Vec3 axis;  // unit
+  double sin = 0, cos = 1;
+  bool none = true;
+
+  Turn(const Vec3& a, const Vec3& b) {
+    const Vec3 cross = a.cross(b);
+    sin = cross.norm();
+    cos = a.dot(b);
+    none = sin < 1e-300;
+    if (!none) axis = cross / sin;
+  }
+  Vec3 operator()(const Vec3& v) const {
+    if (none) return v;
+    return v * cos + axis.cross(v) * sin + axis * (axis.dot(v) * (1 - cos));
+  }
+};
 
 }  // namespace
 
@@ -40,9 +51,10 @@ BondLoad bond_step(Bond& b, const BondMotion& m, const Vec3& lever_i, const Vec3
   if (b.state != BondBreak::Intact) return {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   const Vec3& n = m.normal;
   if (!b.normal.isZero(0) && b.normal != n) {
-    b.shear_force = turn(b.shear_force, b.normal, n);
-    b.twist = turn(b.twist, b.normal, n);
-    b.bending = turn(b.bending, b.normal, n);
+    const Turn turn(b.normal, n);
+    b.shear_force = turn(b.shear_force);
+    b.bending = turn(b.bending);
+    b.twist = b.twist.dot(b.normal) * n;  // along the axis: it turns with it
   }
   b.normal = n;
   // the increments of P&C eqs. 2-5 (dUn > 0 when i moves away from j: the compression drops)
