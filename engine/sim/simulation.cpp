@@ -14,6 +14,10 @@
 namespace dem {
 namespace {
 
+// A solid sphere of radius r: its mass, and its moment of inertia about a diameter.
+double sphere_mass(double density, double r) { return density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
+double sphere_inertia(double m, double r) { return 0.4 * m * r * r; }
+
 Particles make_particles(const Scene& scene) {
   Particles p;
   const std::size_t n = scene.particles.size();
@@ -31,14 +35,14 @@ Particles make_particles(const Scene& scene) {
   for (std::size_t i = 0; i < n; ++i) {
     const ParticleInit& in = scene.particles[i];
     const double r = in.radius;
-    const double m = scene.materials[in.material].density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    const double m = sphere_mass(scene.materials[in.material].density, r);
     p.x[i] = in.position;
     p.v[i] = in.fixed ? Vec3::Zero() : in.velocity;
     p.w[i] = in.fixed ? Vec3::Zero() : in.angular_velocity;
     p.radius[i] = r;
     p.mass[i] = m;
     p.inv_mass[i] = in.fixed ? 0 : 1 / m;
-    p.inv_inertia[i] = in.fixed ? 0 : 1 / (0.4 * m * r * r);  // solid sphere
+    p.inv_inertia[i] = in.fixed ? 0 : 1 / sphere_inertia(m, r);
     p.material[i] = in.material;
     p.id[i] = static_cast<int>(i);
     if (!in.force.isZero(0)) {
@@ -74,6 +78,7 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
   state_.half_kick.assign(state_.particles.size(), Vec3::Zero());
   state_.gravity = scene_.gravity;
   state_.local_damping = scene_.numerics.local_damping;
+  for (const ParticleInit& init : scene_.particles) largest_given_radius_ = std::max(largest_given_radius_, init.radius);
   const int boundaries = static_cast<int>(scene_.walls.size());
   plane_index_.assign(boundaries, -1);
   mesh_index_.assign(boundaries, -1);
@@ -197,24 +202,21 @@ double Simulation::grow() {
   const double share = std::min(1.0, static_cast<double>(step_ + 1) / static_cast<double>(g.steps));
   const double scale = 1 + (g.factor - 1) * share;
   Particles& p = state_.particles;
-  double r_max = 0;
   if (step_ < g.steps) {
     growth_scale_ = scale;
     for (std::size_t i = 0; i < p.size(); ++i) {
       const ParticleInit& init = scene_.particles[p.id[i]];
       const double r = init.radius * scale;
-      const double m = scene_.materials[init.material].density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      const double m = sphere_mass(scene_.materials[init.material].density, r);
       p.radius[i] = r;
       p.mass[i] = m;
       if (p.inv_mass[i] > 0) {
         p.inv_mass[i] = 1 / m;
-        p.inv_inertia[i] = 1 / (0.4 * m * r * r);
+        p.inv_inertia[i] = 1 / sphere_inertia(m, r);
       }
     }
   }
-  if (growth_scale_ == growth_at_build_) return 0;  // done growing and listed since
-  for (const ParticleInit& init : scene_.particles) r_max = std::max(r_max, init.radius);
-  return r_max * (growth_scale_ - growth_at_build_);
+  return largest_given_radius_ * (growth_scale_ - growth_at_build_);
 }
 
 double Simulation::half_kick_and_drift() {

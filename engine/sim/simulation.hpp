@@ -111,6 +111,7 @@ class Simulation {
   std::vector<WallPose> pose_at_build_;     // per scene wall
   std::vector<double> wall_extent_;         // largest distance of a wall's points from its centre
   std::vector<BoundaryLoad> boundary_loads_;
+  double largest_given_radius_ = 0;         // of the scene's particles (growth scales it)
   double growth_scale_ = 1;                 // radii now over their given sizes (Scene::growth)
   double growth_at_build_ = 1;              // the same at the last build
 };
