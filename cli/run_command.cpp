@@ -9,7 +9,7 @@
 #include "cli/progress_bar.hpp"
 #include "core/errors.hpp"
 #include "output/legacy_output.hpp"
-#include "output/statistics_output.hpp"
+#include "output/run_writers.hpp"
 #include "sim/state_io.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -55,7 +55,6 @@ bool parse_run_args(const std::vector<std::string>& args, RunArgs& out) {
       const std::string* v = value("--restart");
       if (v == nullptr) return false;
       out.restart = *v;
-      ++k;
     } else if (a == "--quiet") {
       out.quiet = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -116,19 +115,8 @@ int run_command(const std::vector<std::string>& args) {
                 sim.scene().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
     std::fflush(stdout);
 
-    std::vector<std::unique_ptr<Observer>> writers;
-    const std::filesystem::path dir(a.out);
-    if (sim.scene().outputs.animation)
-      writers.push_back(std::make_unique<AnimationWriter>((dir / "ANIMATION_3D.dat").string(), sim, append));
-    if (sim.scene().outputs.force_chains)
-      writers.push_back(std::make_unique<ForceChainWriter>((dir / "ForceChain_3D.dat").string(), append));
-    if (WallWriter::wanted(sim)) writers.push_back(std::make_unique<WallWriter>(dir.string(), sim, append));
-    if (sim.scene().outputs.force_chains && !sim.scene().walls.empty())
-      writers.push_back(std::make_unique<WallForceChainWriter>((dir / "Wall_ForceChain_3D.dat").string(), append));
-    if (ForceDisplacementWriter::loading_wall(sim) >= 0)
-      writers.push_back(std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string(), append));
-    writers.push_back(std::make_unique<StatisticsWriter>(dir.string(), sim, append));
-    writers.push_back(std::make_unique<StateWriter>((dir / "restart.dat").string()));
+    std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, a.out, append);
+    writers.push_back(std::make_unique<StateWriter>((std::filesystem::path(a.out) / "restart.dat").string()));
     std::vector<Observer*> observers;
     for (auto& w : writers) observers.push_back(w.get());
 

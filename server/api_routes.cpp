@@ -1,0 +1,196 @@
+#include "server/api_routes.hpp"
+
+#include <algorithm>
+#include <system_error>
+
+#include "core/errors.hpp"
+#include "server/version.hpp"
+#include "spec/spec_loader.hpp"
+
+namespace dem::server {
+namespace fs = std::filesystem;
+namespace {
+
+using Response = http::response<http::string_body>;
+
+std::optional<std::int64_t> job_id(const std::string& text) {
+  if (text.empty() || text.size() > 18 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return std::nullopt;
+  return std::stoll(text);
+}
+
+std::string content_type(const Request& req) {
+  std::string type(req[http::field::content_type]);
+  type = type.substr(0, type.find(';'));
+  type.erase(std::remove(type.begin(), type.end(), ' '), type.end());
+  std::transform(type.begin(), type.end(), type.begin(), [](unsigned char c) { return std::tolower(c); });
+  return type;
+}
+
+Response method_not_allowed(const Request& req, const char* allowed) {
+  Response res = error_response(req, http::status::method_not_allowed,
+                                std::string(req.method_string()) + " is not allowed here (allowed: " + allowed + ")");
+  res.set(http::field::allow, allowed);
+  return res;
+}
+
+Response submit(const Request& req, ApiContext& ctx) {
+  const std::string type = content_type(req);
+  api::JobSpec spec;
+  try {
+    if (type == "application/json") {
+      spec = spec::parse_json(req.body());
+    } else if (type == "application/x-protobuf" || type == "application/protobuf" || type == "application/octet-stream") {
+      spec = spec::parse_binary(req.body());
+    } else {
+      return error_response(req, http::status::unsupported_media_type,
+                            "Content-Type \"" + type +
+                                "\" is not a job spec: send application/json or application/x-protobuf (proto/dem.proto, JobSpec)");
+    }
+    const JobManager::Submitted s = ctx.jobs.submit(spec, std::string(req["Idempotency-Key"]));
+    Response res = json_response(req, s.created ? http::status::created : http::status::ok, to_json(s.job));
+    res.set(http::field::location, "/api/jobs/" + std::to_string(s.job.id));
+    if (!s.created) res.set("Idempotent-Replayed", "true");
+    return res;
+  } catch (const spec::SpecError& e) {
+    return error_response(req, http::status::bad_request, "invalid spec", e.problems());
+  } catch (const SceneError& e) {
+    return error_response(req, http::status::bad_request, "invalid spec", {e.what()});
+  }
+}
+
+Response list_jobs(const Request& req, const Target& target, ApiContext& ctx) {
+  std::optional<JobState> only;
+  if (const auto q = target.query.find("state"); q != target.query.end()) {
+    only = job_state_from(q->second);
+    if (!only)
+      return error_response(req, http::status::bad_request,
+                            "state=" + q->second + " is not a job state (queued, running, succeeded, failed, cancelled, interrupted)");
+  }
+  nlohmann::json jobs = nlohmann::json::array();
+  for (const JobRecord& j : ctx.jobs.list())
+    if (!only || j.state == *only) jobs.push_back(to_json(j));
+  return json_response(req, http::status::ok, {{"jobs", jobs}});
+}
+
+Response action(const Request& req, const ActionResult& r, http::status done = http::status::ok) {
+  switch (r.outcome) {
+    case Outcome::NotFound: return error_response(req, http::status::not_found, r.message);
+    case Outcome::Conflict: return error_response(req, http::status::conflict, r.message);
+    case Outcome::Done: break;
+  }
+  if (done == http::status::no_content) {
+    Response res{http::status::no_content, req.version()};
+    res.keep_alive(req.keep_alive());
+    res.prepare_payload();
+    return res;
+  }
+  return json_response(req, done, to_json(r.job));
+}
+
+Response list_artifacts(const Request& req, std::int64_t id, ApiContext& ctx) {
+  const JobFolder folder = ctx.jobs.folder(id);
+  nlohmann::json files = nlohmann::json::array();
+  std::vector<std::pair<std::string, std::uintmax_t>> found;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder.outputs(), ec))
+    if (e.is_regular_file()) found.emplace_back(e.path().filename().string(), e.file_size());
+  if (fs::exists(folder.archive())) found.emplace_back(JobFolder::kArchiveName, fs::file_size(folder.archive()));
+  std::sort(found.begin(), found.end());
+  for (const auto& [name, size] : found)
+    files.push_back({{"name", name}, {"size", size}, {"url", "/api/jobs/" + std::to_string(id) + "/artifacts/" + name}});
+  return json_response(req, http::status::ok, {{"job", id}, {"artifacts", files}});
+}
+
+http::message_generator artifact(const Request& req, std::int64_t id, const std::string& name, ApiContext& ctx) {
+  if (!is_artifact_name(name))
+    return error_response(req, http::status::bad_request,
+                          "\"" + name + "\" is not an artifact name (a file name from GET /api/jobs/" + std::to_string(id) +
+                              "/artifacts; no folders, no '..')");
+  const JobFolder folder = ctx.jobs.folder(id);
+  const fs::path path = name == JobFolder::kArchiveName ? folder.archive() : folder.outputs() / name;
+  boost::beast::error_code ec;
+  http::file_body::value_type body;
+  if (fs::is_regular_file(path)) body.open(path.c_str(), boost::beast::file_mode::scan, ec);
+  if (!fs::is_regular_file(path) || ec)
+    return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
+  const auto size = body.size();
+  http::response<http::file_body> res{std::piecewise_construct, std::make_tuple(std::move(body)),
+                                      std::make_tuple(http::status::ok, req.version())};
+  const bool tar = name == JobFolder::kArchiveName;
+  res.set(http::field::content_type, tar ? "application/x-tar" : "text/plain; charset=utf-8");
+  res.set(http::field::content_disposition, "attachment; filename=\"" + name + "\"");
+  res.set(http::field::cache_control, "no-store");
+  res.content_length(size);
+  res.keep_alive(req.keep_alive());
+  if (req.method() == http::verb::head) {
+    http::response<http::empty_body> head{http::status::ok, req.version()};
+    for (const auto& field : res.base()) head.set(field.name_string(), field.value());
+    head.content_length(size);
+    head.keep_alive(req.keep_alive());
+    return head;
+  }
+  return res;
+}
+
+}  // namespace
+
+bool is_artifact_name(const std::string& name) {
+  if (name.empty() || name.size() > 100 || name[0] == '.') return false;
+  return std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '.' || c == '_' || c == '-';
+  });
+}
+
+http::message_generator handle_api(const Request& req, const Target& target, ApiContext& ctx) {
+  const std::vector<std::string>& s = target.segments;  // s[0] == "api"
+  const http::verb m = req.method();
+  const bool get = m == http::verb::get || m == http::verb::head;
+  if (s.size() == 2 && s[1] == "health") {
+    if (!get) return method_not_allowed(req, "GET");
+    nlohmann::json counts = nlohmann::json::object();
+    for (const auto& [state, n] : ctx.jobs.counts()) counts[state] = n;
+    return json_response(req, http::status::ok, {{"status", "ok"}, {"version", kVersion}, {"jobs", counts}});
+  }
+  if (s.size() == 2 && s[1] == "openapi.json") {
+    if (!get) return method_not_allowed(req, "GET");
+    Response res{http::status::ok, req.version()};
+    res.set(http::field::content_type, "application/json");
+    res.keep_alive(req.keep_alive());
+    res.body() = ctx.openapi;
+    res.prepare_payload();
+    return res;
+  }
+  if (s.size() >= 2 && s[1] == "jobs") {
+    if (s.size() == 2) {
+      if (m == http::verb::post) return submit(req, ctx);
+      if (get) return list_jobs(req, target, ctx);
+      return method_not_allowed(req, "GET, POST");
+    }
+    const std::optional<std::int64_t> id = job_id(s[2]);
+    const std::optional<JobRecord> job = id ? ctx.jobs.get(*id) : std::nullopt;
+    if (!job) return error_response(req, http::status::not_found, "no job " + s[2]);
+    if (s.size() == 3) {
+      if (get) return json_response(req, http::status::ok, to_json(*job));
+      if (m == http::verb::delete_) return action(req, ctx.jobs.remove(*id), http::status::no_content);
+      return method_not_allowed(req, "GET, DELETE");
+    }
+    if (s.size() == 4 && (s[3] == "cancel" || s[3] == "resume")) {
+      if (m != http::verb::post) return method_not_allowed(req, "POST");
+      return action(req, s[3] == "cancel" ? ctx.jobs.cancel(*id) : ctx.jobs.resume(*id));
+    }
+    if (s.size() == 4 && s[3] == "frames")
+      return error_response(req, http::status::upgrade_required,
+                            "the frames of job " + s[2] + " are a WebSocket stream: connect with ws://");
+    if (s[3] == "artifacts") {
+      if (!get) return method_not_allowed(req, "GET");
+      if (s.size() == 4) return list_artifacts(req, *id, ctx);
+      std::string name = s[4];
+      for (std::size_t k = 5; k < s.size(); ++k) name += "/" + s[k];  // a path, refused by is_artifact_name
+      return artifact(req, *id, name, ctx);
+    }
+  }
+  return error_response(req, http::status::not_found, "no API at " + std::string(req.target()) + " (see /api/openapi.json)");
+}
+
+}  // namespace dem::server

@@ -1,0 +1,105 @@
+#include "server/frame_session.hpp"
+
+#include <vector>
+
+#include <boost/asio/post.hpp>
+
+namespace dem::server {
+namespace beast = boost::beast;
+namespace websocket = beast::websocket;
+
+FrameSession::FrameSession(boost::asio::ip::tcp::socket&& socket, bool force_chains)
+    : ws_(std::move(socket)), force_chains_(force_chains) {}
+
+void FrameSession::start(Request request, std::shared_ptr<FrameChannel> channel, std::string why) {
+  channel_ = std::move(channel);
+  refuse_reason_ = std::move(why);
+  ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+  ws_.set_option(websocket::stream_base::decorator(
+      [](websocket::response_type& res) { res.set(http::field::server, "dem-server"); }));
+  ws_.async_accept(request, beast::bind_front_handler(&FrameSession::on_accept, shared_from_this()));
+}
+
+void FrameSession::on_accept(beast::error_code ec) {
+  if (ec) return;
+  if (!channel_ || !channel_->join(shared_from_this())) {
+    end_reason_ = refuse_reason_.empty() ? "the job is over" : refuse_reason_;
+    ending_ = true;
+    close();
+    return;
+  }
+  read();
+}
+
+void FrameSession::read() {
+  ws_.async_read(incoming_, beast::bind_front_handler(&FrameSession::on_read, shared_from_this()));
+}
+
+void FrameSession::on_read(beast::error_code ec, std::size_t) {
+  if (ec) {  // the viewer left (or the socket failed)
+    leave();
+    return;
+  }
+  if (ws_.got_text()) {
+    const std::string text = beast::buffers_to_string(incoming_.data());
+    const nlohmann::json message = nlohmann::json::parse(text, nullptr, false);
+    if (message.is_object() && message.contains("forceChains") && message["forceChains"].is_boolean())
+      force_chains_ = message["forceChains"].get<bool>();
+  }
+  incoming_.consume(incoming_.size());
+  read();
+}
+
+void FrameSession::offer(std::shared_ptr<const EncodedFrame> frame) {
+  boost::asio::post(ws_.get_executor(), [self = shared_from_this(), frame = std::move(frame)]() mutable {
+    self->pending_ = std::move(frame);  // a frame not yet written is replaced: skipped
+    if (!self->writing_) self->write_next();
+  });
+}
+
+void FrameSession::end(const std::string& reason) {
+  boost::asio::post(ws_.get_executor(), [self = shared_from_this(), reason] {
+    self->ending_ = true;
+    self->end_reason_ = reason;
+    if (!self->writing_) self->write_next();  // the last frame first, then the close
+  });
+}
+
+void FrameSession::write_next() {
+  if (closed_) return;
+  if (!pending_) {
+    if (ending_) close();
+    return;
+  }
+  writing_ = std::move(pending_);
+  pending_.reset();
+  std::vector<boost::asio::const_buffer> parts{boost::asio::buffer(*writing_->base)};
+  if (!radii_sent_ || writing_->radii_changed) parts.push_back(boost::asio::buffer(*writing_->radii));
+  radii_sent_ = true;
+  if (force_chains_ && writing_->force_chains) parts.push_back(boost::asio::buffer(*writing_->force_chains));
+  ws_.binary(true);
+  ws_.async_write(parts, beast::bind_front_handler(&FrameSession::on_write, shared_from_this()));
+}
+
+void FrameSession::on_write(beast::error_code ec, std::size_t) {
+  writing_.reset();
+  if (ec) {
+    leave();
+    return;
+  }
+  write_next();
+}
+
+void FrameSession::close() {
+  if (closed_) return;
+  closed_ = true;
+  std::string reason = end_reason_.substr(0, 120);  // a close frame's reason is at most 123 bytes
+  ws_.async_close(websocket::close_reason(websocket::close_code::normal, reason),
+                  [self = shared_from_this()](beast::error_code) { self->leave(); });
+}
+
+void FrameSession::leave() {
+  if (channel_) channel_->leave(this);
+}
+
+}  // namespace dem::server

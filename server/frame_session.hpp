@@ -1,0 +1,50 @@
+// A viewer's WebSocket on /api/jobs/{id}/frames: binary messages, each one Frame (proto/dem.proto).
+// It holds at most the frame being written and the latest one offered: a slow viewer skips frames
+// and never makes the server queue them. The viewer may send the text {"forceChains": true|false}.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/websocket.hpp>
+
+#include "server/frame_hub.hpp"
+#include "server/http_util.hpp"
+
+namespace dem::server {
+
+class FrameSession final : public FrameViewer, public std::enable_shared_from_this<FrameSession> {
+ public:
+  FrameSession(boost::asio::ip::tcp::socket&& socket, bool force_chains);
+  // Accepts the upgrade, then joins `channel`; with no channel, closes at once saying `why`.
+  void start(Request request, std::shared_ptr<FrameChannel> channel, std::string why);
+
+  void offer(std::shared_ptr<const EncodedFrame> frame) override;
+  void end(const std::string& reason) override;
+  bool wants_force_chains() const override { return force_chains_.load(); }
+
+ private:
+  void on_accept(boost::beast::error_code ec);
+  void read();
+  void on_read(boost::beast::error_code ec, std::size_t bytes);
+  void write_next();
+  void on_write(boost::beast::error_code ec, std::size_t bytes);
+  void close();
+  void leave();
+
+  boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
+  boost::beast::flat_buffer incoming_;
+  std::shared_ptr<FrameChannel> channel_;
+  std::string refuse_reason_;
+  std::atomic<bool> force_chains_;
+  // on the session's strand only:
+  std::shared_ptr<const EncodedFrame> writing_, pending_;
+  bool radii_sent_ = false;
+  bool ending_ = false;
+  bool closed_ = false;
+  std::string end_reason_;
+};
+
+}  // namespace dem::server

@@ -1,0 +1,121 @@
+#include "server/http_server.hpp"
+
+#include <cstdio>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <boost/asio/strand.hpp>
+
+#include "server/http_session.hpp"
+#include "server/openapi.hpp"
+
+namespace dem::server {
+namespace asio = boost::asio;
+using tcp = asio::ip::tcp;
+
+namespace {
+
+// Accepts connections, each on a strand of its own.
+class Listener : public std::enable_shared_from_this<Listener> {
+ public:
+  Listener(asio::io_context& io, tcp::endpoint endpoint, ServerState& state) : io_(io), acceptor_(io), state_(state) {
+    acceptor_.open(endpoint.protocol());
+    acceptor_.set_option(asio::socket_base::reuse_address(true));
+    acceptor_.bind(endpoint);
+    acceptor_.listen(asio::socket_base::max_listen_connections);
+  }
+  unsigned short port() const { return acceptor_.local_endpoint().port(); }
+  void accept() {
+    acceptor_.async_accept(asio::make_strand(io_), [self = shared_from_this()](boost::system::error_code ec, tcp::socket s) {
+      if (ec == asio::error::operation_aborted) return;  // stopped
+      if (!ec) std::make_shared<HttpSession>(std::move(s), self->state_)->run();
+      self->accept();
+    });
+  }
+  void stop() {
+    asio::post(acceptor_.get_executor(), [self = shared_from_this()] {
+      boost::system::error_code ignored;
+      self->acceptor_.close(ignored);
+    });
+  }
+
+ private:
+  asio::io_context& io_;
+  tcp::acceptor acceptor_;
+  ServerState& state_;
+};
+
+}  // namespace
+
+bool is_loopback(const std::string& address) {
+  if (address == "localhost") return true;
+  boost::system::error_code ec;
+  const asio::ip::address a = asio::ip::make_address(address, ec);
+  return !ec && a.is_loopback();
+}
+
+int run_server(const ServerOptions& options) {
+  if (!is_loopback(options.address) && options.token.empty()) {
+    std::fprintf(stderr,
+                 "dem-server: listening on %s (not loopback) needs an access token: give --token TOKEN or set "
+                 "DEM_SERVER_TOKEN; every request must then carry it\n",
+                 options.address.c_str());
+    return 2;
+  }
+  FrameHub frames;
+  ManagerOptions manager_options;
+  manager_options.data = options.data;
+  manager_options.concurrency = options.concurrency;
+  manager_options.threads_per_job = options.threads_per_job;
+  manager_options.checkpoint_seconds = options.checkpoint_seconds;
+  JobManager jobs(manager_options, frames);
+  ServerState state{jobs, frames, openapi_json(), options.web, options.token, options.max_body};
+
+  asio::io_context io(options.io_threads);
+  boost::system::error_code ec;
+  const asio::ip::address address = asio::ip::make_address(options.address == "localhost" ? "127.0.0.1" : options.address, ec);
+  if (ec) {
+    std::fprintf(stderr, "dem-server: --address %s is not an IP address\n", options.address.c_str());
+    return 2;
+  }
+  std::shared_ptr<Listener> listener;
+  try {
+    listener = std::make_shared<Listener>(io, tcp::endpoint(address, options.port), state);
+  } catch (const boost::system::system_error& e) {
+    std::fprintf(stderr, "dem-server: cannot listen on %s port %u: %s\n", options.address.c_str(), options.port,
+                 e.code().message().c_str());
+    return 1;
+  }
+  listener->accept();
+  jobs.start();
+  const std::string host = address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
+  std::printf("dem-server listening on http://%s:%u/ (data: %s)\n", host.c_str(), listener->port(), options.data.c_str());
+  std::fflush(stdout);
+
+  asio::signal_set signals(io, SIGINT, SIGTERM);
+  asio::steady_timer grace(io);
+  signals.async_wait([&](boost::system::error_code, int signal) {
+    std::printf("dem-server: signal %d: stopping (running jobs are checkpointed and stay queued)\n", signal);
+    std::fflush(stdout);
+    listener->stop();
+    jobs.shutdown();
+    frames.close_all("the server is shutting down");
+    grace.expires_after(std::chrono::milliseconds(500));  // time for the close frames to go out
+    grace.async_wait([&](boost::system::error_code) { io.stop(); });
+  });
+
+  std::vector<std::thread> threads;
+  for (int k = 1; k < options.io_threads; ++k) threads.emplace_back([&] { io.run(); });
+  io.run();
+  for (std::thread& t : threads) t.join();
+  jobs.shutdown();
+  std::printf("dem-server: stopped\n");
+  return 0;
+}
+
+}  // namespace dem::server

@@ -1,0 +1,31 @@
+// dem-server: one port for the REST API, the frame WebSockets and the viewer's files. Runs until
+// SIGTERM or SIGINT, then stops accepting, checkpoints running jobs (they run on after a restart)
+// and closes the streams.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+namespace dem::server {
+
+struct ServerOptions {
+  std::string address = "127.0.0.1";
+  unsigned short port = 8080;         // 0: any free port (printed)
+  std::filesystem::path data;         // jobs.db and jobs/
+  std::filesystem::path web;          // the viewer's files
+  std::string token;                  // required on every request when not empty
+  int concurrency = 1;                // jobs at once
+  int threads_per_job = 0;            // 0: the cores shared among the running jobs
+  std::size_t max_body = 64u << 20;   // bytes of a request body
+  double checkpoint_seconds = 10;
+  int io_threads = 2;
+};
+
+// Serves until a stop signal; returns the process's exit status. Prints the URL when listening.
+int run_server(const ServerOptions& options);
+
+// True for 127.0.0.0/8, ::1 and "localhost".
+bool is_loopback(const std::string& address);
+
+}  // namespace dem::server

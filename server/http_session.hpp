@@ -1,0 +1,48 @@
+// One HTTP connection: reads requests (bodies up to a limit), checks the token, and answers from
+// the REST API or the viewer's files, or hands the socket to a frame WebSocket.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+
+#include "server/api_routes.hpp"
+#include "server/frame_hub.hpp"
+
+namespace dem::server {
+
+// What every connection shares.
+struct ServerState {
+  JobManager& jobs;
+  FrameHub& frames;
+  std::string openapi;
+  std::filesystem::path web;
+  std::string token;
+  std::size_t max_body;
+};
+
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& state);
+  void run();
+
+ private:
+  void read();
+  void on_read(boost::beast::error_code ec, std::size_t bytes);
+  void send(http::message_generator message);
+  void on_write(bool keep_alive, boost::beast::error_code ec, std::size_t bytes);
+  void upgrade(Request request, const Target& target);
+  void close();
+
+  boost::beast::tcp_stream stream_;
+  boost::beast::flat_buffer buffer_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  ServerState& state_;
+};
+
+}  // namespace dem::server

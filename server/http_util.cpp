@@ -1,0 +1,101 @@
+#include "server/http_util.hpp"
+
+namespace dem::server {
+namespace {
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+}  // namespace
+
+std::optional<std::string> percent_decode(std::string_view text) {
+  std::string out;
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    if (text[k] != '%') {
+      out.push_back(text[k]);
+      continue;
+    }
+    const int hi = k + 1 < text.size() ? hex_value(text[k + 1]) : -1;
+    const int lo = k + 2 < text.size() ? hex_value(text[k + 2]) : -1;
+    if (hi < 0 || lo < 0) return std::nullopt;
+    const char c = static_cast<char>(hi * 16 + lo);
+    if (c == '\0') return std::nullopt;
+    out.push_back(c);
+    k += 2;
+  }
+  return out;
+}
+
+std::optional<Target> parse_target(std::string_view target) {
+  Target out;
+  const std::size_t q = target.find('?');
+  const std::string_view path = target.substr(0, q);
+  std::size_t start = 0;
+  while (start <= path.size()) {
+    std::size_t end = path.find('/', start);
+    if (end == std::string_view::npos) end = path.size();
+    if (end > start) {
+      std::optional<std::string> segment = percent_decode(path.substr(start, end - start));
+      if (!segment) return std::nullopt;
+      out.segments.push_back(std::move(*segment));
+    }
+    start = end + 1;
+  }
+  if (q != std::string_view::npos) {
+    std::string_view query = target.substr(q + 1);
+    while (!query.empty()) {
+      const std::size_t amp = query.find('&');
+      const std::string_view pair = query.substr(0, amp);
+      const std::size_t eq = pair.find('=');
+      std::optional<std::string> key = percent_decode(pair.substr(0, eq));
+      std::optional<std::string> value =
+          eq == std::string_view::npos ? std::optional<std::string>("") : percent_decode(pair.substr(eq + 1));
+      if (!key || !value) return std::nullopt;
+      out.query[*key] = *value;
+      if (amp == std::string_view::npos) break;
+      query = query.substr(amp + 1);
+    }
+  }
+  return out;
+}
+
+http::response<http::string_body> json_response(const Request& req, http::status status, const nlohmann::json& body) {
+  http::response<http::string_body> res{status, req.version()};
+  res.set(http::field::content_type, "application/json");
+  res.set(http::field::cache_control, "no-store");
+  res.keep_alive(req.keep_alive());
+  res.body() = body.dump(2) + "\n";
+  res.prepare_payload();
+  return res;
+}
+
+http::response<http::string_body> error_response(const Request& req, http::status status, const std::string& message,
+                                                 const std::vector<std::string>& problems) {
+  nlohmann::json body = {{"error", message}};
+  if (!problems.empty()) body["problems"] = problems;
+  return json_response(req, status, body);
+}
+
+bool tokens_equal(std::string_view a, std::string_view b) {
+  unsigned char differ = a.size() == b.size() ? 0 : 1;
+  for (std::size_t k = 0; k < a.size(); ++k) differ |= static_cast<unsigned char>(a[k] ^ b[k % (b.size() ? b.size() : 1)]);
+  return differ == 0 && !b.empty();
+}
+
+std::string request_token(const Request& req, const Target& target) {
+  const auto header = req.find(http::field::authorization);
+  if (header != req.end()) {
+    const std::string_view value(header->value().data(), header->value().size());
+    constexpr std::string_view bearer = "Bearer ";
+    if (value.substr(0, bearer.size()) == bearer) return std::string(value.substr(bearer.size()));
+    return std::string(value);
+  }
+  const auto q = target.query.find("access_token");
+  return q == target.query.end() ? "" : q->second;
+}
+
+}  // namespace dem::server

@@ -1,0 +1,38 @@
+// Small pieces of HTTP the server needs: splitting a target into path and query, decoding percent
+// escapes, JSON answers, and comparing tokens in constant time.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <boost/beast/http.hpp>
+#include <nlohmann/json.hpp>
+
+namespace dem::server {
+
+namespace http = boost::beast::http;
+using Request = http::request<http::string_body>;
+
+struct Target {
+  std::vector<std::string> segments;  // the path's segments, percent-decoded
+  std::map<std::string, std::string> query;
+};
+
+// Empty optional when the path has a bad escape ("%zz") or an encoded NUL.
+std::optional<Target> parse_target(std::string_view target);
+std::optional<std::string> percent_decode(std::string_view text);
+
+http::response<http::string_body> json_response(const Request& req, http::status status, const nlohmann::json& body);
+// {"error": message} (plus "problems" when given).
+http::response<http::string_body> error_response(const Request& req, http::status status, const std::string& message,
+                                                 const std::vector<std::string>& problems = {});
+
+bool tokens_equal(std::string_view a, std::string_view b);  // time independent of where they differ
+// The token of a request: "Authorization: Bearer T", or ?access_token=T (browsers cannot set
+// headers on a WebSocket).
+std::string request_token(const Request& req, const Target& target);
+
+}  // namespace dem::server

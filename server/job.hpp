@@ -1,0 +1,42 @@
+// A job of the server: its record in the job table and how it is shown over REST.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace dem::server {
+
+// interrupted: it was running when the server died; it can be resumed from its last checkpoint.
+enum class JobState { Queued, Running, Succeeded, Failed, Cancelled, Interrupted };
+
+const char* to_string(JobState state);
+std::optional<JobState> job_state_from(const std::string& text);
+bool is_final(JobState state);  // succeeded, failed or cancelled: nothing more will happen to it
+
+struct JobRecord {
+  std::int64_t id = 0;
+  std::string name;
+  JobState state = JobState::Queued;
+  std::string created_at, started_at, finished_at;  // ISO 8601 UTC; empty until it happens
+  std::string error;                                // why it failed or was interrupted
+  std::string idempotency_key;
+  std::int64_t particles = 0;
+  std::int64_t step = 0;
+  std::int64_t total_steps = 0;
+  double time_step = 0;         // s
+  double steps_per_second = 0;  // while running
+  double seconds_left = 0;      // while running
+  std::int64_t checkpoint_step = -1;  // step of the last checkpoint; -1: none
+
+  double progress() const;
+};
+
+nlohmann::json to_json(const JobRecord& job);
+
+// Now, as ISO 8601 UTC with milliseconds ("2026-11-22T07:40:01.250Z").
+std::string utc_now();
+
+}  // namespace dem::server

@@ -1,0 +1,107 @@
+#include "server/job_execution.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+#include "output/run_writers.hpp"
+#include "server/checkpoint.hpp"
+#include "spec/spec_loader.hpp"
+
+namespace dem::server {
+namespace {
+
+// Saves a checkpoint at a frame when the last one is `seconds` old (always at the first frame of a
+// run that has none, so a crash soon after the start resumes rather than starting again).
+class Checkpointer final : public Observer {
+ public:
+  Checkpointer(const JobFolder& folder, double seconds, std::function<void(std::int64_t)> saved)
+      : folder_(folder), seconds_(seconds), saved_(std::move(saved)) {}
+  void frame(const Simulation& sim) override {
+    const auto now = std::chrono::steady_clock::now();
+    if (written_ && std::chrono::duration<double>(now - last_).count() < seconds_) return;
+    save(sim);
+  }
+  void save(const Simulation& sim) {
+    write_checkpoint(sim, folder_.outputs().string(), folder_.checkpoint().string());
+    last_ = std::chrono::steady_clock::now();
+    written_ = true;
+    if (saved_) saved_(sim.step_count());
+  }
+
+ private:
+  const JobFolder& folder_;
+  double seconds_;
+  std::function<void(std::int64_t)> saved_;
+  std::chrono::steady_clock::time_point last_;
+  bool written_ = false;
+};
+
+// Encodes and publishes a frame only while somebody watches: an unwatched job pays nothing.
+class FramePublisher final : public Observer {
+ public:
+  FramePublisher(std::int64_t job, std::shared_ptr<FrameChannel> channel) : encoder_(job), channel_(std::move(channel)) {}
+  void frame(const Simulation& sim) override {
+    if (!channel_ || !channel_->has_viewers()) return;
+    channel_->publish(std::make_shared<const EncodedFrame>(encoder_.encode(sim, channel_->wants_force_chains())));
+  }
+
+ private:
+  FrameEncoder encoder_;
+  std::shared_ptr<FrameChannel> channel_;
+};
+
+api::JobSpec read_spec(const JobFolder& folder) {
+  std::ifstream in(folder.spec(), std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  if (!in) throw std::runtime_error("cannot read the job's spec " + folder.spec().string());
+  return spec::parse_binary(bytes.str());
+}
+
+}  // namespace
+
+ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks) {
+  ExecutionResult result;
+  try {
+    Scene scene = spec::to_scene(read_spec(folder));
+    if (hooks.threads > 0 && (scene.numerics.threads == 0 || scene.numerics.threads > hooks.threads))
+      scene.numerics.threads = hooks.threads;
+    Simulation sim(std::move(scene));
+    std::filesystem::create_directories(folder.outputs());
+    const bool resume = std::filesystem::exists(folder.checkpoint());
+    if (resume) resume_from_checkpoint(sim, folder.outputs().string(), folder.checkpoint().string());
+    if (hooks.on_start) hooks.on_start(sim);
+
+    std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, folder.outputs().string(), resume);
+    auto publisher = std::make_unique<FramePublisher>(hooks.job, hooks.frames);
+    auto checkpointer = std::make_unique<Checkpointer>(folder, hooks.checkpoint_seconds, hooks.on_checkpoint);
+    std::vector<Observer*> observers;
+    for (auto& w : writers) observers.push_back(w.get());
+    observers.push_back(publisher.get());
+    observers.push_back(checkpointer.get());  // last: the files it measures hold this frame
+
+    RunOptions options;
+    options.cancel = hooks.stop;
+    options.on_progress = hooks.on_progress;
+    options.progress_seconds = 0.5;
+    const RunOutcome outcome = run(sim, observers, options);
+    writers.clear();  // closes the files
+    if (outcome.cancelled) {
+      result.kind = ExecutionResult::Kind::Stopped;
+      if (hooks.checkpoint_on_stop && hooks.checkpoint_on_stop->load()) checkpointer->save(sim);
+    } else if (!outcome.ok) {
+      result.kind = ExecutionResult::Kind::Failed;
+      result.error = outcome.error;
+    }
+  } catch (const spec::SpecError& e) {
+    result.kind = ExecutionResult::Kind::Failed;
+    for (const std::string& p : e.problems()) result.error += (result.error.empty() ? "" : "; ") + p;
+  } catch (const std::exception& e) {
+    result.kind = ExecutionResult::Kind::Failed;
+    result.error = e.what();
+  }
+  return result;
+}
+
+}  // namespace dem::server

@@ -1,0 +1,36 @@
+// Runs one job of the server: its spec from its folder, the legacy files into its outputs, live
+// frames to its viewers, a checkpoint now and then; resumed from the checkpoint when there is one.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "server/frame_hub.hpp"
+#include "server/job_folder.hpp"
+#include "sim/runner.hpp"
+
+namespace dem::server {
+
+struct ExecutionHooks {
+  std::int64_t job = 0;
+  int threads = 0;                        // OpenMP threads for the job (0: all cores)
+  double checkpoint_seconds = 10;         // at most one checkpoint per this many seconds (at frames)
+  const std::atomic<bool>* stop = nullptr;              // cancel or shut down: stop between steps
+  const std::atomic<bool>* checkpoint_on_stop = nullptr;  // shut down: save the state where it stopped
+  std::shared_ptr<FrameChannel> frames;   // may be null
+  std::function<void(const Simulation&)> on_start;
+  std::function<void(const Progress&)> on_progress;
+  std::function<void(std::int64_t step)> on_checkpoint;
+};
+
+struct ExecutionResult {
+  enum class Kind { Succeeded, Failed, Stopped };
+  Kind kind = Kind::Succeeded;
+  std::string error;
+};
+
+ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks);
+
+}  // namespace dem::server

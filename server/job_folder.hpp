@@ -1,0 +1,23 @@
+// Where a job keeps its files: DATA/jobs/ID/ holds the spec, the outputs (the legacy files, written
+// as the job runs), the checkpoint and, when the job has succeeded, the archive of its outputs.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace dem::server {
+
+struct JobFolder {
+  std::filesystem::path root;
+
+  JobFolder(const std::filesystem::path& data, std::int64_t id) : root(data / "jobs" / std::to_string(id)) {}
+  std::filesystem::path spec() const { return root / "spec.pb"; }
+  std::filesystem::path outputs() const { return root / "outputs"; }
+  std::filesystem::path checkpoint() const { return root / "checkpoint.dat"; }
+  std::filesystem::path archive() const { return root / kArchiveName; }
+
+  static constexpr const char* kArchiveName = "outputs.tar";
+};
+
+}  // namespace dem::server

@@ -1,0 +1,336 @@
+#include "server/job_manager.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "server/job_execution.hpp"
+#include "server/tar_archive.hpp"
+#include "spec/mesh_files.hpp"
+#include "spec/spec_loader.hpp"
+
+namespace dem::server {
+namespace fs = std::filesystem;
+namespace {
+
+void write_file_atomically(const fs::path& path, const std::string& bytes) {
+  const fs::path temporary = path.string() + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write " + temporary.string());
+  }
+  fs::rename(temporary, path);
+}
+
+}  // namespace
+
+JobManager::JobManager(ManagerOptions options, FrameHub& frames) : options_(std::move(options)), frames_(frames) {
+  fs::create_directories(options_.data / "jobs");
+  store_ = std::make_unique<JobStore>((options_.data / "jobs.db").string());
+  recover();
+}
+
+JobManager::~JobManager() { shutdown(); }
+
+void JobManager::recover() {
+  for (JobRecord& job : store_->load_all()) {
+    if (job.state == JobState::Running) {
+      job.state = JobState::Interrupted;
+      job.error = "the server stopped while the job ran (at step " + std::to_string(job.step) + "); " +
+                  (job.checkpoint_step >= 0 ? "resume it to continue from its checkpoint at step " +
+                                                  std::to_string(job.checkpoint_step)
+                                            : std::string("it had no checkpoint yet: resuming starts it again"));
+      store_->update(job);
+    }
+    if (job.checkpoint_step >= 0 && !fs::exists(folder(job.id).checkpoint())) job.checkpoint_step = -1;
+    if (!job.idempotency_key.empty()) by_key_[job.idempotency_key] = job.id;
+    jobs_[job.id] = std::move(job);
+  }
+  // a folder without a row is a submission that crashed before it was committed
+  for (const fs::directory_entry& e : fs::directory_iterator(options_.data / "jobs")) {
+    const std::string name = e.path().filename().string();
+    const bool numeric = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (e.is_directory() && numeric && !jobs_.count(std::stoll(name))) fs::remove_all(e.path());
+  }
+}
+
+void JobManager::start() {
+  std::lock_guard lock(mutex_);
+  stopping_ = false;
+  for (int k = 0; k < std::max(1, options_.concurrency); ++k) workers_.emplace_back([this] { work(); });
+}
+
+void JobManager::shutdown() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    for (auto& [id, running] : running_) {
+      running->checkpoint_on_stop = true;
+      running->stop = true;
+    }
+  }
+  changed_.notify_all();
+  for (std::thread& t : workers_)
+    if (t.joinable()) t.join();
+  workers_.clear();
+}
+
+int JobManager::threads_per_job() const {
+  if (options_.threads_per_job > 0) return options_.threads_per_job;
+  return std::max(1, omp_get_num_procs() / std::max(1, options_.concurrency));
+}
+
+void JobManager::save(const JobRecord& job) { store_->update(job); }
+
+JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::string& idempotency_key) {
+  auto replay = [&]() -> std::optional<Submitted> {
+    if (idempotency_key.empty()) return std::nullopt;
+    const auto it = by_key_.find(idempotency_key);
+    if (it == by_key_.end()) return std::nullopt;
+    return Submitted{jobs_.at(it->second), false};
+  };
+  {
+    std::lock_guard lock(mutex_);
+    if (auto earlier = replay()) return *earlier;
+  }
+  std::vector<std::string> files = spec::mesh_file_references(spec);
+  if (!files.empty()) {
+    for (std::string& f : files)
+      f += ": the server reads no files of the client's; give the mesh inline (`dem submit` inlines mesh files)";
+    throw spec::SpecError(files);
+  }
+  JobRecord job;
+  {
+    const Simulation sim(spec::to_scene(spec));  // the checks of `dem validate`, the time step's included
+    job.name = spec.name();
+    job.particles = static_cast<std::int64_t>(sim.particles().size());
+    job.total_steps = sim.total_steps();
+    job.time_step = sim.dt();
+  }
+  job.created_at = utc_now();
+  job.idempotency_key = idempotency_key;
+  const std::string bytes = spec.SerializeAsString();
+
+  std::lock_guard lock(mutex_);
+  if (auto earlier = replay()) return *earlier;  // the same key submitted meanwhile
+  store_->insert(job, [&](std::int64_t id) {
+    const JobFolder f = folder(id);
+    fs::remove_all(f.root);
+    fs::create_directories(f.outputs());
+    write_file_atomically(f.spec(), bytes);
+  });
+  if (!idempotency_key.empty()) by_key_[idempotency_key] = job.id;
+  jobs_[job.id] = job;
+  changed_.notify_all();
+  return {job, true};
+}
+
+std::optional<JobRecord> JobManager::get(std::int64_t id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::vector<JobRecord> JobManager::list() const {
+  std::lock_guard lock(mutex_);
+  std::vector<JobRecord> out;
+  for (const auto& [id, job] : jobs_) out.push_back(job);
+  return out;
+}
+
+std::map<std::string, int> JobManager::counts() const {
+  std::lock_guard lock(mutex_);
+  std::map<std::string, int> out;
+  for (const auto& [id, job] : jobs_) ++out[to_string(job.state)];
+  return out;
+}
+
+ActionResult JobManager::cancel(std::int64_t id) {
+  std::unique_lock lock(mutex_);
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) return {Outcome::NotFound, "no job " + std::to_string(id), {}};
+  JobRecord& job = it->second;
+  if (is_final(job.state))
+    return {Outcome::Conflict, "job " + std::to_string(id) + " has already " + to_string(job.state), job};
+  if (job.state == JobState::Running) {
+    running_.at(id)->stop = true;
+    // the engine stops within a step; wait for it so that the answer shows the final state
+    changed_.wait_for(lock, std::chrono::seconds(10), [&] { return jobs_.at(id).state != JobState::Running; });
+    return {Outcome::Done, "", jobs_.at(id)};
+  }
+  job.state = JobState::Cancelled;
+  job.finished_at = utc_now();
+  save(job);
+  changed_.notify_all();
+  frames_.close(id, "job cancelled");
+  return {Outcome::Done, "", job};
+}
+
+std::shared_ptr<FrameChannel> JobManager::frames_of(std::int64_t id, std::string& why) {
+  std::lock_guard lock(mutex_);  // held while the channel is made: a job ending now closes it after
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) {
+    why = "no job " + std::to_string(id);
+    return nullptr;
+  }
+  const JobState state = it->second.state;
+  if (state != JobState::Queued && state != JobState::Running) {
+    why = "job " + std::to_string(id) + " is " + to_string(state) + ": its frames are in its ANIMATION_3D.dat";
+    return nullptr;
+  }
+  return frames_.open(id);
+}
+
+ActionResult JobManager::resume(std::int64_t id) {
+  std::lock_guard lock(mutex_);
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) return {Outcome::NotFound, "no job " + std::to_string(id), {}};
+  JobRecord& job = it->second;
+  if (job.state != JobState::Interrupted)
+    return {Outcome::Conflict,
+            "job " + std::to_string(id) + " is " + to_string(job.state) + ": only an interrupted job can be resumed", job};
+  job.state = JobState::Queued;
+  job.error.clear();
+  save(job);
+  changed_.notify_all();
+  return {Outcome::Done, "", job};
+}
+
+ActionResult JobManager::remove(std::int64_t id) {
+  std::lock_guard lock(mutex_);
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) return {Outcome::NotFound, "no job " + std::to_string(id), {}};
+  if (it->second.state == JobState::Running)
+    return {Outcome::Conflict, "job " + std::to_string(id) + " is running: cancel it first", it->second};
+  JobRecord job = it->second;
+  store_->remove(id);  // first the row: a crash now leaves a folder that recovery removes
+  std::error_code ignored;
+  fs::remove_all(folder(id).root, ignored);
+  if (!job.idempotency_key.empty()) by_key_.erase(job.idempotency_key);
+  jobs_.erase(it);
+  frames_.close(id, "job deleted");
+  return {Outcome::Done, "", job};
+}
+
+void JobManager::work() {
+  for (;;) {
+    JobRecord job;
+    {
+      std::unique_lock lock(mutex_);
+      auto next = [&]() -> JobRecord* {
+        for (auto& [id, j] : jobs_)
+          if (j.state == JobState::Queued) return &j;
+        return nullptr;
+      };
+      changed_.wait(lock, [&] { return stopping_ || next() != nullptr; });
+      if (stopping_) return;
+      JobRecord& chosen = *next();
+      chosen.state = JobState::Running;
+      if (chosen.started_at.empty()) chosen.started_at = utc_now();
+      save(chosen);
+      running_[chosen.id] = std::make_shared<Running>();
+      job = chosen;
+    }
+    run_one(job);
+  }
+}
+
+void JobManager::run_one(JobRecord job) {
+  const std::int64_t id = job.id;
+  std::shared_ptr<Running> control;
+  {
+    std::lock_guard lock(mutex_);
+    control = running_.at(id);
+  }
+  auto update = [&](auto&& change) {
+    std::lock_guard lock(mutex_);
+    change(jobs_.at(id));
+  };
+  auto last_saved = std::chrono::steady_clock::now();
+
+  ExecutionHooks hooks;
+  hooks.job = id;
+  hooks.threads = threads_per_job();
+  hooks.checkpoint_seconds = options_.checkpoint_seconds;
+  hooks.stop = &control->stop;
+  hooks.checkpoint_on_stop = &control->checkpoint_on_stop;
+  hooks.frames = frames_.open(id);
+  hooks.on_start = [&](const Simulation& sim) {
+    update([&](JobRecord& j) { j.step = sim.step_count(); });
+  };
+  hooks.on_progress = [&](const Progress& p) {
+    update([&](JobRecord& j) {
+      j.step = p.step;
+      j.steps_per_second = p.steps_per_second;
+      j.seconds_left = p.seconds_left;
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_saved > std::chrono::seconds(5)) {  // the table needs the step only for the record
+        save(j);
+        last_saved = now;
+      }
+    });
+  };
+  hooks.on_checkpoint = [&](std::int64_t step) {
+    update([&](JobRecord& j) {
+      j.checkpoint_step = step;
+      save(j);
+    });
+  };
+  const ExecutionResult result = execute_job(folder(id), hooks);
+
+  std::string archive_error;
+  if (result.kind == ExecutionResult::Kind::Succeeded) {
+    try {
+      write_tar(folder(id).outputs().string(), folder(id).archive().string());
+    } catch (const std::exception& e) {
+      archive_error = std::string("the outputs could not be archived: ") + e.what();
+    }
+  }
+  std::string frames_reason;
+  {
+    std::lock_guard lock(mutex_);
+    JobRecord& j = jobs_.at(id);
+    j.steps_per_second = 0;
+    j.seconds_left = 0;
+    switch (result.kind) {
+      case ExecutionResult::Kind::Succeeded:
+        j.state = archive_error.empty() ? JobState::Succeeded : JobState::Failed;
+        j.error = archive_error;
+        j.step = j.total_steps;
+        break;
+      case ExecutionResult::Kind::Failed:
+        j.state = JobState::Failed;
+        j.error = result.error;
+        break;
+      case ExecutionResult::Kind::Stopped:
+        if (control->checkpoint_on_stop) {
+          j.state = JobState::Queued;  // the server is shutting down: the job goes on after the restart
+        } else {
+          j.state = JobState::Cancelled;
+          j.error = "cancelled";
+        }
+        break;
+    }
+    if (is_final(j.state)) {
+      j.finished_at = utc_now();
+      if (j.state == JobState::Succeeded) {
+        std::error_code ignored;
+        fs::remove(folder(id).checkpoint(), ignored);  // no longer needed; it can be as large as the scene
+        j.checkpoint_step = -1;
+      }
+    }
+    save(j);
+    running_.erase(id);
+    frames_reason = std::string("job ") + to_string(j.state);
+  }
+  changed_.notify_all();
+  frames_.close(id, frames_reason);
+}
+
+}  // namespace dem::server

@@ -1,0 +1,92 @@
+// The job queue: takes submissions, keeps the job table (job_store.hpp) and runs a set number of
+// jobs at once on worker threads, oldest first. After a crash, jobs that were running are marked
+// interrupted and can be resumed from their checkpoints.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "dem.pb.h"
+#include "server/frame_hub.hpp"
+#include "server/job.hpp"
+#include "server/job_folder.hpp"
+#include "server/job_store.hpp"
+
+namespace dem::server {
+
+struct ManagerOptions {
+  std::filesystem::path data;     // the data folder: jobs.db and jobs/
+  int concurrency = 1;            // jobs running at once
+  int threads_per_job = 0;        // 0: the cores divided among the running jobs
+  double checkpoint_seconds = 10;
+};
+
+// What a request on a job came to.
+enum class Outcome { Done, NotFound, Conflict };
+
+struct ActionResult {
+  Outcome outcome = Outcome::Done;
+  std::string message;  // why not, for NotFound and Conflict
+  JobRecord job;
+};
+
+class JobManager {
+ public:
+  JobManager(ManagerOptions options, FrameHub& frames);  // opens the table, recovers; throws StoreError
+  ~JobManager();
+  void start();     // the worker threads
+  void shutdown();  // stops taking jobs; running ones are checkpointed and queued again
+
+  // Checks the spec as `dem validate` does (throws spec::SpecError or SceneError) and queues it.
+  // With an idempotency key already seen, returns that job instead (created = false).
+  struct Submitted {
+    JobRecord job;
+    bool created = true;
+  };
+  Submitted submit(const api::JobSpec& spec, const std::string& idempotency_key);
+
+  std::optional<JobRecord> get(std::int64_t id) const;
+  std::vector<JobRecord> list() const;
+  ActionResult cancel(std::int64_t id);
+  ActionResult resume(std::int64_t id);
+  ActionResult remove(std::int64_t id);
+
+  // The frames of a queued or running job; null (and `why`) for a job that will send none.
+  std::shared_ptr<FrameChannel> frames_of(std::int64_t id, std::string& why);
+
+  JobFolder folder(std::int64_t id) const { return JobFolder(options_.data, id); }
+  std::map<std::string, int> counts() const;  // jobs per state
+
+ private:
+  struct Running {
+    std::atomic<bool> stop{false};
+    std::atomic<bool> checkpoint_on_stop{false};
+  };
+
+  void recover();
+  void work();
+  void run_one(JobRecord job);
+  void save(const JobRecord& job);  // into the table; the caller holds mutex_
+  int threads_per_job() const;
+
+  ManagerOptions options_;
+  FrameHub& frames_;
+  std::unique_ptr<JobStore> store_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::map<std::int64_t, JobRecord> jobs_;
+  std::map<std::string, std::int64_t> by_key_;
+  std::map<std::int64_t, std::shared_ptr<Running>> running_;
+  std::vector<std::thread> workers_;
+  bool stopping_ = false;
+};
+
+}  // namespace dem::server

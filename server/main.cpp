@@ -1,0 +1,93 @@
+// dem-server: the simulation service (REST jobs, live frames, legacy archives). See docs/api.md.
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "server/http_server.hpp"
+
+namespace {
+
+const char* kUsage =
+    "usage: dem-server --data DIR [--port PORT] [--address ADDR] [--token TOKEN] [--jobs N]\n"
+    "                  [--threads-per-job N] [--max-body-mb MB] [--web DIR] [--checkpoint-seconds S]\n"
+    "  --data DIR              where the job table (jobs.db) and each job's folder live (made if missing)\n"
+    "  --port PORT             default 8080; 0 picks a free port (printed)\n"
+    "  --address ADDR          default 127.0.0.1; any other address needs a token\n"
+    "  --token TOKEN           every request must carry \"Authorization: Bearer TOKEN\" (or\n"
+    "                          ?access_token=TOKEN); also from DEM_SERVER_TOKEN\n"
+    "  --jobs N                jobs running at once (default 1, with all cores)\n"
+    "  --threads-per-job N     OpenMP threads of a job (default: the cores shared among running jobs)\n"
+    "  --max-body-mb MB        largest request body (default 64)\n"
+    "  --web DIR               the viewer's files (default: the web/ folder of the source tree)\n"
+    "  --checkpoint-seconds S  at most one checkpoint per S seconds of a running job (default 10)\n";
+
+bool number(const std::string& text, double& out) {
+  try {
+    std::size_t used = 0;
+    out = std::stod(text, &used);
+    return used == text.size();
+  } catch (...) {
+    return false;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  dem::server::ServerOptions options;
+  options.web = DEM_WEB_DIR;
+  if (const char* token = std::getenv("DEM_SERVER_TOKEN")) options.token = token;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (k + 1 >= args.size()) {
+      std::fprintf(stderr, "dem-server: %s\n%s", a.rfind("--", 0) == 0 ? (a + " needs a value").c_str() : ("unexpected " + a).c_str(), kUsage);
+      return 2;
+    }
+    const std::string& v = args[++k];
+    double x = 0;
+    auto whole = [&](double lo, double hi) { return number(v, x) && x == static_cast<long long>(x) && x >= lo && x <= hi; };
+    auto bad = [&](const char* what) {
+      std::fprintf(stderr, "dem-server: %s must be %s (got \"%s\")\n", a.c_str(), what, v.c_str());
+      return 2;
+    };
+    if (a == "--data") options.data = v;
+    else if (a == "--address") options.address = v;
+    else if (a == "--token") options.token = v;
+    else if (a == "--web") options.web = v;
+    else if (a == "--port") {
+      if (!whole(0, 65535)) return bad("a port number 0-65535");
+      options.port = static_cast<unsigned short>(x);
+    } else if (a == "--jobs") {
+      if (!whole(1, 64)) return bad("a whole number 1-64");
+      options.concurrency = static_cast<int>(x);
+    } else if (a == "--threads-per-job") {
+      if (!whole(0, 1024)) return bad("a whole number >= 0");
+      options.threads_per_job = static_cast<int>(x);
+    } else if (a == "--max-body-mb") {
+      if (!number(v, x) || !(x > 0) || x > 4096) return bad("a size in MB, > 0");
+      options.max_body = static_cast<std::size_t>(x * 1024 * 1024);
+    } else if (a == "--checkpoint-seconds") {
+      if (!number(v, x) || !(x >= 0)) return bad("a number of seconds >= 0");
+      options.checkpoint_seconds = x;
+    } else {
+      std::fprintf(stderr, "dem-server: unknown option %s\n%s", a.c_str(), kUsage);
+      return 2;
+    }
+  }
+  if (options.data.empty()) {
+    std::fprintf(stderr, "dem-server: --data DIR is required\n%s", kUsage);
+    return 2;
+  }
+  try {
+    return dem::server::run_server(options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dem-server: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,71 @@
+#include "server/static_files.hpp"
+
+#include <map>
+
+namespace dem::server {
+namespace fs = std::filesystem;
+namespace {
+
+std::string mime_type(const fs::path& path) {
+  static const std::map<std::string, std::string> types = {
+      {".html", "text/html; charset=utf-8"}, {".js", "text/javascript; charset=utf-8"},
+      {".mjs", "text/javascript; charset=utf-8"}, {".css", "text/css; charset=utf-8"},
+      {".json", "application/json"}, {".svg", "image/svg+xml"}, {".png", "image/png"},
+      {".ico", "image/x-icon"}, {".wasm", "application/wasm"}, {".map", "application/json"},
+      {".dat", "text/plain; charset=utf-8"}, {".txt", "text/plain; charset=utf-8"}};
+  const auto it = types.find(path.extension().string());
+  return it == types.end() ? "application/octet-stream" : it->second;
+}
+
+// Shown at / when no viewer is installed beside the server.
+constexpr const char* kNoViewerPage =
+    "<!doctype html><meta charset=utf-8><title>dem-server</title>"
+    "<h1>dem-server</h1><p>The viewer (web/) is not installed here. The REST API is at "
+    "<a href=\"/api/jobs\">/api/jobs</a>, described by <a href=\"/api/openapi.json\">/api/openapi.json</a>.</p>\n";
+
+}  // namespace
+
+http::message_generator serve_static(const Request& req, const Target& target, const fs::path& root) {
+  if (req.method() != http::verb::get && req.method() != http::verb::head) {
+    auto res = error_response(req, http::status::method_not_allowed, "only GET serves files");
+    res.set(http::field::allow, "GET");
+    return res;
+  }
+  fs::path path = root;
+  for (const std::string& segment : target.segments) {
+    if (segment.empty() || segment[0] == '.' || segment.find('\\') != std::string::npos)
+      return error_response(req, http::status::bad_request, "no such file: " + std::string(req.target()));
+    path /= segment;
+  }
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) path /= "index.html";
+  const bool found = fs::is_regular_file(path, ec);
+  if (!found && target.segments.empty()) {
+    http::response<http::string_body> res{http::status::ok, req.version()};
+    res.set(http::field::content_type, "text/html; charset=utf-8");
+    res.keep_alive(req.keep_alive());
+    res.body() = kNoViewerPage;
+    res.prepare_payload();
+    return res;
+  }
+  boost::beast::error_code open_error;
+  http::file_body::value_type body;
+  if (found) body.open(path.c_str(), boost::beast::file_mode::scan, open_error);
+  if (!found || open_error) return error_response(req, http::status::not_found, "no such file: " + std::string(req.target()));
+  const auto size = body.size();
+  http::response<http::file_body> res{std::piecewise_construct, std::make_tuple(std::move(body)),
+                                      std::make_tuple(http::status::ok, req.version())};
+  res.set(http::field::content_type, mime_type(path));
+  res.content_length(size);
+  res.keep_alive(req.keep_alive());
+  if (req.method() == http::verb::head) {
+    http::response<http::empty_body> head{http::status::ok, req.version()};
+    head.set(http::field::content_type, mime_type(path));
+    head.content_length(size);
+    head.keep_alive(req.keep_alive());
+    return head;
+  }
+  return res;
+}
+
+}  // namespace dem::server

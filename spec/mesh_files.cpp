@@ -1,0 +1,66 @@
+#include "spec/mesh_files.hpp"
+
+#include <filesystem>
+#include <functional>
+
+#include "mesh/mesh_io.hpp"
+#include "spec/spec_loader.hpp"
+
+namespace dem::spec {
+namespace {
+
+// Calls `visit` with each mesh of the spec and its JSON path.
+void for_each_mesh(api::JobSpec& spec, const std::function<void(api::Mesh&, const std::string&)>& visit) {
+  for (int k = 0; k < spec.walls_size(); ++k)
+    if (spec.walls(k).has_mesh()) visit(*spec.mutable_walls(k)->mutable_mesh(), "walls[" + std::to_string(k) + "].mesh");
+  for (int k = 0; k < spec.packings_size(); ++k)
+    if (spec.packings(k).has_inside())
+      visit(*spec.mutable_packings(k)->mutable_inside(), "packings[" + std::to_string(k) + "].inside");
+}
+
+}  // namespace
+
+std::vector<std::string> mesh_file_references(const api::JobSpec& spec) {
+  std::vector<std::string> paths;
+  api::JobSpec copy = spec;  // for_each_mesh visits mutable meshes; this only reads
+  for_each_mesh(copy, [&](api::Mesh& mesh, const std::string& path) {
+    if (!mesh.file().empty()) paths.push_back(path + ".file");
+  });
+  return paths;
+}
+
+void inline_mesh_files(api::JobSpec& spec, const std::string& base_dir) {
+  std::vector<std::string> problems;
+  for_each_mesh(spec, [&](api::Mesh& mesh, const std::string& path) {
+    if (mesh.file().empty()) return;
+    const std::filesystem::path file = base_dir.empty() || std::filesystem::path(mesh.file()).is_absolute()
+                                           ? std::filesystem::path(mesh.file())
+                                           : std::filesystem::path(base_dir) / mesh.file();
+    TriangleMesh read;
+    try {
+      if (mesh.format() == api::Mesh::STL) read = read_stl(file.string());
+      else if (mesh.format() == api::Mesh::LEGACY) read = read_legacy_mesh(file.string());
+      else read = read_mesh(file.string());
+    } catch (const MeshError& e) {
+      problems.push_back(path + ".file: " + e.what());
+      return;
+    }
+    mesh.clear_file();
+    mesh.clear_format();
+    for (const Vec3& v : read.vertices) {
+      api::Vec3* out = mesh.add_vertices();
+      out->set_x(v.x());
+      out->set_y(v.y());
+      out->set_z(v.z());
+    }
+    for (const auto& t : read.triangles) {  // inline triangles are 1-based, as in the legacy file
+      api::Triangle* out = mesh.add_triangles();
+      out->set_i(t[0] + 1);
+      out->set_j(t[1] + 1);
+      out->set_k(t[2] + 1);
+    }
+  });
+  if (!problems.empty()) throw SpecError(problems);
+}
+
+}  // namespace dem::spec
