@@ -13,12 +13,6 @@ namespace {
 
 using Response = http::response<http::string_body>;
 
-std::optional<std::int64_t> job_id(const std::string& text) {
-  if (text.empty() || text.size() > 18 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    return std::nullopt;
-  return std::stoll(text);
-}
-
 std::string content_type(const Request& req) {
   std::string type(req[http::field::content_type]);
   type = type.substr(0, type.find(';'));
@@ -47,7 +41,12 @@ Response submit(const Request& req, ApiContext& ctx) {
                             "Content-Type \"" + type +
                                 "\" is not a job spec: send application/json or application/x-protobuf (proto/dem.proto, JobSpec)");
     }
-    const JobManager::Submitted s = ctx.jobs.submit(spec, std::string(req["Idempotency-Key"]));
+    const std::string key(req["Idempotency-Key"]);
+    const JobManager::Submitted s = ctx.jobs.submit(spec, key);
+    if (s.conflict)
+      return error_response(req, http::status::unprocessable_entity,
+                            "Idempotency-Key \"" + key + "\" was used for job " + std::to_string(s.job.id) +
+                                " with another spec: use a new key for a new job");
     Response res = json_response(req, s.created ? http::status::created : http::status::ok, to_json(s.job));
     res.set(http::field::location, "/api/jobs/" + std::to_string(s.job.id));
     if (!s.created) res.set("Idempotent-Replayed", "true");
@@ -154,12 +153,7 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
   }
   if (s.size() == 2 && s[1] == "openapi.json") {
     if (!get) return method_not_allowed(req, "GET");
-    Response res{http::status::ok, req.version()};
-    res.set(http::field::content_type, "application/json");
-    res.keep_alive(req.keep_alive());
-    res.body() = ctx.openapi;
-    res.prepare_payload();
-    return res;
+    return text_response(req, http::status::ok, "application/json", ctx.openapi);
   }
   if (s.size() >= 2 && s[1] == "jobs") {
     if (s.size() == 2) {
@@ -167,7 +161,7 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
       if (get) return list_jobs(req, target, ctx);
       return method_not_allowed(req, "GET, POST");
     }
-    const std::optional<std::int64_t> id = job_id(s[2]);
+    const std::optional<std::int64_t> id = parse_job_id(s[2]);
     const std::optional<JobRecord> job = id ? ctx.jobs.get(*id) : std::nullopt;
     if (!job) return error_response(req, http::status::not_found, "no job " + s[2]);
     if (s.size() == 3) {
@@ -179,9 +173,14 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
       if (m != http::verb::post) return method_not_allowed(req, "POST");
       return action(req, s[3] == "cancel" ? ctx.jobs.cancel(*id) : ctx.jobs.resume(*id));
     }
-    if (s.size() == 4 && s[3] == "frames")
-      return error_response(req, http::status::upgrade_required,
-                            "the frames of job " + s[2] + " are a WebSocket stream: connect with ws://");
+    if (s.size() == 4 && s[3] == "frames") {
+      if (!get) return method_not_allowed(req, "GET");
+      Response res = error_response(req, http::status::upgrade_required,
+                                    "the frames of job " + s[2] + " are a WebSocket stream: connect with ws://");
+      res.set(http::field::upgrade, "websocket");
+      res.set(http::field::connection, "Upgrade");
+      return res;
+    }
     if (s[3] == "artifacts") {
       if (!get) return method_not_allowed(req, "GET");
       if (s.size() == 4) return list_artifacts(req, *id, ctx);

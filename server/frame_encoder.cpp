@@ -77,14 +77,15 @@ EncodedFrame FrameEncoder::encode(const Simulation& sim, bool with_force_chains)
 
   std::vector<float> radii(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) radii[p.id[i]] = static_cast<float>(p.radius[i]);
-  out.radii_changed = !radii_part_ || radii != radii_;
-  if (out.radii_changed) {
+  if (!radii_part_ || radii != radii_) {
+    ++radii_version_;
     api::Frame part;
     part.set_radii(bytes_of(radii));
     radii_part_ = std::make_shared<const std::string>(part.SerializeAsString());
     radii_ = std::move(radii);
   }
   out.radii = radii_part_;
+  out.radii_version = radii_version_;
 
   if (with_force_chains && sim.contacts_recorded()) {
     struct Record {

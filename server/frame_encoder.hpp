@@ -18,7 +18,7 @@ struct EncodedFrame {
   std::shared_ptr<const std::string> base;          // everything but the radii and the force chains
   std::shared_ptr<const std::string> radii;         // the radii alone
   std::shared_ptr<const std::string> force_chains;  // the force chains alone; null when not asked for
-  bool radii_changed = false;                       // since the previous frame (growth)
+  std::uint64_t radii_version = 0;                  // changes when the radii change (growth)
 };
 
 class FrameEncoder {
@@ -30,6 +30,7 @@ class FrameEncoder {
   std::int64_t job_;
   std::vector<float> radii_;
   std::shared_ptr<const std::string> radii_part_;
+  std::uint64_t radii_version_ = 0;
 };
 
 }  // namespace dem::server

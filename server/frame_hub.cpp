@@ -46,6 +46,7 @@ void FrameChannel::leave(const FrameViewer* viewer) {
                                 }),
                  viewers_.end());
   viewers_count_.store(static_cast<int>(viewers_.size()));
+  if (viewers_.empty()) latest_.reset();  // frames are not made while nobody watches: it would grow old
 }
 
 void FrameChannel::end(const std::string& reason) {

@@ -74,8 +74,8 @@ void FrameSession::write_next() {
   writing_ = std::move(pending_);
   pending_.reset();
   std::vector<boost::asio::const_buffer> parts{boost::asio::buffer(*writing_->base)};
-  if (!radii_sent_ || writing_->radii_changed) parts.push_back(boost::asio::buffer(*writing_->radii));
-  radii_sent_ = true;
+  if (radii_sent_ != writing_->radii_version) parts.push_back(boost::asio::buffer(*writing_->radii));
+  radii_sent_ = writing_->radii_version;
   if (force_chains_ && writing_->force_chains) parts.push_back(boost::asio::buffer(*writing_->force_chains));
   ws_.binary(true);
   ws_.async_write(parts, beast::bind_front_handler(&FrameSession::on_write, shared_from_this()));

@@ -41,7 +41,7 @@ class FrameSession final : public FrameViewer, public std::enable_shared_from_th
   std::atomic<bool> force_chains_;
   // on the session's strand only:
   std::shared_ptr<const EncodedFrame> writing_, pending_;
-  bool radii_sent_ = false;
+  std::uint64_t radii_sent_ = 0;  // the version of the radii this viewer has
   bool ending_ = false;
   bool closed_ = false;
   std::string end_reason_;

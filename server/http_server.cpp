@@ -105,7 +105,7 @@ int run_server(const ServerOptions& options) {
     listener->stop();
     jobs.shutdown();
     frames.close_all("the server is shutting down");
-    grace.expires_after(std::chrono::milliseconds(500));  // time for the close frames to go out
+    grace.expires_after(std::chrono::milliseconds(200));  // time for the close frames to go out
     grace.async_wait([&](boost::system::error_code) { io.stop(); });
   });
 

@@ -64,7 +64,11 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
   if (api && websocket::is_upgrade(req)) return upgrade(std::move(req), *target);
   if (api) {
     ApiContext ctx{state_.jobs, state_.openapi};
-    return send(handle_api(req, *target, ctx));
+    try {
+      return send(handle_api(req, *target, ctx));
+    } catch (const std::exception& e) {  // the store or the disk failed: say so, keep serving
+      return send(error_response(req, http::status::internal_server_error, std::string("internal error: ") + e.what()));
+    }
   }
   send(serve_static(req, *target, state_.web));
 }
@@ -75,11 +79,8 @@ void HttpSession::upgrade(Request request, const Target& target) {
     return send(error_response(request, http::status::not_found, "no WebSocket at " + std::string(request.target())));
   std::string why;
   std::shared_ptr<FrameChannel> channel;
-  std::optional<JobRecord> job;
-  try {
-    job = state_.jobs.get(std::stoll(s[2]));
-  } catch (...) {
-  }
+  const std::optional<std::int64_t> id = parse_job_id(s[2]);
+  const std::optional<JobRecord> job = id ? state_.jobs.get(*id) : std::nullopt;
   if (!job) return send(error_response(request, http::status::not_found, "no job " + s[2]));
   channel = state_.jobs.frames_of(job->id, why);
   const auto q = target.query.find("forceChains");

@@ -1,5 +1,7 @@
 #include "server/http_util.hpp"
 
+#include <cctype>
+
 namespace dem::server {
 namespace {
 
@@ -63,14 +65,20 @@ std::optional<Target> parse_target(std::string_view target) {
   return out;
 }
 
-http::response<http::string_body> json_response(const Request& req, http::status status, const nlohmann::json& body) {
+http::response<http::string_body> text_response(const Request& req, http::status status, const std::string& content_type,
+                                                std::string body) {
   http::response<http::string_body> res{status, req.version()};
-  res.set(http::field::content_type, "application/json");
+  res.set(http::field::content_type, content_type);
   res.set(http::field::cache_control, "no-store");
   res.keep_alive(req.keep_alive());
-  res.body() = body.dump(2) + "\n";
+  res.body() = std::move(body);
   res.prepare_payload();
+  if (req.method() == http::verb::head) res.body().clear();  // the length stays in Content-Length
   return res;
+}
+
+http::response<http::string_body> json_response(const Request& req, http::status status, const nlohmann::json& body) {
+  return text_response(req, status, "application/json", body.dump(2) + "\n");
 }
 
 http::response<http::string_body> error_response(const Request& req, http::status status, const std::string& message,
@@ -78,6 +86,13 @@ http::response<http::string_body> error_response(const Request& req, http::statu
   nlohmann::json body = {{"error", message}};
   if (!problems.empty()) body["problems"] = problems;
   return json_response(req, status, body);
+}
+
+std::optional<std::int64_t> parse_job_id(const std::string& text) {
+  if (text.empty() || text.size() > 18) return std::nullopt;
+  for (char c : text)
+    if (c < '0' || c > '9') return std::nullopt;
+  return std::stoll(text);
 }
 
 bool tokens_equal(std::string_view a, std::string_view b) {
@@ -90,9 +105,11 @@ std::string request_token(const Request& req, const Target& target) {
   const auto header = req.find(http::field::authorization);
   if (header != req.end()) {
     const std::string_view value(header->value().data(), header->value().size());
-    constexpr std::string_view bearer = "Bearer ";
-    if (value.substr(0, bearer.size()) == bearer) return std::string(value.substr(bearer.size()));
-    return std::string(value);
+    constexpr std::string_view bearer = "bearer ";
+    if (value.size() <= bearer.size()) return "";
+    for (std::size_t k = 0; k < bearer.size(); ++k)  // the scheme's name is case-insensitive (RFC 7235)
+      if (std::tolower(static_cast<unsigned char>(value[k])) != bearer[k]) return "";
+    return std::string(value.substr(bearer.size()));
   }
   const auto q = target.query.find("access_token");
   return q == target.query.end() ? "" : q->second;

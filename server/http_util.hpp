@@ -25,10 +25,16 @@ struct Target {
 std::optional<Target> parse_target(std::string_view target);
 std::optional<std::string> percent_decode(std::string_view text);
 
+// A response with `body` (for HEAD: its headers alone, Content-Length included).
+http::response<http::string_body> text_response(const Request& req, http::status status, const std::string& content_type,
+                                                std::string body);
 http::response<http::string_body> json_response(const Request& req, http::status status, const nlohmann::json& body);
 // {"error": message} (plus "problems" when given).
 http::response<http::string_body> error_response(const Request& req, http::status status, const std::string& message,
                                                  const std::vector<std::string>& problems = {});
+
+// A job id as it appears in a path: decimal digits only.
+std::optional<std::int64_t> parse_job_id(const std::string& text);
 
 bool tokens_equal(std::string_view a, std::string_view b);  // time independent of where they differ
 // The token of a request: "Authorization: Bearer T", or ?access_token=T (browsers cannot set

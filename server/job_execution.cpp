@@ -11,21 +11,19 @@
 namespace dem::server {
 namespace {
 
-// Saves a checkpoint at a frame when the last one is `seconds` old (always at the first frame of a
-// run that has none, so a crash soon after the start resumes rather than starting again).
-class Checkpointer final : public Observer {
+// Saves a checkpoint when the last one is `seconds` old. Any step will do: the output files change
+// only at frames, so their lengths at any step match the state.
+class Checkpointer {
  public:
   Checkpointer(const JobFolder& folder, double seconds, std::function<void(std::int64_t)> saved)
-      : folder_(folder), seconds_(seconds), saved_(std::move(saved)) {}
-  void frame(const Simulation& sim) override {
+      : folder_(folder), seconds_(seconds), saved_(std::move(saved)), last_(std::chrono::steady_clock::now()) {}
+  void maybe_save(const Simulation& sim) {
     const auto now = std::chrono::steady_clock::now();
-    if (written_ && std::chrono::duration<double>(now - last_).count() < seconds_) return;
-    save(sim);
+    if (std::chrono::duration<double>(now - last_).count() >= seconds_) save(sim);
   }
   void save(const Simulation& sim) {
     write_checkpoint(sim, folder_.outputs().string(), folder_.checkpoint().string());
     last_ = std::chrono::steady_clock::now();
-    written_ = true;
     if (saved_) saved_(sim.step_count());
   }
 
@@ -34,7 +32,6 @@ class Checkpointer final : public Observer {
   double seconds_;
   std::function<void(std::int64_t)> saved_;
   std::chrono::steady_clock::time_point last_;
-  bool written_ = false;
 };
 
 // Encodes and publishes a frame only while somebody watches: an unwatched job pays nothing.
@@ -75,21 +72,21 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
 
     std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, folder.outputs().string(), resume);
     auto publisher = std::make_unique<FramePublisher>(hooks.job, hooks.frames);
-    auto checkpointer = std::make_unique<Checkpointer>(folder, hooks.checkpoint_seconds, hooks.on_checkpoint);
+    Checkpointer checkpointer(folder, hooks.checkpoint_seconds, hooks.on_checkpoint);
     std::vector<Observer*> observers;
     for (auto& w : writers) observers.push_back(w.get());
     observers.push_back(publisher.get());
-    observers.push_back(checkpointer.get());  // last: the files it measures hold this frame
 
     RunOptions options;
     options.cancel = hooks.stop;
     options.on_progress = hooks.on_progress;
     options.progress_seconds = 0.5;
+    options.periodically = [&](const Simulation& s) { checkpointer.maybe_save(s); };
     const RunOutcome outcome = run(sim, observers, options);
     writers.clear();  // closes the files
     if (outcome.cancelled) {
       result.kind = ExecutionResult::Kind::Stopped;
-      if (hooks.checkpoint_on_stop && hooks.checkpoint_on_stop->load()) checkpointer->save(sim);
+      if (hooks.checkpoint_on_stop && hooks.checkpoint_on_stop->load()) checkpointer.save(sim);
     } else if (!outcome.ok) {
       result.kind = ExecutionResult::Kind::Failed;
       result.error = outcome.error;

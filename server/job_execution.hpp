@@ -16,7 +16,7 @@ namespace dem::server {
 struct ExecutionHooks {
   std::int64_t job = 0;
   int threads = 0;                        // OpenMP threads for the job (0: all cores)
-  double checkpoint_seconds = 10;         // at most one checkpoint per this many seconds (at frames)
+  double checkpoint_seconds = 10;         // a checkpoint every this many seconds (checked each 0.5 s)
   const std::atomic<bool>* stop = nullptr;              // cancel or shut down: stop between steps
   const std::atomic<bool>* checkpoint_on_stop = nullptr;  // shut down: save the state where it stopped
   std::shared_ptr<FrameChannel> frames;   // may be null

@@ -16,6 +16,8 @@ namespace dem::server {
 namespace fs = std::filesystem;
 namespace {
 
+constexpr const char* kCancelled = "cancelled on request";
+
 void write_file_atomically(const fs::path& path, const std::string& bytes) {
   const fs::path temporary = path.string() + ".tmp";
   {
@@ -88,11 +90,14 @@ int JobManager::threads_per_job() const {
 void JobManager::save(const JobRecord& job) { store_->update(job); }
 
 JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::string& idempotency_key) {
+  const std::string bytes = spec.SerializeAsString();
   auto replay = [&]() -> std::optional<Submitted> {
     if (idempotency_key.empty()) return std::nullopt;
     const auto it = by_key_.find(idempotency_key);
     if (it == by_key_.end()) return std::nullopt;
-    return Submitted{jobs_.at(it->second), false};
+    std::ifstream in(folder(it->second).spec(), std::ios::binary);
+    const std::string earlier((std::istreambuf_iterator<char>(in)), {});
+    return Submitted{jobs_.at(it->second), false, earlier != bytes};
   };
   {
     std::lock_guard lock(mutex_);
@@ -114,7 +119,6 @@ JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::st
   }
   job.created_at = utc_now();
   job.idempotency_key = idempotency_key;
-  const std::string bytes = spec.SerializeAsString();
 
   std::lock_guard lock(mutex_);
   if (auto earlier = replay()) return *earlier;  // the same key submitted meanwhile
@@ -161,11 +165,15 @@ ActionResult JobManager::cancel(std::int64_t id) {
   if (job.state == JobState::Running) {
     running_.at(id)->stop = true;
     // the engine stops within a step; wait for it so that the answer shows the final state
-    changed_.wait_for(lock, std::chrono::seconds(10), [&] { return jobs_.at(id).state != JobState::Running; });
+    changed_.wait_for(lock, std::chrono::seconds(2), [&] { return jobs_.at(id).state != JobState::Running; });
     return {Outcome::Done, "", jobs_.at(id)};
   }
   job.state = JobState::Cancelled;
+  job.error = kCancelled;
   job.finished_at = utc_now();
+  std::error_code ignored;
+  fs::remove(folder(id).checkpoint(), ignored);  // an interrupted job's
+  job.checkpoint_step = -1;
   save(job);
   changed_.notify_all();
   frames_.close(id, "job cancelled");
@@ -279,6 +287,7 @@ void JobManager::run_one(JobRecord job) {
   hooks.on_checkpoint = [&](std::int64_t step) {
     update([&](JobRecord& j) {
       j.checkpoint_step = step;
+      j.step = std::max(j.step, step);  // the table never shows a step before its checkpoint
       save(j);
     });
   };
@@ -313,21 +322,20 @@ void JobManager::run_one(JobRecord job) {
           j.state = JobState::Queued;  // the server is shutting down: the job goes on after the restart
         } else {
           j.state = JobState::Cancelled;
-          j.error = "cancelled";
+          j.error = kCancelled;
         }
         break;
     }
     if (is_final(j.state)) {
       j.finished_at = utc_now();
-      if (j.state == JobState::Succeeded) {
-        std::error_code ignored;
-        fs::remove(folder(id).checkpoint(), ignored);  // no longer needed; it can be as large as the scene
-        j.checkpoint_step = -1;
-      }
+      std::error_code ignored;
+      fs::remove(folder(id).checkpoint(), ignored);  // no longer needed; it can be as large as the scene
+      j.checkpoint_step = -1;
     }
     save(j);
     running_.erase(id);
-    frames_reason = std::string("job ") + to_string(j.state);
+    frames_reason = j.state == JobState::Queued ? "the server is shutting down; the job goes on after its restart"
+                                                : std::string("job ") + to_string(j.state);
   }
   changed_.notify_all();
   frames_.close(id, frames_reason);

@@ -46,10 +46,12 @@ class JobManager {
   void shutdown();  // stops taking jobs; running ones are checkpointed and queued again
 
   // Checks the spec as `dem validate` does (throws spec::SpecError or SceneError) and queues it.
-  // With an idempotency key already seen, returns that job instead (created = false).
+  // With an idempotency key already seen, returns that job instead (created = false), or, when
+  // that job's spec was another, says so (conflict = true) and queues nothing.
   struct Submitted {
     JobRecord job;
     bool created = true;
+    bool conflict = false;
   };
   Submitted submit(const api::JobSpec& spec, const std::string& idempotency_key);
 

@@ -34,19 +34,14 @@ http::message_generator serve_static(const Request& req, const Target& target, c
   fs::path path = root;
   for (const std::string& segment : target.segments) {
     if (segment.empty() || segment[0] == '.' || segment.find('\\') != std::string::npos)
-      return error_response(req, http::status::bad_request, "no such file: " + std::string(req.target()));
+      return error_response(req, http::status::not_found, "no such file: " + std::string(req.target()));
     path /= segment;
   }
   std::error_code ec;
   if (fs::is_directory(path, ec)) path /= "index.html";
   const bool found = fs::is_regular_file(path, ec);
   if (!found && target.segments.empty()) {
-    http::response<http::string_body> res{http::status::ok, req.version()};
-    res.set(http::field::content_type, "text/html; charset=utf-8");
-    res.keep_alive(req.keep_alive());
-    res.body() = kNoViewerPage;
-    res.prepare_payload();
-    return res;
+    return text_response(req, http::status::ok, "text/html; charset=utf-8", kNoViewerPage);
   }
   boost::beast::error_code open_error;
   http::file_body::value_type body;

@@ -37,12 +37,13 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
       const std::int64_t s = sim.step_count();
       if (s % check_every == 0 || s == total) guard.check(sim);
       if (frame_due) frame();
-      if (options.on_progress) {
+      if (options.on_progress || options.periodically) {
         const auto now = Clock::now();
         const double since = std::chrono::duration<double>(now - last_report).count();
         if (since >= options.progress_seconds || s == total) {
           const double rate = static_cast<double>(s - steps_at_report) / std::max(since, 1e-9);
-          options.on_progress({s, total, rate, rate > 0 ? static_cast<double>(total - s) / rate : 0});
+          if (options.on_progress) options.on_progress({s, total, rate, rate > 0 ? static_cast<double>(total - s) / rate : 0});
+          if (options.periodically) options.periodically(sim);
           last_report = now;
           steps_at_report = s;
         }

@@ -36,6 +36,9 @@ struct Progress {
 
 struct RunOptions {
   std::function<void(const Progress&)> on_progress;  // called about every progress_seconds
+  // Also about every progress_seconds, between steps (the server's checkpoints: the state may be
+  // saved at any step, since the files change only at frames).
+  std::function<void(const Simulation&)> periodically;
   double progress_seconds = 0.5;
   const std::atomic<bool>* cancel = nullptr;
 };

@@ -1,0 +1,144 @@
+// The job lifecycle over REST against the real server: submit (JSON and protobuf), poll, download,
+// the same bytes as `dem run`; idempotent retries; cancel, delete; artifacts and the archive.
+#include <cstring>
+
+#include "dem.pb.h"
+#include "spec/spec_loader.hpp"
+#include "support/server_test.hpp"
+
+namespace dem::test {
+namespace {
+
+class ServerJobs : public ServerTest {};
+
+// The names and sizes of the files in a ustar archive.
+std::map<std::string, std::size_t> tar_listing(const std::string& tar) {
+  std::map<std::string, std::size_t> files;
+  std::size_t at = 0;
+  while (at + 512 <= tar.size() && tar[at] != '\0') {
+    const std::string name(tar.c_str() + at);
+    const std::size_t size = std::stoul(tar.substr(at + 124, 11), nullptr, 8);
+    files[name] = size;
+    at += 512 + (size + 511) / 512 * 512;
+  }
+  return files;
+}
+
+TEST_F(ServerJobs, SubmittedAsJsonAndAsProtobufGiveTheBytesOfDemRun) {
+  start_server();
+  const std::string spec = pouring_spec(0.015, 600, 100, true);
+  const fs::path local = dem_run(spec, "local");
+
+  const long json_id = submit_json(spec)["id"];
+  const std::string bytes = spec::parse_json(spec).SerializeAsString();
+  const client::Response r = client_->request("POST", "/api/jobs", bytes, "application/x-protobuf");
+  ASSERT_EQ(r.status, 201) << r.body;
+  const long proto_id = nlohmann::json::parse(r.body)["id"];
+  EXPECT_EQ(r.header("location"), "/api/jobs/" + std::to_string(proto_id));
+
+  for (long id : {json_id, proto_id}) {
+    const nlohmann::json done = wait_for(id, "succeeded,failed");
+    ASSERT_EQ(done["state"], "succeeded") << done.dump();
+    EXPECT_EQ(done["progress"], 1.0);
+    EXPECT_FALSE(done["startedAt"].get<std::string>().empty());
+    EXPECT_FALSE(done["finishedAt"].get<std::string>().empty());
+    for (const char* name : {"ANIMATION_3D.dat", "ForceChain_3D.dat", "Masscenter.dat"}) {
+      const client::Response file = client_->get("/api/jobs/" + std::to_string(id) + "/artifacts/" + name);
+      ASSERT_EQ(file.status, 200) << name;
+      EXPECT_EQ(file.body, read_bytes(local / name)) << "job " << id << ": " << name << " differs from dem run's";
+    }
+  }
+}
+
+TEST_F(ServerJobs, ArtifactsAreListedAndTheArchiveHoldsThemAll) {
+  start_server();
+  const long id = submit_json(pouring_spec(0.015, 300, 100))["id"];
+  wait_for(id, "succeeded");
+  const nlohmann::json list = nlohmann::json::parse(client_->get("/api/jobs/" + std::to_string(id) + "/artifacts").body);
+  std::map<std::string, std::size_t> listed;
+  for (const auto& a : list["artifacts"]) listed[a["name"]] = a["size"];
+  ASSERT_TRUE(listed.count("ANIMATION_3D.dat"));
+  ASSERT_TRUE(listed.count("outputs.tar"));
+
+  const fs::path tar = dir_ / "outputs.tar";
+  const client::Response r = client_->download("/api/jobs/" + std::to_string(id) + "/artifacts/outputs.tar", tar.string());
+  ASSERT_EQ(r.status, 200);
+  EXPECT_EQ(r.header("content-type"), "application/x-tar");
+  std::map<std::string, std::size_t> archived = tar_listing(read_bytes(tar));
+  listed.erase("outputs.tar");
+  EXPECT_EQ(archived, listed);
+  // the archive unpacks with tar itself, file for file
+  const fs::path unpacked = dir_ / "unpacked";
+  fs::create_directories(unpacked);
+  ASSERT_EQ(std::system(("tar -xf '" + tar.string() + "' -C '" + unpacked.string() + "'").c_str()), 0);
+  EXPECT_EQ(read_bytes(unpacked / "ANIMATION_3D.dat"),
+            client_->get("/api/jobs/" + std::to_string(id) + "/artifacts/ANIMATION_3D.dat").body);
+}
+
+TEST_F(ServerJobs, ARetriedSubmissionWithTheSameIdempotencyKeyIsTheSameJob) {
+  start_server();
+  const std::string spec = pouring_spec(0.015, 100, 50);
+  const client::Response first = client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-7"}});
+  const client::Response again = client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-7"}});
+  const client::Response other = client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-8"}});
+  ASSERT_EQ(first.status, 201);
+  ASSERT_EQ(again.status, 200);
+  EXPECT_EQ(again.header("idempotent-replayed"), "true");
+  EXPECT_EQ(nlohmann::json::parse(first.body)["id"], nlohmann::json::parse(again.body)["id"]);
+  EXPECT_NE(nlohmann::json::parse(first.body)["id"], nlohmann::json::parse(other.body)["id"]);
+  // the same key with another spec is a mistake, not a retry
+  const client::Response reused = client_->request("POST", "/api/jobs", pouring_spec(0.015, 200, 50), "application/json",
+                                                   {{"Idempotency-Key", "run-7"}});
+  EXPECT_EQ(reused.status, 422);
+  EXPECT_NE(reused.body.find("with another spec"), std::string::npos) << reused.body;
+  // and after a restart
+  server_.reset();
+  start_server();
+  const client::Response later = client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-7"}});
+  EXPECT_EQ(later.status, 200);
+  EXPECT_EQ(nlohmann::json::parse(first.body)["id"], nlohmann::json::parse(later.body)["id"]);
+}
+
+TEST_F(ServerJobs, JobsWaitInOrderAndCanBeCancelledOrDeleted) {
+  start_server();
+  const long running = submit_json(pouring_spec(0.012, 1000000, 1000))["id"];  // runs until cancelled
+  const long waiting = submit_json(pouring_spec(0.015, 100, 50))["id"];
+  wait_for(running, "running");
+  EXPECT_EQ(job(waiting)["state"], "queued");  // one job at a time by default
+
+  const nlohmann::json list = nlohmann::json::parse(client_->get("/api/jobs?state=queued").body);
+  ASSERT_EQ(list["jobs"].size(), 1u);
+  EXPECT_EQ(list["jobs"][0]["id"], waiting);
+
+  const client::Response busy = client_->request("DELETE", "/api/jobs/" + std::to_string(running));
+  EXPECT_EQ(busy.status, 409);
+  EXPECT_NE(busy.body.find("cancel it first"), std::string::npos) << busy.body;
+
+  const client::Response cancelled = client_->request("POST", "/api/jobs/" + std::to_string(running) + "/cancel");
+  ASSERT_EQ(cancelled.status, 200) << cancelled.body;
+  EXPECT_EQ(nlohmann::json::parse(cancelled.body)["state"], "cancelled");
+  EXPECT_EQ(client_->request("POST", "/api/jobs/" + std::to_string(running) + "/cancel").status, 409);
+  EXPECT_EQ(wait_for(waiting, "succeeded")["state"], "succeeded");  // the next one ran
+
+  EXPECT_EQ(client_->request("DELETE", "/api/jobs/" + std::to_string(waiting)).status, 204);
+  EXPECT_EQ(client_->get("/api/jobs/" + std::to_string(waiting)).status, 404);
+  EXPECT_FALSE(fs::exists(dir_ / "data" / "jobs" / std::to_string(waiting)));
+  EXPECT_EQ(client_->request("POST", "/api/jobs/" + std::to_string(running) + "/resume").status, 409);
+}
+
+TEST_F(ServerJobs, HealthAndTheOpenApiDescriptionAreServed) {
+  start_server();
+  const client::Response health = client_->get("/api/health");
+  ASSERT_EQ(health.status, 200);
+  EXPECT_EQ(nlohmann::json::parse(health.body)["status"], "ok");
+  const client::Response api = client_->get("/api/openapi.json");
+  ASSERT_EQ(api.status, 200);
+  const nlohmann::json description = nlohmann::json::parse(api.body);
+  EXPECT_EQ(description["openapi"].get<std::string>().substr(0, 2), "3.");
+  for (const char* path : {"/api/jobs", "/api/jobs/{id}", "/api/jobs/{id}/cancel", "/api/jobs/{id}/artifacts/{name}",
+                           "/api/jobs/{id}/frames", "/api/health"})
+    EXPECT_TRUE(description["paths"].contains(path)) << path;
+}
+
+}  // namespace
+}  // namespace dem::test

@@ -1,0 +1,84 @@
+// Crashes and restarts: kill -9 during a run loses no job; the interrupted job resumes from its
+// checkpoint and ends with the files of an uninterrupted run. SIGTERM checkpoints and re-queues.
+#include <signal.h>
+
+#include "support/server_test.hpp"
+
+namespace dem::test {
+namespace {
+
+class ServerRecovery : public ServerTest {
+ protected:
+  // Waits until the running job has a checkpoint past `step`.
+  nlohmann::json wait_for_checkpoint(long id, long step) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    nlohmann::json j;
+    while (std::chrono::steady_clock::now() < end) {
+      j = job(id);
+      if (j.value("checkpointStep", -1L) > step) return j;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ADD_FAILURE() << "no checkpoint past step " << step << ": " << j.dump();
+    return j;
+  }
+
+  void expect_same_files(long id, const fs::path& reference) {
+    for (const char* name : {"ANIMATION_3D.dat", "ForceChain_3D.dat", "Masscenter.dat", "Disp_Max.dat", "Coord_OL.dat"}) {
+      const client::Response r = client_->get("/api/jobs/" + std::to_string(id) + "/artifacts/" + name);
+      ASSERT_EQ(r.status, 200) << name;
+      EXPECT_TRUE(r.body == read_bytes(reference / name)) << name << " differs from the uninterrupted run's";
+    }
+  }
+};
+
+const std::string kLongSpec = pouring_spec(0.012, 30000, 1000, true);
+
+TEST_F(ServerRecovery, AJobKilledMidRunResumesFromItsCheckpointToTheSameFiles) {
+  const fs::path reference = dem_run(kLongSpec, "uninterrupted");
+  start_server({"--checkpoint-seconds", "0"});
+  const long done = submit_json(pouring_spec(0.015, 100, 50))["id"];
+  wait_for(done, "succeeded");
+  const long id = submit_json(kLongSpec)["id"];
+  const long waiting = submit_json(pouring_spec(0.015, 100, 50))["id"];
+  wait_for_checkpoint(id, 2000);
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));  // mid-way between checkpoints
+  EXPECT_EQ(server_->stop(SIGKILL), 128 + SIGKILL);
+
+  start_server({"--checkpoint-seconds", "0"});
+  EXPECT_EQ(job(done)["state"], "succeeded");
+  const nlohmann::json interrupted = job(id);
+  ASSERT_EQ(interrupted["state"], "interrupted") << interrupted.dump();
+  EXPECT_TRUE(interrupted["resumable"].get<bool>());
+  EXPECT_NE(interrupted["error"].get<std::string>().find("resume it to continue from its checkpoint"), std::string::npos);
+  EXPECT_GE(interrupted["step"].get<long>(), interrupted["checkpointStep"].get<long>());
+  EXPECT_EQ(wait_for(waiting, "succeeded")["state"], "succeeded");  // the queue went on
+
+  const client::Response resumed = client_->request("POST", "/api/jobs/" + std::to_string(id) + "/resume");
+  ASSERT_EQ(resumed.status, 200) << resumed.body;
+  EXPECT_EQ(wait_for(id, "succeeded,failed")["state"], "succeeded");
+  expect_same_files(id, reference);
+  EXPECT_FALSE(fs::exists(dir_ / "data" / "jobs" / std::to_string(id) / "checkpoint.dat"));
+}
+
+TEST_F(ServerRecovery, SigtermCheckpointsTheRunningJobWhichGoesOnAfterTheRestart) {
+  const fs::path reference = dem_run(kLongSpec, "uninterrupted");
+  start_server();
+  const long id = submit_json(kLongSpec)["id"];
+  wait_for(id, "running");
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  EXPECT_EQ(server_->stop(SIGTERM), 0);  // a clean exit
+
+  start_server();
+  EXPECT_EQ(wait_for(id, "succeeded,failed,interrupted")["state"], "succeeded");
+  expect_same_files(id, reference);
+}
+
+TEST_F(ServerRecovery, ASubmissionCutShortByACrashLeavesNoTrace) {
+  fs::create_directories(dir_ / "data" / "jobs" / "17" / "outputs");  // a folder whose row was never committed
+  start_server();
+  EXPECT_FALSE(fs::exists(dir_ / "data" / "jobs" / "17"));
+  EXPECT_EQ(nlohmann::json::parse(client_->get("/api/jobs").body)["jobs"].size(), 0u);
+}
+
+}  // namespace
+}  // namespace dem::test
