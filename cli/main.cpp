@@ -1,4 +1,4 @@
-// dem: run a job spec locally, or check one.
+// dem: run a job spec locally, check one, or drive a dem-server.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -14,6 +14,22 @@ const char* kUsage =
     "                                   --restart FILE continues from a saved state (e.g. DIR/restart.dat),\n"
     "                                   appending to DIR's files\n"
     "  dem validate SPEC.json                                 check a job spec and report every problem\n"
+    "\n"
+    "  dem submit SPEC.json [--wait] [--idempotency-key K] [--quiet]\n"
+    "                                   send a job spec to dem-server (mesh files go inline) and print the\n"
+    "                                   job id (--quiet: only the id); --wait follows the job to its end\n"
+    "  dem status ID [--json]                                 one line on a job (--json: the server's JSON)\n"
+    "  dem list [--state S] [--json]                          the server's jobs, or those in state S\n"
+    "  dem cancel ID                                          stop a queued or running job\n"
+    "  dem resume ID                                          continue an interrupted job\n"
+    "  dem watch ID                                           show a job's progress until it ends\n"
+    "  dem fetch ID [NAME ...] [--out DIR]                    download a job's files to DIR (default: here);\n"
+    "                                   no NAME: every file but outputs.tar (which NAME may be)\n"
+    "                                   these verbs take --server URL (default: $DEM_SERVER, else\n"
+    "                                   http://127.0.0.1:8080) and --token T (default: $DEM_SERVER_TOKEN);\n"
+    "                                   exit 0: done (the job succeeded), 1: it failed or the server said no,\n"
+    "                                   2: bad arguments\n"
+    "\n"
     "  dem help                                               this text\n";
 
 }  // namespace
@@ -28,6 +44,13 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   if (verb == "run") return dem::cli::run_command(args);
   if (verb == "validate") return dem::cli::validate_command(args);
+  if (verb == "submit") return dem::cli::submit_command(args);
+  if (verb == "status") return dem::cli::status_command(args);
+  if (verb == "list") return dem::cli::list_command(args);
+  if (verb == "cancel") return dem::cli::cancel_command(args);
+  if (verb == "resume") return dem::cli::resume_command(args);
+  if (verb == "watch") return dem::cli::watch_command(args);
+  if (verb == "fetch") return dem::cli::fetch_command(args);
   std::fprintf(stderr, "dem: unknown command \"%s\"\n%s", verb.c_str(), kUsage);
   return 2;
 }

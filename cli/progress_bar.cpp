@@ -6,7 +6,6 @@
 #include <string>
 
 namespace dem::cli {
-namespace {
 
 std::string clock_text(double seconds) {
   const long s = static_cast<long>(seconds + 0.5);
@@ -15,8 +14,6 @@ std::string clock_text(double seconds) {
   else std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
   return buf;
 }
-
-}  // namespace
 
 std::function<void(const Progress&)> make_progress_printer(bool terminal) {
   if (terminal) {

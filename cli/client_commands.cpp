@@ -1,0 +1,278 @@
+// The client verbs of dem: scripts drive a dem-server with them (submit, status, list, cancel,
+// resume, watch, fetch). Exit status: 0 done, 1 the server or the job said no (or cannot be
+// reached), 2 bad arguments.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "cli/job_watch.hpp"
+#include "cli/server_api.hpp"
+#include "spec/mesh_files.hpp"
+#include "spec/spec_loader.hpp"
+
+namespace dem::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kCommonUsage = " [--server URL] [--token T]";
+const char* kArchive = "outputs.tar";  // every other artifact in one file; fetched only by name
+
+struct Verb {
+  const char* name;
+  const char* usage;  // after "usage: dem "
+  const char* first;  // what the first positional argument is
+  std::vector<std::string> value_options;
+  std::vector<std::string> flags;
+  std::size_t min_positional, max_positional;
+};
+
+struct VerbArgs {
+  std::vector<std::string> positional;
+  std::map<std::string, std::string> values;
+  std::set<std::string> flags;
+  std::string server = "http://127.0.0.1:8080", token;
+
+  bool flag(const std::string& f) const { return flags.count(f) > 0; }
+  std::string value(const std::string& option) const {
+    const auto it = values.find(option);
+    return it == values.end() ? "" : it->second;
+  }
+};
+
+int usage_error(const Verb& verb, const std::string& problem) {
+  std::fprintf(stderr, "dem %s: %s\nusage: dem %s%s\n", verb.name, problem.c_str(), verb.usage, kCommonUsage);
+  return 2;
+}
+
+// Fills `out`, or returns the exit status: 0 after --help, 2 after saying what is wrong.
+std::optional<int> parse_verb_args(const Verb& verb, const std::vector<std::string>& args, VerbArgs& out) {
+  if (const char* server = std::getenv("DEM_SERVER"); server && *server) out.server = server;
+  if (const char* token = std::getenv("DEM_SERVER_TOKEN")) out.token = token;
+  auto listed = [](const std::vector<std::string>& list, const std::string& a) {
+    return std::find(list.begin(), list.end(), a) != list.end();
+  };
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    if (a == "-h" || a == "--help") {
+      std::printf("usage: dem %s%s\n", verb.usage, kCommonUsage);
+      return 0;
+    }
+    const bool takes_value = a == "--server" || a == "--token" || listed(verb.value_options, a);
+    if (takes_value) {
+      if (k + 1 >= args.size()) return usage_error(verb, a + " needs a value");
+      const std::string& v = args[++k];
+      if (a == "--server") out.server = v;
+      else if (a == "--token") out.token = v;
+      else out.values[a] = v;
+    } else if (listed(verb.flags, a)) {
+      out.flags.insert(a);
+    } else if (a.size() > 1 && a[0] == '-') {
+      return usage_error(verb, "unknown option " + a);
+    } else {
+      out.positional.push_back(a);
+    }
+  }
+  if (out.positional.size() < verb.min_positional) return usage_error(verb, std::string("missing ") + verb.first);
+  if (out.positional.size() > verb.max_positional)
+    return usage_error(verb, "unexpected \"" + out.positional.back() + "\"");
+  return std::nullopt;
+}
+
+std::optional<std::int64_t> job_id(const std::string& text) {
+  if (text.empty() || text.size() > 18 ||
+      !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return std::nullopt;
+  return std::stoll(text);
+}
+
+// Runs `body` against the server, reporting what goes wrong in one way for every verb.
+int with_server(const Verb& verb, const VerbArgs& a, const std::function<int(const ServerApi&)>& body) {
+  std::optional<ServerApi> api;
+  try {
+    api.emplace(client::HttpClient(a.server, a.token));
+  } catch (const client::ClientError& e) {
+    return usage_error(verb, e.what());
+  }
+  try {
+    return body(*api);
+  } catch (const ApiError& e) {
+    std::fprintf(stderr, "dem %s: %s\n", verb.name, describe(e).c_str());
+    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dem %s: %s\n", verb.name, e.what());
+  }
+  return 1;
+}
+
+// The verbs that name one job: parses the arguments and the id, then runs `body`.
+int job_verb(const Verb& verb, const std::vector<std::string>& args,
+             const std::function<int(const ServerApi&, const VerbArgs&, std::int64_t)>& body) {
+  VerbArgs a;
+  if (const auto exit = parse_verb_args(verb, args, a)) return *exit;
+  const std::optional<std::int64_t> id = job_id(a.positional[0]);
+  if (!id) return usage_error(verb, "a job id is a whole number (got \"" + a.positional[0] + "\")");
+  return with_server(verb, a, [&](const ServerApi& api) { return body(api, a, *id); });
+}
+
+std::string job_target(std::int64_t id) { return "/api/jobs/" + std::to_string(id); }
+
+void print_body(const std::string& body) {
+  std::fputs(body.c_str(), stdout);
+  if (body.empty() || body.back() != '\n') std::fputc('\n', stdout);
+}
+
+// An artifact is a plain file name; anything else could write outside --out.
+bool is_artifact_name(const std::string& name) {
+  return !name.empty() && name[0] != '.' && name.find('/') == std::string::npos && name.find('\\') == std::string::npos;
+}
+
+}  // namespace
+
+int submit_command(const std::vector<std::string>& args) {
+  static const Verb verb{"submit", "submit SPEC.json [--wait] [--idempotency-key K] [--quiet]", "the spec file",
+                         {"--idempotency-key"}, {"--wait", "--quiet"}, 1, 1};
+  VerbArgs a;
+  if (const auto exit = parse_verb_args(verb, args, a)) return *exit;
+  const std::string& path = a.positional[0];
+  const bool quiet = a.flag("--quiet");
+  api::JobSpec spec;
+  try {
+    spec = spec::read_json_file(path);
+    spec::inline_mesh_files(spec, fs::path(path).parent_path().string());  // the server reads no files of ours
+  } catch (const spec::SpecError& e) {
+    std::fprintf(stderr, "%s: invalid spec:\n", path.c_str());
+    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+    return 1;
+  }
+  return with_server(verb, a, [&](const ServerApi& api) {
+    client::Headers headers;
+    const std::string key = a.value("--idempotency-key");
+    if (!key.empty()) headers.emplace_back("Idempotency-Key", key);
+    client::Response response;
+    try {
+      response = api.send("POST", "/api/jobs", spec.SerializeAsString(), "application/x-protobuf", headers);
+    } catch (const ApiError& e) {
+      if (e.status() != 400 || e.problems().empty()) throw;
+      std::fprintf(stderr, "%s: invalid spec (the server answered %s):\n", path.c_str(), describe(e).c_str());
+      for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+      return 1;
+    }
+    const nlohmann::json job = api.json_of(response, "/api/jobs");
+    const std::int64_t id = job.value("id", std::int64_t{-1});
+    if (quiet) std::printf("%lld\n", static_cast<long long>(id));
+    else if (response.header("idempotent-replayed") == "true")
+      std::printf("already submitted with idempotency key %s: %s\n", key.c_str(), job_summary(job).c_str());
+    else std::printf("submitted %s\n", job_summary(job).c_str());
+    std::fflush(stdout);  // a script reading our output learns the id before the wait
+    return a.flag("--wait") ? watch_job(api, id, verb.name, quiet) : 0;
+  });
+}
+
+int status_command(const std::vector<std::string>& args) {
+  static const Verb verb{"status", "status ID [--json]", "the job id", {}, {"--json"}, 1, 1};
+  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
+    const client::Response response = api.send("GET", job_target(id));
+    if (a.flag("--json")) print_body(response.body);
+    else std::printf("%s\n", job_summary(api.json_of(response, job_target(id))).c_str());
+    return 0;
+  });
+}
+
+int list_command(const std::vector<std::string>& args) {
+  static const Verb verb{"list", "list [--state S] [--json]", "", {"--state"}, {"--json"}, 0, 0};
+  VerbArgs a;
+  if (const auto exit = parse_verb_args(verb, args, a)) return *exit;
+  const std::string state = a.value("--state");
+  static const std::set<std::string> kStates = {"queued", "running", "succeeded", "failed", "cancelled", "interrupted"};
+  if (a.values.count("--state") && !kStates.count(state))
+    return usage_error(verb, "--state is one of queued, running, succeeded, failed, cancelled, interrupted (got \"" +
+                                 state + "\")");
+  return with_server(verb, a, [&](const ServerApi& api) {
+    const std::string target = state.empty() ? "/api/jobs" : "/api/jobs?state=" + state;
+    const client::Response response = api.send("GET", target);
+    if (a.flag("--json")) {
+      print_body(response.body);
+      return 0;
+    }
+    const nlohmann::json jobs = api.json_of(response, target).value("jobs", nlohmann::json::array());
+    if (jobs.empty()) {
+      std::fprintf(stderr, "no %sjobs\n", state.empty() ? "" : (state + " ").c_str());
+      return 0;
+    }
+    std::printf("%8s  %-11s  %8s  %-21s  %s\n", "ID", "STATE", "PROGRESS", "STEP", "NAME");
+    for (const nlohmann::json& job : jobs) {
+      const std::string step =
+          std::to_string(job.value("step", 0LL)) + "/" + std::to_string(job.value("totalSteps", 0LL));
+      std::printf("%8lld  %-11s  %7.1f%%  %-21s  %s\n", job.value("id", 0LL), job.value("state", "").c_str(),
+                  100 * job.value("progress", 0.0), step.c_str(), job.value("name", "").c_str());
+    }
+    return 0;
+  });
+}
+
+int cancel_command(const std::vector<std::string>& args) {
+  static const Verb verb{"cancel", "cancel ID", "the job id", {}, {}, 1, 1};
+  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs&, std::int64_t id) {
+    std::printf("%s\n", job_summary(api.call("POST", job_target(id) + "/cancel")).c_str());
+    return 0;
+  });
+}
+
+int resume_command(const std::vector<std::string>& args) {
+  static const Verb verb{"resume", "resume ID", "the job id", {}, {}, 1, 1};
+  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs&, std::int64_t id) {
+    std::printf("%s\n", job_summary(api.call("POST", job_target(id) + "/resume")).c_str());
+    return 0;
+  });
+}
+
+int watch_command(const std::vector<std::string>& args) {
+  static const Verb verb{"watch", "watch ID", "the job id", {}, {}, 1, 1};
+  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs&, std::int64_t id) {
+    return watch_job(api, id, verb.name, false);
+  });
+}
+
+int fetch_command(const std::vector<std::string>& args) {
+  static const Verb verb{"fetch", "fetch ID [NAME ...] [--out DIR]", "the job id", {"--out"}, {}, 1, SIZE_MAX};
+  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
+    std::vector<std::string> names(a.positional.begin() + 1, a.positional.end());
+    for (const std::string& name : names)
+      if (!is_artifact_name(name))
+        return usage_error(verb, "\"" + name + "\" is not an artifact name (a file name, no folders)");
+    const fs::path out = a.values.count("--out") ? fs::path(a.value("--out")) : fs::path(".");
+    const std::string artifacts = job_target(id) + "/artifacts";
+    if (names.empty()) {
+      for (const nlohmann::json& file : api.call("GET", artifacts).value("artifacts", nlohmann::json::array()))
+        if (file.value("name", "") != kArchive) names.push_back(file.value("name", ""));
+      if (names.empty()) {
+        std::fprintf(stderr, "dem fetch: job %lld has no artifacts yet\n", static_cast<long long>(id));
+        return 1;
+      }
+    }
+    fs::create_directories(out);
+    int failed = 0;
+    for (const std::string& name : names) {
+      const fs::path path = out / name;
+      const client::Response response = api.http().download(artifacts + "/" + name, path.string());
+      if (response.status != 200) {
+        std::fprintf(stderr, "dem fetch: %s: %s\n", name.c_str(), describe(api_error(response)).c_str());
+        ++failed;
+        continue;
+      }
+      std::printf("%s\n", path.string().c_str());
+    }
+    return failed > 0 ? 1 : 0;
+  });
+}
+
+}  // namespace dem::cli

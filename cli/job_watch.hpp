@@ -1,0 +1,22 @@
+// A job of dem-server as the client verbs show it: a one-line summary, and following it to its end.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+
+#include "cli/server_api.hpp"
+
+namespace dem::cli {
+
+// "job 12 "demo": running 42.0% (step 32000/77988, 1203 steps/s, 0m38s left)", from the job JSON.
+std::string job_summary(const nlohmann::json& job);
+
+// Polls the job about twice a second until it has ended, drawing its progress on stderr unless
+// `quiet`. Returns the exit status: 0 when it succeeded (its summary then goes to stdout unless
+// `quiet`), 1 when it failed, was cancelled or interrupted (its summary, with the error, goes to
+// stderr). Throws what ServerApi throws.
+int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, bool quiet);
+
+}  // namespace dem::cli

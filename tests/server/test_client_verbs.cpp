@@ -1,0 +1,238 @@
+// The dem command's client verbs (cli/client_commands.cpp) against the real dem-server: what a
+// script sees (exit status, stdout), and that a job sent with `dem submit` and brought back with
+// `dem fetch` holds the bytes `dem run` writes.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "support/server_process.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kDem = DEM_BINARY_DIR "/dem";
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string shell_quoted(const fs::path& p) {
+  std::string s = "'";
+  s += p.string();
+  s += "'";
+  return s;
+}
+
+std::string read_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The demo case (spheres poured into a box) cut to its first 0.15 s: 11,699 steps, the first
+// contacts with the floor and between spheres, and seconds per run rather than most of a minute.
+std::string short_demo_spec() {
+  nlohmann::json spec = nlohmann::json::parse(read_bytes(DEM_SOURCE_DIR "/cases/demo/spec.json"));
+  spec["time"]["duration"] = 0.15;
+  return spec.dump(2);
+}
+
+class ClientVerbs : public testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+    dir_ =
+        fs::temp_directory_path() / ("dem_client_verbs_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    server_.reset();
+    fs::remove_all(dir_);
+  }
+
+  void start_server(const std::vector<std::string>& extra = {}) {
+    server_ = std::make_unique<dem::test::ServerProcess>(dir_ / "data", extra);
+  }
+
+  // Runs `dem ARGS --server URL` with stdout and stderr apart; `environment` goes before it
+  // (DEM_SERVER and DEM_SERVER_TOKEN are cleared first).
+  Result dem(const std::string& args, const std::string& environment = "") {
+    Result r;
+    const fs::path err = dir_ / "stderr.txt";
+    const std::string command = "env -u DEM_SERVER -u DEM_SERVER_TOKEN " + environment + " " + shell_quoted(kDem) +
+                                " " + args + " --server " + server_->url() + " 2>" + shell_quoted(err);
+    std::FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) {
+      ADD_FAILURE() << "popen failed for " << command;
+      return r;
+    }
+    char buffer[4096];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, n);
+    const int status = pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.err = read_bytes(err);
+    return r;
+  }
+
+  fs::path write_file(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+
+  // `dem submit SPEC --quiet` (and more options): the job id it prints.
+  long submit(const fs::path& spec, const std::string& more = "") {
+    const Result r = dem("submit " + shell_quoted(spec) + " --quiet " + more);
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    try {
+      return std::stol(r.out);
+    } catch (...) {
+      ADD_FAILURE() << "no job id in \"" << r.out << "\"";
+      return -1;
+    }
+  }
+
+  fs::path dir_;
+  std::unique_ptr<dem::test::ServerProcess> server_;
+};
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST_F(ClientVerbs, SubmitWaitAndFetchGiveTheBytesOfDemRun) {
+  start_server();
+  const fs::path spec = write_file("demo.json", short_demo_spec()), local = dir_ / "local";
+  const std::string run =
+      shell_quoted(kDem) + " run " + shell_quoted(spec) + " --out " + shell_quoted(local) + " --quiet > /dev/null 2>&1";
+  ASSERT_EQ(std::system(run.c_str()), 0) << run;
+
+  // a script's `id=$(dem submit s.json --quiet --wait)`: only the id on stdout
+  const Result submitted = dem("submit " + shell_quoted(spec) + " --wait --quiet");
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.out << submitted.err;
+  ASSERT_FALSE(submitted.out.empty());
+  const long id = std::stol(submitted.out);
+  EXPECT_EQ(submitted.out, std::to_string(id) + "\n");
+  EXPECT_EQ(submitted.err, "");
+
+  const Result status = dem("status " + std::to_string(id));
+  EXPECT_EQ(status.exit_code, 0) << status.err;
+  EXPECT_TRUE(has(status.out, "job " + std::to_string(id) + " \"demo: spheres poured into a box\": succeeded"))
+      << status.out;
+  const Result raw = dem("status " + std::to_string(id) + " --json");
+  ASSERT_EQ(raw.exit_code, 0) << raw.err;
+  const nlohmann::json job = nlohmann::json::parse(raw.out);
+  EXPECT_EQ(job["id"], id);
+  EXPECT_EQ(job["state"], "succeeded");
+  EXPECT_EQ(job["step"], job["totalSteps"]);
+
+  const fs::path fetched = dir_ / "fetched";
+  const Result fetch = dem("fetch " + std::to_string(id) + " --out " + shell_quoted(fetched));
+  ASSERT_EQ(fetch.exit_code, 0) << fetch.out << fetch.err;
+  EXPECT_TRUE(has(fetch.out, (fetched / "ANIMATION_3D.dat").string())) << fetch.out;
+  for (const char* name : {"ANIMATION_3D.dat", "ForceChain_3D.dat"}) {
+    ASSERT_TRUE(fs::exists(fetched / name)) << name;
+    EXPECT_EQ(read_bytes(fetched / name), read_bytes(local / name)) << name << " differs from dem run's";
+  }
+  EXPECT_FALSE(fs::exists(fetched / "outputs.tar")) << "fetched without names, the archive is left out";
+  for (const auto& entry : fs::directory_iterator(fetched))
+    EXPECT_NE(entry.path().extension(), ".part") << "a partial download is left: " << entry.path();
+
+  // by name: the archive, and a file that is not there (the others are still fetched)
+  const Result named =
+      dem("fetch " + std::to_string(id) + " outputs.tar Nothing.dat --out " + shell_quoted(dir_ / "named"));
+  EXPECT_EQ(named.exit_code, 1);
+  EXPECT_GT(fs::file_size(dir_ / "named" / "outputs.tar"), fs::file_size(local / "ANIMATION_3D.dat"));
+  EXPECT_TRUE(has(named.err, "Nothing.dat: 404 Not Found")) << named.err;
+  EXPECT_FALSE(fs::exists(dir_ / "named" / "Nothing.dat"));
+
+  const Result list = dem("list --state succeeded");
+  EXPECT_EQ(list.exit_code, 0) << list.err;
+  bool listed = false;  // a row "ID  succeeded  100.0%  STEPS/STEPS  NAME"
+  std::istringstream rows(list.out);
+  for (std::string row; std::getline(rows, row);) {
+    std::istringstream words(row);
+    std::string first, state, progress;
+    words >> first >> state >> progress;
+    listed = listed || (first == std::to_string(id) && state == "succeeded" && progress == "100.0%");
+  }
+  EXPECT_TRUE(listed) << list.out;
+  const Result none = dem("list --state running --json");
+  EXPECT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_EQ(nlohmann::json::parse(none.out)["jobs"].size(), 0u) << none.out;
+
+  // a finished job can be neither cancelled nor resumed: the server's 409 and its reason
+  const Result cancel = dem("cancel " + std::to_string(id));
+  EXPECT_EQ(cancel.exit_code, 1);
+  EXPECT_TRUE(has(cancel.err, "dem cancel: 409 Conflict: ")) << cancel.err;
+  EXPECT_EQ(dem("resume " + std::to_string(id)).exit_code, 1);
+}
+
+TEST_F(ClientVerbs, ARetriedSubmitWithTheSameKeyGivesTheSameJob) {
+  start_server();
+  const fs::path spec = write_file("demo.json", short_demo_spec());
+  const long first = submit(spec, "--idempotency-key nightly-42");
+  const long again = submit(spec, "--idempotency-key nightly-42");
+  EXPECT_EQ(again, first);
+  const Result said = dem("submit " + shell_quoted(spec) + " --idempotency-key nightly-42");
+  EXPECT_EQ(said.exit_code, 0) << said.err;
+  EXPECT_TRUE(has(said.out, "already submitted with idempotency key nightly-42: job " + std::to_string(first)))
+      << said.out;
+  EXPECT_NE(submit(spec, "--idempotency-key nightly-43"), first);
+}
+
+TEST_F(ClientVerbs, ASpecTheServerRefusesListsItsProblems) {
+  start_server();
+  std::string text = short_demo_spec();
+  text.replace(text.find("\"radius\": 0.008"), 15, "\"radius\": -0.008");
+  const Result r = dem("submit " + shell_quoted(write_file("bad.json", text)));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(has(r.err, "bad.json: invalid spec (the server answered 400 Bad Request: invalid spec):\n")) << r.err;
+  EXPECT_TRUE(has(r.err, "\n  lattices[0].radius: ")) << r.err;
+}
+
+TEST_F(ClientVerbs, ACancelledJobEndsItsWatchWithStatusOne) {
+  start_server();
+  nlohmann::json spec = nlohmann::json::parse(short_demo_spec());
+  spec["time"]["duration"] = 100.0;  // runs until cancelled
+  const long id = submit(write_file("long.json", spec.dump()));
+  const Result cancel = dem("cancel " + std::to_string(id));
+  EXPECT_EQ(cancel.exit_code, 0) << cancel.err;
+  EXPECT_TRUE(has(cancel.out, "job " + std::to_string(id))) << cancel.out;
+  const Result watch = dem("watch " + std::to_string(id));
+  EXPECT_EQ(watch.exit_code, 1);
+  EXPECT_TRUE(has(watch.err, "dem watch: job " + std::to_string(id))) << watch.err;
+  EXPECT_TRUE(has(watch.err, "cancelled")) << watch.err;
+}
+
+TEST_F(ClientVerbs, AnUnknownJobIsTheServers404) {
+  start_server();
+  const Result r = dem("status 999");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "dem status: 404 Not Found: no job 999\n");
+  EXPECT_EQ(dem("watch 999").exit_code, 1);
+  EXPECT_EQ(dem("fetch 999 --out " + shell_quoted(dir_ / "none")).exit_code, 1);
+}
+
+TEST_F(ClientVerbs, TheTokenComesFromTheOptionOrTheEnvironment) {
+  start_server({"--token", "s3cret"});
+  const Result without = dem("list");
+  EXPECT_EQ(without.exit_code, 1);
+  EXPECT_TRUE(has(without.err, "dem list: 401")) << without.err;
+  EXPECT_EQ(dem("list --token s3cret").exit_code, 0);
+  EXPECT_EQ(dem("list", "DEM_SERVER_TOKEN=s3cret").exit_code, 0);
+}
+
+}  // namespace
