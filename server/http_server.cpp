@@ -73,6 +73,7 @@ int run_server(const ServerOptions& options) {
   manager_options.concurrency = options.concurrency;
   manager_options.threads_per_job = options.threads_per_job;
   manager_options.checkpoint_seconds = options.checkpoint_seconds;
+  manager_options.max_frame_rate = options.max_frame_rate;
   JobManager jobs(manager_options, frames);
   ServerState state{jobs, frames, openapi_json(), options.web, options.token, options.max_body};
 

@@ -19,6 +19,7 @@ struct ServerOptions {
   int threads_per_job = 0;            // 0: the cores shared among the running jobs
   std::size_t max_body = 64u << 20;   // bytes of a request body
   double checkpoint_seconds = 10;
+  double max_frame_rate = 30;         // live frames a second per job; 0: every output frame
   int io_threads = 2;
 };
 

@@ -57,6 +57,10 @@ nlohmann::json to_json(const JobRecord& job) {
   if (!job.idempotency_key.empty()) j["idempotencyKey"] = job.idempotency_key;
   j["resumable"] = job.state == JobState::Interrupted;
   if (job.checkpoint_step >= 0) j["checkpointStep"] = job.checkpoint_step;
+  if (job.run_seconds > 0) {
+    j["runSeconds"] = job.run_seconds;
+    j["streamSeconds"] = job.stream_seconds;
+  }
   return j;
 }
 

@@ -34,18 +34,32 @@ class Checkpointer {
   std::chrono::steady_clock::time_point last_;
 };
 
-// Encodes and publishes a frame only while somebody watches: an unwatched job pays nothing.
+// Encodes and publishes a frame only while somebody watches (an unwatched job pays nothing), and at
+// most `max_rate` frames a second (a screen shows no more; the file has every frame). The last
+// frame always goes out.
 class FramePublisher final : public Observer {
  public:
-  FramePublisher(std::int64_t job, std::shared_ptr<FrameChannel> channel) : encoder_(job), channel_(std::move(channel)) {}
+  FramePublisher(std::int64_t job, std::shared_ptr<FrameChannel> channel, double max_rate)
+      : encoder_(job), channel_(std::move(channel)), min_interval_(max_rate > 0 ? 1.0 / max_rate : 0.0) {}
   void frame(const Simulation& sim) override {
     if (!channel_ || !channel_->has_viewers()) return;
+    const auto now = std::chrono::steady_clock::now();
+    const bool last = sim.step_count() == sim.total_steps();
+    if (published_ && !last && std::chrono::duration<double>(now - last_).count() < min_interval_) return;
     channel_->publish(std::make_shared<const EncodedFrame>(encoder_.encode(sim, channel_->wants_force_chains())));
+    last_ = now;
+    published_ = true;
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - now).count();
   }
+  double seconds() const { return seconds_; }  // the engine's time spent on live frames
 
  private:
   FrameEncoder encoder_;
   std::shared_ptr<FrameChannel> channel_;
+  double min_interval_;
+  std::chrono::steady_clock::time_point last_;
+  bool published_ = false;
+  double seconds_ = 0;
 };
 
 api::JobSpec read_spec(const JobFolder& folder) {
@@ -71,7 +85,7 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     if (hooks.on_start) hooks.on_start(sim);
 
     std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, folder.outputs().string(), resume);
-    auto publisher = std::make_unique<FramePublisher>(hooks.job, hooks.frames);
+    auto publisher = std::make_unique<FramePublisher>(hooks.job, hooks.frames, hooks.max_frame_rate);
     Checkpointer checkpointer(folder, hooks.checkpoint_seconds, hooks.on_checkpoint);
     std::vector<Observer*> observers;
     for (auto& w : writers) observers.push_back(w.get());
@@ -84,6 +98,8 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     options.periodically = [&](const Simulation& s) { checkpointer.maybe_save(s); };
     const RunOutcome outcome = run(sim, observers, options);
     writers.clear();  // closes the files
+    result.run_seconds = outcome.loop_seconds;
+    result.stream_seconds = publisher->seconds();
     if (outcome.cancelled) {
       result.kind = ExecutionResult::Kind::Stopped;
       if (hooks.checkpoint_on_stop && hooks.checkpoint_on_stop->load()) checkpointer.save(sim);

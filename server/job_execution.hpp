@@ -20,6 +20,7 @@ struct ExecutionHooks {
   const std::atomic<bool>* stop = nullptr;              // cancel or shut down: stop between steps
   const std::atomic<bool>* checkpoint_on_stop = nullptr;  // shut down: save the state where it stopped
   std::shared_ptr<FrameChannel> frames;   // may be null
+  double max_frame_rate = 30;             // live frames a second at most; 0: every output frame
   std::function<void(const Simulation&)> on_start;
   std::function<void(const Progress&)> on_progress;
   std::function<void(std::int64_t step)> on_checkpoint;
@@ -29,6 +30,8 @@ struct ExecutionResult {
   enum class Kind { Succeeded, Failed, Stopped };
   Kind kind = Kind::Succeeded;
   std::string error;
+  double run_seconds = 0;     // the stepping loop's wall time, observers included
+  double stream_seconds = 0;  // of which making and handing out live frames
 };
 
 ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks);

@@ -266,6 +266,7 @@ void JobManager::run_one(JobRecord job) {
   hooks.job = id;
   hooks.threads = threads_per_job();
   hooks.checkpoint_seconds = options_.checkpoint_seconds;
+  hooks.max_frame_rate = options_.max_frame_rate;
   hooks.stop = &control->stop;
   hooks.checkpoint_on_stop = &control->checkpoint_on_stop;
   hooks.frames = frames_.open(id);
@@ -307,6 +308,8 @@ void JobManager::run_one(JobRecord job) {
     JobRecord& j = jobs_.at(id);
     j.steps_per_second = 0;
     j.seconds_left = 0;
+    j.run_seconds += result.run_seconds;
+    j.stream_seconds += result.stream_seconds;
     switch (result.kind) {
       case ExecutionResult::Kind::Succeeded:
         j.state = archive_error.empty() ? JobState::Succeeded : JobState::Failed;

@@ -27,6 +27,7 @@ struct ManagerOptions {
   int concurrency = 1;            // jobs running at once
   int threads_per_job = 0;        // 0: the cores divided among the running jobs
   double checkpoint_seconds = 10;
+  double max_frame_rate = 30;     // live frames a second per job; 0: every output frame
 };
 
 // What a request on a job came to.

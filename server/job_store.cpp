@@ -48,7 +48,7 @@ class Statement {
 
 constexpr const char* kColumns =
     "id, name, state, created_at, started_at, finished_at, error, idempotency_key, particles, step, total_steps, "
-    "time_step, checkpoint_step";
+    "time_step, checkpoint_step, run_seconds, stream_seconds";
 
 }  // namespace
 
@@ -78,7 +78,9 @@ JobStore::JobStore(const std::string& path) : path_(path) {
       " step INTEGER NOT NULL DEFAULT 0,"
       " total_steps INTEGER NOT NULL DEFAULT 0,"
       " time_step REAL NOT NULL DEFAULT 0,"
-      " checkpoint_step INTEGER NOT NULL DEFAULT -1)");
+      " checkpoint_step INTEGER NOT NULL DEFAULT -1,"
+      " run_seconds REAL NOT NULL DEFAULT 0,"
+      " stream_seconds REAL NOT NULL DEFAULT 0)");
   exec("CREATE UNIQUE INDEX IF NOT EXISTS jobs_idempotency ON jobs(idempotency_key) WHERE idempotency_key IS NOT NULL");
 }
 
@@ -114,6 +116,8 @@ std::vector<JobRecord> JobStore::load_all() {
     j.total_steps = q.column_int(10);
     j.time_step = q.column_real(11);
     j.checkpoint_step = q.column_int(12);
+    j.run_seconds = q.column_real(13);
+    j.stream_seconds = q.column_real(14);
     jobs.push_back(std::move(j));
   }
   return jobs;
@@ -142,11 +146,11 @@ void JobStore::insert(JobRecord& job, const std::function<void(std::int64_t)>& b
 void JobStore::update(const JobRecord& job) {
   Statement q(db_,
               "UPDATE jobs SET name = ?, state = ?, started_at = ?, finished_at = ?, error = ?, particles = ?, step = ?,"
-              " total_steps = ?, time_step = ?, checkpoint_step = ? WHERE id = ?",
+              " total_steps = ?, time_step = ?, checkpoint_step = ?, run_seconds = ?, stream_seconds = ? WHERE id = ?",
               path_);
   q.text(1, job.name).text(2, to_string(job.state)).text(3, job.started_at).text(4, job.finished_at).text(5, job.error);
   q.integer(6, job.particles).integer(7, job.step).integer(8, job.total_steps).real(9, job.time_step);
-  q.integer(10, job.checkpoint_step).integer(11, job.id);
+  q.integer(10, job.checkpoint_step).real(11, job.run_seconds).real(12, job.stream_seconds).integer(13, job.id);
   q.row();
 }
 

@@ -11,6 +11,7 @@ namespace {
 const char* kUsage =
     "usage: dem-server --data DIR [--port PORT] [--address ADDR] [--token TOKEN] [--jobs N]\n"
     "                  [--threads-per-job N] [--max-body-mb MB] [--web DIR] [--checkpoint-seconds S]\n"
+    "                  [--max-frame-rate HZ]\n"
     "  --data DIR              where the job table (jobs.db) and each job's folder live (made if missing)\n"
     "  --port PORT             default 8080; 0 picks a free port (printed)\n"
     "  --address ADDR          default 127.0.0.1; any other address needs a token\n"
@@ -20,7 +21,8 @@ const char* kUsage =
     "  --threads-per-job N     OpenMP threads of a job (default: the cores shared among running jobs)\n"
     "  --max-body-mb MB        largest request body (default 64)\n"
     "  --web DIR               the viewer's files (default: the web/ folder of the source tree)\n"
-    "  --checkpoint-seconds S  at most one checkpoint per S seconds of a running job (default 10)\n";
+    "  --checkpoint-seconds S  a checkpoint of a running job every S seconds (default 10)\n"
+    "  --max-frame-rate HZ     live frames a second per job at most (default 30; 0: every output frame)\n";
 
 bool number(const std::string& text, double& out) {
   try {
@@ -72,6 +74,9 @@ int main(int argc, char** argv) {
     } else if (a == "--max-body-mb") {
       if (!number(v, x) || !(x > 0) || x > 4096) return bad("a size in MB, > 0");
       options.max_body = static_cast<std::size_t>(x * 1024 * 1024);
+    } else if (a == "--max-frame-rate") {
+      if (!number(v, x) || !(x >= 0)) return bad("a rate in Hz >= 0");
+      options.max_frame_rate = x;
     } else if (a == "--checkpoint-seconds") {
       if (!number(v, x) || !(x >= 0)) return bad("a number of seconds >= 0");
       options.checkpoint_seconds = x;

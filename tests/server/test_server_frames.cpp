@@ -45,7 +45,7 @@ std::vector<T> array_of(const std::string& bytes) {
 }
 
 TEST_F(ServerFrames, AViewerGetsEveryFrameInOrderWithTheArchivedPositions) {
-  start_server();
+  start_server({"--max-frame-rate", "0"});
   const long id = queue_held(pouring_spec(0.012, 8000, 250, true));  // the lowest layer lands on the floor
   client::FrameStream stream(*client_, "/api/jobs/" + std::to_string(id) + "/frames?forceChains=1");
   release();
@@ -93,7 +93,7 @@ TEST_F(ServerFrames, AViewerGetsEveryFrameInOrderWithTheArchivedPositions) {
 }
 
 TEST_F(ServerFrames, ASlowViewerSkipsFramesWhileAFastOneGetsThemAll) {
-  start_server();
+  start_server({"--max-frame-rate", "0"});
   const long id = queue_held(pouring_spec(0.006, 1500, 10));  // ~3,900 spheres: 95 kB a frame
   const std::string target = "/api/jobs/" + std::to_string(id) + "/frames";
   client::FrameStream fast_stream(*client_, target), slow_stream(*client_, target);
@@ -115,6 +115,20 @@ TEST_F(ServerFrames, ASlowViewerSkipsFramesWhileAFastOneGetsThemAll) {
   std::printf("server memory: %ld KiB before, %ld KiB after; slow viewer got %zu of %zu frames\n", memory_before,
               memory_after, slow.size(), fast.size());
   EXPECT_LT(memory_after - memory_before, 16 * 1024);
+}
+
+TEST_F(ServerFrames, LiveFramesAreCappedAtTheMaximumRateButTheLastOneAlwaysComes) {
+  start_server({"--max-frame-rate", "2"});
+  const long id = queue_held(pouring_spec(0.012, 8000, 10));  // 801 output frames in about a second
+  client::FrameStream stream(*client_, "/api/jobs/" + std::to_string(id) + "/frames");
+  const auto start = std::chrono::steady_clock::now();
+  release();
+  const std::vector<api::Frame> frames = read_all(stream);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_FALSE(frames.empty());
+  EXPECT_LE(static_cast<double>(frames.size()), 2 * seconds + 3) << "over " << seconds << " s";
+  EXPECT_EQ(frames.back().step(), 8000);
+  EXPECT_EQ(read_bytes(dir_ / "data" / "jobs" / std::to_string(id) / "outputs" / "Masscenter.dat").empty(), false);
 }
 
 TEST_F(ServerFrames, AFinishedJobClosesTheStreamSayingWhere) {
