@@ -1,6 +1,11 @@
 #include "server/http_server.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -52,6 +57,24 @@ class Listener : public std::enable_shared_from_this<Listener> {
 
 }  // namespace
 
+// Holds an exclusive lock on DATA/server.lock for the life of the process (the kernel drops it
+// when the process dies, kill -9 included): two servers on one job table would run jobs twice.
+class DataLock {
+ public:
+  explicit DataLock(const std::filesystem::path& data) {
+    std::filesystem::create_directories(data);
+    const std::string path = (data / "server.lock").string();
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw std::runtime_error("cannot open " + path);
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+      throw std::runtime_error("another dem-server is using the data folder " + data.string());
+  }
+  ~DataLock() { ::close(fd_); }
+
+ private:
+  int fd_ = -1;
+};
+
 bool is_loopback(const std::string& address) {
   if (address == "localhost") return true;
   boost::system::error_code ec;
@@ -67,6 +90,7 @@ int run_server(const ServerOptions& options) {
                  options.address.c_str());
     return 2;
   }
+  const DataLock lock(options.data);
   FrameHub frames;
   ManagerOptions manager_options;
   manager_options.data = options.data;

@@ -126,6 +126,29 @@ TEST_F(ServerJobs, JobsWaitInOrderAndCanBeCancelledOrDeleted) {
   EXPECT_EQ(client_->request("POST", "/api/jobs/" + std::to_string(running) + "/resume").status, 409);
 }
 
+TEST_F(ServerJobs, WithTwoJobsAtOnceBothRunAndTheThirdWaits) {
+  start_server({"--jobs", "2"});
+  std::vector<long> ids;
+  for (int k = 0; k < 3; ++k) ids.push_back(submit_json(pouring_spec(0.015, 100000000, 100000))["id"]);
+  wait_for(ids[0], "running");
+  wait_for(ids[1], "running");
+  EXPECT_EQ(job(ids[2])["state"], "queued");
+  for (long id : ids) EXPECT_EQ(client_->request("POST", "/api/jobs/" + std::to_string(id) + "/cancel").status, 200);
+  for (long id : ids) EXPECT_EQ(wait_for(id, "cancelled")["state"], "cancelled");
+}
+
+TEST_F(ServerJobs, ASecondServerOnTheSameDataFolderIsRefused) {
+  start_server();
+  const std::string command = std::string(DEM_BINARY_DIR) + "/dem-server --port 0 --data '" + (dir_ / "data").string() + "' 2>&1";
+  std::FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[512];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
+  EXPECT_EQ(WEXITSTATUS(pclose(pipe)), 1);
+  EXPECT_NE(output.find("another dem-server is using the data folder"), std::string::npos) << output;
+  EXPECT_EQ(client_->get("/api/health").status, 200);
+}
+
 TEST_F(ServerJobs, HealthAndTheOpenApiDescriptionAreServed) {
   start_server();
   const client::Response health = client_->get("/api/health");
