@@ -4,6 +4,7 @@
 #include <system_error>
 
 #include "core/errors.hpp"
+#include "server/bundled_cases.hpp"
 #include "server/version.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -154,6 +155,15 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
   if (s.size() == 2 && s[1] == "openapi.json") {
     if (!get) return method_not_allowed(req, "GET");
     return text_response(req, http::status::ok, "application/json", ctx.openapi);
+  }
+  if (s.size() >= 2 && s[1] == "cases") {
+    if (!get) return method_not_allowed(req, "GET");
+    if (s.size() == 2) return json_response(req, http::status::ok, {{"cases", list_cases(ctx.cases)}});
+    if (s.size() == 3) {
+      if (std::optional<std::string> spec = case_spec(ctx.cases, s[2]))
+        return text_response(req, http::status::ok, "application/json", std::move(*spec));
+      return error_response(req, http::status::not_found, "no bundled case " + s[2]);
+    }
   }
   if (s.size() >= 2 && s[1] == "jobs") {
     if (s.size() == 2) {

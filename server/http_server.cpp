@@ -99,7 +99,7 @@ int run_server(const ServerOptions& options) {
   manager_options.checkpoint_seconds = options.checkpoint_seconds;
   manager_options.max_frame_rate = options.max_frame_rate;
   JobManager jobs(manager_options, frames);
-  ServerState state{jobs, frames, openapi_json(), options.web, options.token, options.max_body};
+  ServerState state{jobs, frames, openapi_json(), options.web, options.cases, options.token, options.max_body};
 
   asio::io_context io(options.io_threads);
   boost::system::error_code ec;

@@ -14,6 +14,7 @@ struct ServerOptions {
   unsigned short port = 8080;         // 0: any free port (printed)
   std::filesystem::path data;         // jobs.db and jobs/
   std::filesystem::path web;          // the viewer's files
+  std::filesystem::path cases;        // the bundled cases offered at /api/cases
   std::string token;                  // required on every request when not empty
   int concurrency = 1;                // jobs at once
   int threads_per_job = 0;            // 0: the cores shared among the running jobs

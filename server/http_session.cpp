@@ -63,7 +63,7 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
   const bool api = !target->segments.empty() && target->segments[0] == "api";
   if (api && websocket::is_upgrade(req)) return upgrade(std::move(req), *target);
   if (api) {
-    ApiContext ctx{state_.jobs, state_.openapi};
+    ApiContext ctx{state_.jobs, state_.openapi, state_.cases};
     try {
       return send(handle_api(req, *target, ctx));
     } catch (const std::exception& e) {  // the store or the disk failed: say so, keep serving

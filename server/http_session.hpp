@@ -22,6 +22,7 @@ struct ServerState {
   FrameHub& frames;
   std::string openapi;
   std::filesystem::path web;
+  std::filesystem::path cases;
   std::string token;
   std::size_t max_body;
 };

@@ -11,7 +11,7 @@ namespace {
 const char* kUsage =
     "usage: dem-server --data DIR [--port PORT] [--address ADDR] [--token TOKEN] [--jobs N]\n"
     "                  [--threads-per-job N] [--max-body-mb MB] [--web DIR] [--checkpoint-seconds S]\n"
-    "                  [--max-frame-rate HZ]\n"
+    "                  [--max-frame-rate HZ] [--cases DIR]\n"
     "  --data DIR              where the job table (jobs.db) and each job's folder live (made if missing)\n"
     "  --port PORT             default 8080; 0 picks a free port (printed)\n"
     "  --address ADDR          default 127.0.0.1; any other address needs a token\n"
@@ -20,7 +20,8 @@ const char* kUsage =
     "  --jobs N                jobs running at once (default 1, with all cores)\n"
     "  --threads-per-job N     OpenMP threads of a job (default: the cores shared among running jobs)\n"
     "  --max-body-mb MB        largest request body (default 64)\n"
-    "  --web DIR               the viewer's files (default: the web/ folder of the source tree)\n"
+    "  --web DIR               the viewer's files (default: web/dist of the source tree)\n"
+    "  --cases DIR             the bundled cases offered to the viewer (default: cases/ of the source tree)\n"
     "  --checkpoint-seconds S  a checkpoint of a running job every S seconds (default 10)\n"
     "  --max-frame-rate HZ     live frames a second per job at most (default 30; 0: every output frame)\n";
 
@@ -39,6 +40,7 @@ bool number(const std::string& text, double& out) {
 int main(int argc, char** argv) {
   dem::server::ServerOptions options;
   options.web = DEM_WEB_DIR;
+  options.cases = DEM_CASES_DIR;
   if (const char* token = std::getenv("DEM_SERVER_TOKEN")) options.token = token;
   std::vector<std::string> args(argv + 1, argv + argc);
   for (std::size_t k = 0; k < args.size(); ++k) {
@@ -62,6 +64,7 @@ int main(int argc, char** argv) {
     else if (a == "--address") options.address = v;
     else if (a == "--token") options.token = v;
     else if (a == "--web") options.web = v;
+    else if (a == "--cases") options.cases = v;
     else if (a == "--port") {
       if (!whole(0, 65535)) return bad("a port number 0-65535");
       options.port = static_cast<unsigned short>(x);
