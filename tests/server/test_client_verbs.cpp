@@ -1,44 +1,21 @@
 // The dem command's client verbs (cli/client_commands.cpp) against the real dem-server: what a
 // script sees (exit status, stdout), and that a job sent with `dem submit` and brought back with
 // `dem fetch` holds the bytes `dem run` writes.
-#include <gtest/gtest.h>
-
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <memory>
 #include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "support/server_process.hpp"
+#include "support/command.hpp"
+#include "support/server_test.hpp"
 
+namespace dem::test {
 namespace {
-
-namespace fs = std::filesystem;
-
-const std::string kDem = DEM_BINARY_DIR "/dem";
 
 struct Result {
   int exit_code = -1;
   std::string out, err;
 };
-
-std::string shell_quoted(const fs::path& p) {
-  std::string s = "'";
-  s += p.string();
-  s += "'";
-  return s;
-}
-
-std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 // The demo case (spheres poured into a box) cut to its first 0.15 s: 11,699 steps, the first
 // contacts with the floor and between spheres, and seconds per run rather than most of a minute.
@@ -48,48 +25,21 @@ std::string short_demo_spec() {
   return spec.dump(2);
 }
 
-class ClientVerbs : public testing::Test {
+class ClientVerbs : public ServerTest {
  protected:
-  void SetUp() override {
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ =
-        fs::temp_directory_path() / ("dem_client_verbs_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
-
-  void start_server(const std::vector<std::string>& extra = {}) {
-    server_ = std::make_unique<dem::test::ServerProcess>(dir_ / "data", extra);
-  }
-
   // Runs `dem ARGS --server URL` with stdout and stderr apart; `environment` goes before it
   // (DEM_SERVER and DEM_SERVER_TOKEN are cleared first).
   Result dem(const std::string& args, const std::string& environment = "") {
-    Result r;
     const fs::path err = dir_ / "stderr.txt";
-    const std::string command = "env -u DEM_SERVER -u DEM_SERVER_TOKEN " + environment + " " + shell_quoted(kDem) +
-                                " " + args + " --server " + server_->url() + " 2>" + shell_quoted(err);
-    std::FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-      ADD_FAILURE() << "popen failed for " << command;
-      return r;
-    }
-    char buffer[4096];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, n);
-    const int status = pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.err = read_bytes(err);
-    return r;
+    const CommandResult r = run_command("env -u DEM_SERVER -u DEM_SERVER_TOKEN " + environment + " " +
+                                        shell_quoted(kDem) + " " + args + " --server " + server_->url() + " 2>" +
+                                        shell_quoted(err));
+    return {r.exit_code, r.output, read_bytes(err)};
   }
 
   fs::path write_file(const std::string& name, const std::string& text) {
     const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << text;
+    write_text(path, text);
     return path;
   }
 
@@ -104,9 +54,6 @@ class ClientVerbs : public testing::Test {
       return -1;
     }
   }
-
-  fs::path dir_;
-  std::unique_ptr<dem::test::ServerProcess> server_;
 };
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
@@ -236,3 +183,4 @@ TEST_F(ClientVerbs, TheTokenComesFromTheOptionOrTheEnvironment) {
 }
 
 }  // namespace
+}  // namespace dem::test

@@ -1,4 +1,5 @@
 // Bad requests get their status and a message naming what is wrong, and change nothing.
+#include "support/command.hpp"
 #include "support/server_test.hpp"
 
 namespace dem::test {
@@ -85,15 +86,10 @@ TEST_F(ServerErrors, WithATokenEveryRequestMustCarryIt) {
 }
 
 TEST_F(ServerErrors, ListeningBeyondLoopbackWithoutATokenIsRefused) {
-  const std::string command = std::string(DEM_BINARY_DIR) + "/dem-server --address 0.0.0.0 --port 0 --data '" +
-                              (dir_ / "data").string() + "' 2>&1";
-  std::FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[512];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
-  const int status = pclose(pipe);
-  EXPECT_EQ(WEXITSTATUS(status), 2);
-  EXPECT_NE(output.find("needs an access token"), std::string::npos) << output;
+  const CommandResult r = run_command(std::string(DEM_BINARY_DIR) + "/dem-server --address 0.0.0.0 --port 0 --data " +
+                                      shell_quoted(dir_ / "data"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("needs an access token"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include "dem.pb.h"
 #include "spec/spec_loader.hpp"
+#include "support/command.hpp"
 #include "support/server_test.hpp"
 
 namespace dem::test {
@@ -139,14 +140,31 @@ TEST_F(ServerJobs, WithTwoJobsAtOnceBothRunAndTheThirdWaits) {
 
 TEST_F(ServerJobs, ASecondServerOnTheSameDataFolderIsRefused) {
   start_server();
-  const std::string command = std::string(DEM_BINARY_DIR) + "/dem-server --port 0 --data '" + (dir_ / "data").string() + "' 2>&1";
-  std::FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[512];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
-  EXPECT_EQ(WEXITSTATUS(pclose(pipe)), 1);
-  EXPECT_NE(output.find("another dem-server is using the data folder"), std::string::npos) << output;
+  const CommandResult r =
+      run_command(std::string(DEM_BINARY_DIR) + "/dem-server --port 0 --data " + shell_quoted(dir_ / "data"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("another dem-server is using the data folder"), std::string::npos) << r.output;
   EXPECT_EQ(client_->get("/api/health").status, 200);
+}
+
+TEST_F(ServerJobs, BundledCasesAreOfferedWithTheirMeshesInlinedAndCanBeSubmitted) {
+  start_server();
+  const nlohmann::json cases = nlohmann::json::parse(client_->get("/api/cases").body)["cases"];
+  std::vector<std::string> names;
+  for (const auto& c : cases) names.push_back(c["name"]);
+  EXPECT_NE(std::find(names.begin(), names.end(), "demo"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "landslide"), names.end());
+  const client::Response landslide = client_->get("/api/cases/landslide");
+  ASSERT_EQ(landslide.status, 200);
+  const nlohmann::json spec = nlohmann::json::parse(landslide.body);
+  bool inline_mesh = false;
+  for (const auto& wall : spec["walls"])
+    if (wall.contains("mesh")) inline_mesh = wall["mesh"].contains("vertices") && !wall["mesh"].contains("file");
+  EXPECT_TRUE(inline_mesh);
+  const client::Response submitted = client_->request("POST", "/api/jobs", landslide.body, "application/json");
+  EXPECT_EQ(submitted.status, 201) << submitted.body;
+  EXPECT_EQ(client_->get("/api/cases/nothing").status, 404);
+  EXPECT_EQ(client_->get("/api/cases/..%2Fcases%2Fdemo").status, 404);
 }
 
 TEST_F(ServerJobs, HealthAndTheOpenApiDescriptionAreServed) {

@@ -3,9 +3,6 @@
 // particles for a few steps.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,42 +10,18 @@
 #include <string>
 
 #include "legacy/legacy_formats.hpp"
+#include "support/command.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kDem = DEM_BINARY_DIR "/dem";
-
-struct Result {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-// A path in single quotes for the shell (test paths hold no quote).
-std::string shell_quoted(const fs::path& p) {
-  std::string s = "'";
-  s += p.string();
-  s += "'";
-  return s;
-}
+using dem::test::kDem;
+using dem::test::shell_quoted;
+using Result = dem::test::CommandResult;
 
 // Runs `dem ARGS` through the shell, capturing both streams.
-Result dem(const std::string& args) {
-  Result r;
-  const std::string command = shell_quoted(kDem) + " " + args + " 2>&1";
-  std::FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) {
-    ADD_FAILURE() << "popen failed for " << command;
-    return r;
-  }
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+Result dem(const std::string& args) { return dem::test::run_command(shell_quoted(kDem) + " " + args); }
 
 // Two glass spheres 0.1 mm apart closing at 2 m/s: they touch within the 12 steps.
 const char* kGoodSpec = R"({
@@ -75,25 +48,7 @@ std::string good_with(const std::string& from, const std::string& to) {
 }
 
 // A private folder per test (ctest may run tests in parallel), removed afterwards.
-class Cli : public testing::Test {
- protected:
-  void SetUp() override {
-    ASSERT_TRUE(fs::exists(kDem)) << kDem << " is not built";
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("dem_cli_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path write_spec(const std::string& name, const std::string& text) {
-    const fs::path path = dir_ / name;
-    std::ofstream(path) << text;
-    return path;
-  }
-
-  fs::path dir_;
-};
+class Cli : public dem::test::DemCommandTest {};
 
 // ---------------------------------------------------------------------------------------------
 // dem validate

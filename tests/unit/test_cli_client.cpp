@@ -6,55 +6,35 @@
 
 #include <netinet/in.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <initializer_list>
 #include <string>
+
+#include "support/command.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
-
-const std::string kDem = DEM_BINARY_DIR "/dem";
-
-struct Result {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-// A path in single quotes for the shell (test paths hold no quote). Built by appending: GCC 12
-// warns falsely (-Wrestrict) about "'" + string.
-std::string shell_quoted(const fs::path& p) {
-  std::string s = "'";
-  s += p.string();
-  s += "'";
-  return s;
-}
+using dem::test::kDem;
+using dem::test::shell_quoted;
+using Result = dem::test::CommandResult;
 
 // Runs `dem ARGS` through the shell, capturing both streams. DEM_SERVER and DEM_SERVER_TOKEN are
 // cleared so that the caller's environment does not pick the server.
 Result dem(const std::string& args, const std::string& environment = "") {
-  Result r;
-  const std::string command =
-      "env -u DEM_SERVER -u DEM_SERVER_TOKEN " + environment + " " + shell_quoted(kDem) + " " + args + " 2>&1";
-  std::FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) {
-    ADD_FAILURE() << "popen failed for " << command;
-    return r;
-  }
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return dem::test::run_command("env -u DEM_SERVER -u DEM_SERVER_TOKEN " + environment + " " + shell_quoted(kDem) +
+                                " " + args);
 }
 
 bool has(const Result& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
+
+// `dem ARGS` is a usage error: exit status 2, and its output holds each of `texts`.
+void expect_usage_error(const std::string& args, std::initializer_list<std::string> texts) {
+  const Result r = dem(args);
+  EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+  for (const std::string& text : texts) EXPECT_TRUE(has(r, text)) << args << ": " << r.output;
+}
 
 // A loopback port nobody listens on: the kernel's pick for a socket that is closed at once.
 int free_port() {
@@ -84,25 +64,8 @@ const char* kGoodSpec = R"({
   "time": {"steps": 12}
 })";
 
-class CliClient : public testing::Test {
- protected:
-  void SetUp() override {
-    ASSERT_TRUE(fs::exists(kDem)) << kDem << " is not built";
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("dem_cli_client_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path write_spec(const std::string& name, const std::string& text) {
-    const fs::path path = dir_ / name;
-    std::ofstream(path) << text;
-    return path;
-  }
-
-  fs::path dir_;
-};
+// A private folder per test, removed afterwards.
+class CliClient : public dem::test::DemCommandTest {};
 
 // ---------------------------------------------------------------------------------------------
 // bad arguments: exit 2 with the verb's usage line
@@ -115,68 +78,42 @@ TEST_F(CliClient, HelpListsTheClientVerbs) {
     EXPECT_TRUE(has(r, verb)) << verb << " is not in\n" << r.output;
 }
 
-TEST_F(CliClient, SubmitWithoutASpecIsAUsageError) {
-  const Result r = dem("submit");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_TRUE(has(r, "usage: dem submit SPEC.json")) << r.output;
-}
+TEST_F(CliClient, SubmitWithoutASpecIsAUsageError) { expect_usage_error("submit", {"usage: dem submit SPEC.json"}); }
 
-TEST_F(CliClient, SubmitOfTwoSpecsIsAUsageError) {
-  const Result r = dem("submit a.json b.json");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_TRUE(has(r, "\"b.json\"")) << r.output;
-}
+TEST_F(CliClient, SubmitOfTwoSpecsIsAUsageError) { expect_usage_error("submit a.json b.json", {"\"b.json\""}); }
 
 TEST_F(CliClient, AnUnknownOptionIsAUsageError) {
-  const Result r = dem("watch 1 --fast");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_TRUE(has(r, "unknown option --fast")) << r.output;
-  EXPECT_TRUE(has(r, "usage: dem watch ID")) << r.output;
+  expect_usage_error("watch 1 --fast", {"unknown option --fast", "usage: dem watch ID"});
 }
 
 TEST_F(CliClient, AJobIdIsAWholeNumber) {
-  for (const char* verb : {"status", "cancel", "resume", "watch", "fetch"}) {
-    const Result r = dem(std::string(verb) + " twelve");
-    EXPECT_EQ(r.exit_code, 2) << verb << ": " << r.output;
-    EXPECT_TRUE(has(r, "a job id is a whole number (got \"twelve\")")) << verb << ": " << r.output;
-  }
+  for (const char* verb : {"status", "cancel", "resume", "watch", "fetch"})
+    expect_usage_error(std::string(verb) + " twelve", {"a job id is a whole number (got \"twelve\")"});
 }
 
 TEST_F(CliClient, VerbsOfOneJobNeedItsId) {
-  for (const char* verb : {"status", "cancel", "resume", "watch", "fetch"}) {
-    const Result r = dem(verb);
-    EXPECT_EQ(r.exit_code, 2) << verb << ": " << r.output;
-    EXPECT_TRUE(has(r, "missing the job id")) << verb << ": " << r.output;
-  }
+  for (const char* verb : {"status", "cancel", "resume", "watch", "fetch"})
+    expect_usage_error(verb, {"missing the job id"});
   EXPECT_EQ(dem("cancel 1 2").exit_code, 2);
 }
 
 TEST_F(CliClient, ListOfAnUnknownStateIsAUsageError) {
-  const Result r = dem("list --state done");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_TRUE(has(r, "--state is one of queued, running")) << r.output;
-  EXPECT_TRUE(has(r, "(got \"done\")")) << r.output;
+  expect_usage_error("list --state done", {"--state is one of queued, running", "(got \"done\")"});
 }
 
 TEST_F(CliClient, FetchRefusesANameOutsideTheOutputFolder) {
-  const Result r = dem("fetch 1 ../ANIMATION_3D.dat --out " + shell_quoted(dir_));
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_TRUE(has(r, "\"../ANIMATION_3D.dat\" is not an artifact name")) << r.output;
+  expect_usage_error("fetch 1 ../ANIMATION_3D.dat --out " + shell_quoted(dir_),
+                     {"\"../ANIMATION_3D.dat\" is not an artifact name"});
 }
 
 TEST_F(CliClient, AnOptionWithoutItsValueIsAUsageError) {
   for (const char* args : {"status 1 --server", "status 1 --token", "fetch 1 --out", "list --state",
-                           "submit s.json --idempotency-key"}) {
-    const Result r = dem(args);
-    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
-    EXPECT_TRUE(has(r, "needs a value")) << args << ": " << r.output;
-  }
+                           "submit s.json --idempotency-key"})
+    expect_usage_error(args, {"needs a value"});
 }
 
 TEST_F(CliClient, AServerThatIsNotHttpIsAUsageError) {
-  const Result r = dem("list --server https://example.org");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_TRUE(has(r, "only http:// is supported")) << r.output;
+  expect_usage_error("list --server https://example.org", {"only http:// is supported"});
 }
 
 // ---------------------------------------------------------------------------------------------
