@@ -245,7 +245,22 @@ void JobManager::work() {
       running_[chosen.id] = std::make_shared<Running>();
       job = chosen;
     }
-    run_one(job);
+    try {
+      run_one(job);
+    } catch (const std::exception& e) {
+      // the job table could not be written (disk full, the file gone): the worker goes on with
+      // the next job; the table shows this one as it last could
+      std::fprintf(stderr, "dem-server: job %lld: %s\n", static_cast<long long>(job.id), e.what());
+      {
+        std::lock_guard lock(mutex_);
+        running_.erase(job.id);
+        JobRecord& j = jobs_.at(job.id);
+        j.state = JobState::Failed;
+        j.error = e.what();
+      }
+      changed_.notify_all();
+      frames_.close(job.id, "job failed");
+    }
   }
 }
 
