@@ -1,0 +1,63 @@
+// Mass properties of clumps (unions of overlapping spheres) by adaptive subdivision, against closed
+// forms: the issue's two-sphere clump, a single sphere, disjoint spheres, a sphere inside another.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "clumps/mass_properties.hpp"
+
+namespace dem {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+TEST(ClumpMass, TwoUnitSpheresOneApartAsInTheIssue) {
+  // volume 2 (4 pi / 3) - the lens pi (4r + d)(2r - d)^2 / 12 = 9 pi / 4; the moments are the issue's
+  const MassProperties p = union_mass_properties({{Vec3(-0.5, 0, 0), 1}, {Vec3(0.5, 0, 0), 1}});
+  EXPECT_NEAR(p.volume, 9 * kPi / 4, 1e-3 * 9 * kPi / 4);
+  EXPECT_NEAR(p.volume, 7.0685835, 7e-4);
+  EXPECT_NEAR(p.principal_moments[0], 3.0041480, 3e-4);  // about the axis (x), the smallest
+  EXPECT_NEAR(p.principal_moments[1], 5.2130803, 5e-4);
+  EXPECT_NEAR(p.principal_moments[2], 5.2130803, 5e-4);
+  EXPECT_NEAR(std::abs(p.principal_axes(0, 0)), 1.0, 1e-9);  // its axis is the line of centres
+  EXPECT_LT(p.centroid.norm(), 1e-9);
+  std::printf("two spheres: volume %.7f, moments %.7f %.7f %.7f, last change %.1e\n", p.volume,
+              p.principal_moments[0], p.principal_moments[1], p.principal_moments[2], p.relative_accuracy);
+}
+
+TEST(ClumpMass, OneSphereIsExact) {
+  const MassProperties p = union_mass_properties({{Vec3(1, 2, 3), 0.5}});
+  const double volume = 4 * kPi / 3 * 0.125, moment = 0.4 * volume * 0.25;
+  EXPECT_NEAR(p.volume, volume, 1e-4 * volume);
+  EXPECT_NEAR((p.centroid - Vec3(1, 2, 3)).norm(), 0, 1e-9);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.principal_moments[k], moment, 1e-4 * moment);
+}
+
+TEST(ClumpMass, DisjointSpheresAddAndASphereInsideAnotherAddsNothing) {
+  const double r = 0.3, d = 2.0;  // two spheres far apart: parallel axis theorem across the line
+  const MassProperties apart = union_mass_properties({{Vec3(0, 0, -d / 2), r}, {Vec3(0, 0, d / 2), r}});
+  const double v1 = 4 * kPi / 3 * r * r * r;
+  EXPECT_NEAR(apart.volume, 2 * v1, 1e-4 * 2 * v1);
+  EXPECT_NEAR(apart.principal_moments[2], 2 * (0.4 * v1 * r * r + v1 * d * d / 4), 1e-4 * apart.principal_moments[2]);
+  const MassProperties nested = union_mass_properties({{Vec3::Zero(), 1.0}, {Vec3(0.2, 0.1, 0), 0.5}});
+  EXPECT_NEAR(nested.volume, 4 * kPi / 3, 1e-4 * 4 * kPi / 3);
+}
+
+TEST(ClumpMass, TheAxesAreARightHandedRotationOrderedByMoment) {
+  const MassProperties p = union_mass_properties({{Vec3(0, 0, 0), 1}, {Vec3(1, 1, 0), 0.7}, {Vec3(0, 1.2, 0.8), 0.6}});
+  EXPECT_NEAR(p.principal_axes.determinant(), 1.0, 1e-9);
+  EXPECT_LE(p.principal_moments[0], p.principal_moments[1]);
+  EXPECT_LE(p.principal_moments[1], p.principal_moments[2]);
+  const Eigen::Matrix3d diagonal = p.principal_axes.transpose() * p.inertia * p.principal_axes;
+  EXPECT_NEAR(diagonal(0, 1), 0, 1e-9 * p.principal_moments[2]);
+  EXPECT_NEAR(diagonal(1, 2), 0, 1e-9 * p.principal_moments[2]);
+}
+
+TEST(ClumpMass, BadSpheresAreRefused) {
+  EXPECT_THROW(union_mass_properties({}), std::invalid_argument);
+  EXPECT_THROW(union_mass_properties({{Vec3::Zero(), -1}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace dem
