@@ -43,6 +43,8 @@ Response submit(const Request& req, ApiContext& ctx) {
                                 "\" is not a job spec: send application/json or application/x-protobuf (proto/dem.proto, JobSpec)");
     }
     const std::string key(req["Idempotency-Key"]);
+    if (key.size() > 200 || !std::all_of(key.begin(), key.end(), [](unsigned char c) { return c >= 0x20 && c < 0x7f; }))
+      return error_response(req, http::status::bad_request, "Idempotency-Key must be printable ASCII of at most 200 characters");
     const JobManager::Submitted s = ctx.jobs.submit(spec, key);
     if (s.conflict)
       return error_response(req, http::status::unprocessable_entity,

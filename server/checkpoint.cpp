@@ -18,10 +18,19 @@ namespace {
 
 constexpr const char* kMagic = "DEM-CHECKPOINT 1";
 
+// The length of every output file, each synced first: the checkpoint never counts bytes a machine
+// crash could take back.
 std::map<std::string, std::uintmax_t> output_sizes(const std::string& folder) {
   std::map<std::string, std::uintmax_t> sizes;
-  for (const fs::directory_entry& e : fs::directory_iterator(folder))
-    if (e.is_regular_file()) sizes[e.path().filename().string()] = e.file_size();
+  for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
+    if (!e.is_regular_file()) continue;
+    const int fd = ::open(e.path().c_str(), O_RDONLY);
+    if (fd >= 0) {
+      ::fsync(fd);
+      ::close(fd);
+    }
+    sizes[e.path().filename().string()] = e.file_size();
+  }
   return sizes;
 }
 
@@ -74,12 +83,19 @@ void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, c
   for (const fs::directory_entry& e : fs::directory_iterator(output_folder)) {
     if (!e.is_regular_file()) continue;
     const auto found = sizes.find(e.path().filename().string());
-    if (found == sizes.end()) fs::remove(e.path());  // created after the checkpoint
-    else if (e.file_size() != found->second) fs::resize_file(e.path(), found->second);
+    if (found != sizes.end() && e.file_size() < found->second)  // lost (a machine crash): never pad
+      throw std::runtime_error("output file " + found->first + " is shorter than at the checkpoint " + path +
+                               ": the job cannot be continued from it");
   }
   for (const auto& [name, size] : sizes)
     if (!fs::exists(fs::path(output_folder) / name))
       throw std::runtime_error("output file " + name + " of the checkpoint " + path + " is missing");
+  for (const fs::directory_entry& e : fs::directory_iterator(output_folder)) {
+    if (!e.is_regular_file()) continue;
+    const auto found = sizes.find(e.path().filename().string());
+    if (found == sizes.end()) fs::remove(e.path());  // created after the checkpoint
+    else if (e.file_size() != found->second) fs::resize_file(e.path(), found->second);  // cut back
+  }
 }
 
 }  // namespace dem::server

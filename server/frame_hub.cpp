@@ -64,6 +64,11 @@ void FrameChannel::end(const std::string& reason) {
   for (const auto& v : targets) v->end(reason);
 }
 
+std::string FrameChannel::end_reason() const {
+  std::lock_guard lock(mutex_);
+  return end_reason_;
+}
+
 std::shared_ptr<FrameChannel> FrameHub::open(std::int64_t job) {
   std::lock_guard lock(mutex_);
   std::shared_ptr<FrameChannel>& channel = channels_[job];

@@ -33,6 +33,7 @@ class FrameChannel {
   bool join(const std::shared_ptr<FrameViewer>& viewer);
   void leave(const FrameViewer* viewer);
   void end(const std::string& reason);
+  std::string end_reason() const;
 
  private:
   mutable std::mutex mutex_;

@@ -9,7 +9,12 @@ namespace beast = boost::beast;
 namespace websocket = beast::websocket;
 
 FrameSession::FrameSession(boost::asio::ip::tcp::socket&& socket, bool force_chains)
-    : ws_(std::move(socket)), force_chains_(force_chains) {}
+    : ws_(std::move(socket)), force_chains_(force_chains) {
+  // A small kernel buffer: a viewer that reads slowly is then sent the newest frame, not one that
+  // waited behind megabytes of older ones.
+  boost::system::error_code ignored;
+  beast::get_lowest_layer(ws_).socket().set_option(boost::asio::socket_base::send_buffer_size(256 * 1024), ignored);
+}
 
 void FrameSession::start(Request request, std::shared_ptr<FrameChannel> channel, std::string why) {
   channel_ = std::move(channel);
@@ -23,7 +28,8 @@ void FrameSession::start(Request request, std::shared_ptr<FrameChannel> channel,
 void FrameSession::on_accept(beast::error_code ec) {
   if (ec) return;
   if (!channel_ || !channel_->join(shared_from_this())) {
-    end_reason_ = refuse_reason_.empty() ? "the job is over" : refuse_reason_;
+    end_reason_ = channel_ ? channel_->end_reason() : refuse_reason_;
+    if (end_reason_.empty()) end_reason_ = "the job is over";
     ending_ = true;
     close();
     return;

@@ -28,7 +28,8 @@ namespace {
 // Accepts connections, each on a strand of its own.
 class Listener : public std::enable_shared_from_this<Listener> {
  public:
-  Listener(asio::io_context& io, tcp::endpoint endpoint, ServerState& state) : io_(io), acceptor_(io), state_(state) {
+  Listener(asio::io_context& io, tcp::endpoint endpoint, ServerState& state)
+      : io_(io), acceptor_(asio::make_strand(io)), backoff_(acceptor_.get_executor()), state_(state) {
     acceptor_.open(endpoint.protocol());
     acceptor_.set_option(asio::socket_base::reuse_address(true));
     acceptor_.bind(endpoint);
@@ -37,9 +38,15 @@ class Listener : public std::enable_shared_from_this<Listener> {
   unsigned short port() const { return acceptor_.local_endpoint().port(); }
   void accept() {
     acceptor_.async_accept(asio::make_strand(io_), [self = shared_from_this()](boost::system::error_code ec, tcp::socket s) {
-      if (ec == asio::error::operation_aborted) return;  // stopped
-      if (!ec) std::make_shared<HttpSession>(std::move(s), self->state_)->run();
-      self->accept();
+      if (ec == asio::error::operation_aborted || !self->acceptor_.is_open()) return;  // stopped
+      if (!ec) {
+        std::make_shared<HttpSession>(std::move(s), self->state_)->run();
+        self->accept();
+        return;
+      }
+      // out of file descriptors, say: try again in a moment rather than spin
+      self->backoff_.expires_after(std::chrono::milliseconds(100));
+      self->backoff_.async_wait([self](boost::system::error_code) { self->accept(); });
     });
   }
   void stop() {
@@ -51,7 +58,8 @@ class Listener : public std::enable_shared_from_this<Listener> {
 
  private:
   asio::io_context& io_;
-  tcp::acceptor acceptor_;
+  tcp::acceptor acceptor_;  // on a strand: stop() closes it between accepts
+  asio::steady_timer backoff_;
   ServerState& state_;
 };
 
@@ -132,6 +140,10 @@ int run_server(const ServerOptions& options) {
     frames.close_all("the server is shutting down");
     grace.expires_after(std::chrono::milliseconds(200));  // time for the close frames to go out
     grace.async_wait([&](boost::system::error_code) { io.stop(); });
+    signals.async_wait([](boost::system::error_code, int) {  // asked twice: do not wait any longer
+      std::fprintf(stderr, "dem-server: second signal: exiting now (running jobs resume from their last checkpoints)\n");
+      std::_Exit(1);
+    });
   });
 
   std::vector<std::thread> threads;

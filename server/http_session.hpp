@@ -2,6 +2,7 @@
 // the REST API or the viewer's files, or hands the socket to a frame WebSocket.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -34,7 +35,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
  private:
   void read();
+  void on_header(boost::beast::error_code ec, std::size_t bytes);
   void on_read(boost::beast::error_code ec, std::size_t bytes);
+  void on_read_error(boost::beast::error_code ec);
+  void refuse(http::response<http::string_body> res);
+  static bool local_request(const http::request_header<>& head);
+  void drain();
   void send(http::message_generator message);
   void on_write(bool keep_alive, boost::beast::error_code ec, std::size_t bytes);
   void upgrade(Request request, const Target& target);
@@ -43,6 +49,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   boost::beast::tcp_stream stream_;
   boost::beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
+  std::array<char, 4096> scratch_;
   ServerState& state_;
 };
 

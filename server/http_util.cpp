@@ -42,7 +42,8 @@ std::optional<Target> parse_target(std::string_view target) {
     if (end == std::string_view::npos) end = path.size();
     if (end > start) {
       std::optional<std::string> segment = percent_decode(path.substr(start, end - start));
-      if (!segment) return std::nullopt;
+      // an escaped separator would let one segment name a path ("%2Fetc%2Fpasswd")
+      if (!segment || segment->find_first_of("/\\") != std::string::npos) return std::nullopt;
       out.segments.push_back(std::move(*segment));
     }
     start = end + 1;
@@ -78,7 +79,8 @@ http::response<http::string_body> text_response(const Request& req, http::status
 }
 
 http::response<http::string_body> json_response(const Request& req, http::status status, const nlohmann::json& body) {
-  return text_response(req, status, "application/json", body.dump(2) + "\n");
+  // bytes that are not UTF-8 (from a request's target or headers) are replaced, never thrown on
+  return text_response(req, status, "application/json", body.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 http::response<http::string_body> error_response(const Request& req, http::status status, const std::string& message,
@@ -112,7 +114,20 @@ std::string request_token(const Request& req, const Target& target) {
     return std::string(value.substr(bearer.size()));
   }
   const auto q = target.query.find("access_token");
-  return q == target.query.end() ? "" : q->second;
+  if (q != target.query.end()) return q->second;
+  // the cookie the viewer's page was given (its scripts and styles cannot carry the token otherwise)
+  const auto cookie = req.find(http::field::cookie);
+  if (cookie != req.end()) {
+    const std::string_view all(cookie->value().data(), cookie->value().size());
+    constexpr std::string_view name = "dem_token=";
+    for (std::size_t at = 0; at < all.size();) {
+      while (at < all.size() && all[at] == ' ') ++at;
+      const std::size_t end = std::min(all.find(';', at), all.size());
+      if (all.substr(at, name.size()) == name) return std::string(all.substr(at + name.size(), end - at - name.size()));
+      at = end + 1;
+    }
+  }
+  return "";
 }
 
 }  // namespace dem::server

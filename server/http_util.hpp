@@ -21,7 +21,8 @@ struct Target {
   std::map<std::string, std::string> query;
 };
 
-// Empty optional when the path has a bad escape ("%zz") or an encoded NUL.
+// Empty optional when the path has a bad escape ("%zz"), an encoded NUL, or a segment that decodes
+// to a path separator.
 std::optional<Target> parse_target(std::string_view target);
 std::optional<std::string> percent_decode(std::string_view text);
 
@@ -38,7 +39,7 @@ std::optional<std::int64_t> parse_job_id(const std::string& text);
 
 bool tokens_equal(std::string_view a, std::string_view b);  // time independent of where they differ
 // The token of a request: "Authorization: Bearer T", or ?access_token=T (browsers cannot set
-// headers on a WebSocket).
+// headers on a WebSocket), or the cookie dem_token=T that a page opened with ?access_token= gets.
 std::string request_token(const Request& req, const Target& target);
 
 }  // namespace dem::server

@@ -35,7 +35,7 @@ double JobRecord::progress() const {
   return std::min(1.0, static_cast<double>(step) / static_cast<double>(total_steps));
 }
 
-nlohmann::json to_json(const JobRecord& job) {
+nlohmann::json to_json(const JobRecord& job) {  // dumped with invalid UTF-8 replaced (http_util.cpp)
   nlohmann::json j = {
       {"id", job.id},
       {"name", job.name},

@@ -22,6 +22,8 @@ class Checkpointer {
     if (std::chrono::duration<double>(now - last_).count() >= seconds_) save(sim);
   }
   void save(const Simulation& sim) {
+    // at step 0 a resumed run would write its first frame again: it starts over instead
+    if (sim.step_count() == 0) return;
     write_checkpoint(sim, folder_.outputs().string(), folder_.checkpoint().string());
     last_ = std::chrono::steady_clock::now();
     if (saved_) saved_(sim.step_count());

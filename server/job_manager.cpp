@@ -41,6 +41,7 @@ JobManager::~JobManager() { shutdown(); }
 
 void JobManager::recover() {
   for (JobRecord& job : store_->load_all()) {
+    if (job.checkpoint_step >= 0 && !fs::exists(folder(job.id).checkpoint())) job.checkpoint_step = -1;
     if (job.state == JobState::Running) {
       job.state = JobState::Interrupted;
       job.error = "the server stopped while the job ran (at step " + std::to_string(job.step) + "); " +
@@ -49,7 +50,6 @@ void JobManager::recover() {
                                             : std::string("it had no checkpoint yet: resuming starts it again"));
       store_->update(job);
     }
-    if (job.checkpoint_step >= 0 && !fs::exists(folder(job.id).checkpoint())) job.checkpoint_step = -1;
     if (!job.idempotency_key.empty()) by_key_[job.idempotency_key] = job.id;
     jobs_[job.id] = std::move(job);
   }
@@ -163,18 +163,21 @@ ActionResult JobManager::cancel(std::int64_t id) {
   if (is_final(job.state))
     return {Outcome::Conflict, "job " + std::to_string(id) + " has already " + to_string(job.state), job};
   if (job.state == JobState::Running) {
+    running_.at(id)->cancelled = true;
     running_.at(id)->stop = true;
     // the engine stops within a step; wait for it so that the answer shows the final state
     changed_.wait_for(lock, std::chrono::seconds(2), [&] { return jobs_.at(id).state != JobState::Running; });
     return {Outcome::Done, "", jobs_.at(id)};
   }
-  job.state = JobState::Cancelled;
-  job.error = kCancelled;
-  job.finished_at = utc_now();
+  JobRecord cancelled = job;  // the table first: if it cannot be written, nothing has changed
+  cancelled.state = JobState::Cancelled;
+  cancelled.error = kCancelled;
+  cancelled.finished_at = utc_now();
+  cancelled.checkpoint_step = -1;
+  save(cancelled);
+  job = cancelled;
   std::error_code ignored;
-  fs::remove(folder(id).checkpoint(), ignored);  // an interrupted job's
-  job.checkpoint_step = -1;
-  save(job);
+  fs::remove(folder(id).checkpoint(), ignored);  // an interrupted job's, no longer needed
   changed_.notify_all();
   frames_.close(id, "job cancelled");
   return {Outcome::Done, "", job};
@@ -203,9 +206,11 @@ ActionResult JobManager::resume(std::int64_t id) {
   if (job.state != JobState::Interrupted)
     return {Outcome::Conflict,
             "job " + std::to_string(id) + " is " + to_string(job.state) + ": only an interrupted job can be resumed", job};
-  job.state = JobState::Queued;
-  job.error.clear();
-  save(job);
+  JobRecord queued = job;
+  queued.state = JobState::Queued;
+  queued.error.clear();
+  save(queued);
+  job = queued;
   changed_.notify_all();
   return {Outcome::Done, "", job};
 }
@@ -229,28 +234,34 @@ ActionResult JobManager::remove(std::int64_t id) {
 void JobManager::work() {
   for (;;) {
     JobRecord job;
-    {
-      std::unique_lock lock(mutex_);
-      auto next = [&]() -> JobRecord* {
-        for (auto& [id, j] : jobs_)
-          if (j.state == JobState::Queued) return &j;
-        return nullptr;
-      };
-      changed_.wait(lock, [&] { return stopping_ || next() != nullptr; });
-      if (stopping_) return;
-      JobRecord& chosen = *next();
-      chosen.state = JobState::Running;
-      if (chosen.started_at.empty()) chosen.started_at = utc_now();
-      save(chosen);
-      running_[chosen.id] = std::make_shared<Running>();
-      job = chosen;
-    }
     try {
+      {
+        std::unique_lock lock(mutex_);
+        auto next = [&]() -> JobRecord* {
+          for (auto& [id, j] : jobs_)
+            if (j.state == JobState::Queued) return &j;
+          return nullptr;
+        };
+        changed_.wait(lock, [&] { return stopping_ || next() != nullptr; });
+        if (stopping_) return;
+        JobRecord& chosen = *next();
+        JobRecord running = chosen;
+        running.state = JobState::Running;
+        if (running.started_at.empty()) running.started_at = utc_now();
+        save(running);
+        chosen = running;
+        running_[chosen.id] = std::make_shared<Running>();
+        job = chosen;
+      }
       run_one(job);
     } catch (const std::exception& e) {
-      // the job table could not be written (disk full, the file gone): the worker goes on with
-      // the next job; the table shows this one as it last could
+      // the job table could not be written (disk full, the file gone): the worker goes on; the
+      // job is failed in memory, and the table shows it as it last could
       std::fprintf(stderr, "dem-server: job %lld: %s\n", static_cast<long long>(job.id), e.what());
+      if (job.id == 0) {  // not even picked: wait a moment rather than spin on the same failure
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+        continue;
+      }
       {
         std::lock_guard lock(mutex_);
         running_.erase(job.id);
@@ -336,7 +347,7 @@ void JobManager::run_one(JobRecord job) {
         j.error = result.error;
         break;
       case ExecutionResult::Kind::Stopped:
-        if (control->checkpoint_on_stop) {
+        if (control->checkpoint_on_stop && !control->cancelled) {
           j.state = JobState::Queued;  // the server is shutting down: the job goes on after the restart
         } else {
           j.state = JobState::Cancelled;
@@ -346,11 +357,13 @@ void JobManager::run_one(JobRecord job) {
     }
     if (is_final(j.state)) {
       j.finished_at = utc_now();
-      std::error_code ignored;
-      fs::remove(folder(id).checkpoint(), ignored);  // no longer needed; it can be as large as the scene
       j.checkpoint_step = -1;
     }
     save(j);
+    if (is_final(j.state)) {  // after the final state is saved: a crash between leaves a finished job
+      std::error_code ignored;
+      fs::remove(folder(id).checkpoint(), ignored);  // no longer needed; it can be as large as the scene
+    }
     running_.erase(id);
     frames_reason = j.state == JobState::Queued ? "the server is shutting down; the job goes on after its restart"
                                                 : std::string("job ") + to_string(j.state);

@@ -71,6 +71,7 @@ class JobManager {
  private:
   struct Running {
     std::atomic<bool> stop{false};
+    std::atomic<bool> cancelled{false};           // by a request: wins over a shutdown
     std::atomic<bool> checkpoint_on_stop{false};
   };
 

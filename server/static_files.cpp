@@ -25,7 +25,8 @@ constexpr const char* kNoViewerPage =
 
 }  // namespace
 
-http::message_generator serve_static(const Request& req, const Target& target, const fs::path& root) {
+http::message_generator serve_static(const Request& req, const Target& target, const fs::path& root,
+                                     const std::string& set_cookie) {
   if (req.method() != http::verb::get && req.method() != http::verb::head) {
     auto res = error_response(req, http::status::method_not_allowed, "only GET serves files");
     res.set(http::field::allow, "GET");
@@ -51,6 +52,7 @@ http::message_generator serve_static(const Request& req, const Target& target, c
   http::response<http::file_body> res{std::piecewise_construct, std::make_tuple(std::move(body)),
                                       std::make_tuple(http::status::ok, req.version())};
   res.set(http::field::content_type, mime_type(path));
+  if (!set_cookie.empty()) res.set(http::field::set_cookie, set_cookie);
   res.content_length(size);
   res.keep_alive(req.keep_alive());
   if (req.method() == http::verb::head) {

@@ -7,6 +7,8 @@
 
 namespace dem::server {
 
-http::message_generator serve_static(const Request& req, const Target& target, const std::filesystem::path& root);
+// `set_cookie`: a Set-Cookie header for the response (empty: none).
+http::message_generator serve_static(const Request& req, const Target& target, const std::filesystem::path& root,
+                                     const std::string& set_cookie = "");
 
 }  // namespace dem::server

@@ -59,12 +59,44 @@ TEST_F(ServerErrors, ArtifactNamesThatAreNotPlainFileNamesAreNeverServed) {
     const client::Response r = client_->get(base + name);
     EXPECT_EQ(r.status, 400) << name << ": " << r.body;
     EXPECT_EQ(r.body.find("root:"), std::string::npos) << name;
-    EXPECT_NE(r.body.find("is not an artifact name"), std::string::npos) << name << ": " << r.body;
+    // a name with '/' is refused as a name; an escaped '/' already as a path
+    const bool escaped_separator = name.find("%2F") != std::string::npos || name.find("%2f") != std::string::npos;
+    EXPECT_NE(r.body.find(escaped_separator ? "malformed path" : "is not an artifact name"), std::string::npos)
+        << name << ": " << r.body;
   }
   EXPECT_EQ(client_->get(base + "spec.pb").status, 404);  // in the job's folder, not an output
   EXPECT_EQ(client_->get(base + "nothing.dat").status, 404);
   EXPECT_EQ(client_->get("/../../etc/passwd").status, 404);  // the viewer's files too
   EXPECT_EQ(client_->get("/%2e%2e/%2e%2e/etc/passwd").status, 404);
+  const client::Response root = client_->get("/%2Fetc%2Fpasswd");  // one segment naming an absolute path
+  EXPECT_EQ(root.status, 400);
+  EXPECT_EQ(root.body.find("root:"), std::string::npos);
+}
+
+TEST_F(ServerErrors, BytesThatAreNotUtf8AreAnsweredNotFatal) {
+  start_server();
+  const client::Response r = client_->request("GET", "/\xff%zz");
+  EXPECT_EQ(r.status, 400);
+  const client::Response key = client_->request("POST", "/api/jobs", pouring_spec(0.015, 100, 50), "application/json",
+                                                {{"Idempotency-Key", "caf\xc3"}});
+  EXPECT_EQ(key.status, 400);
+  EXPECT_NE(key.body.find("printable ASCII"), std::string::npos) << key.body;
+  EXPECT_EQ(client_->get("/api/health").status, 200);  // still up
+}
+
+TEST_F(ServerErrors, WithoutATokenOnlyLocalHostsAndOriginsAreServed) {
+  start_server();
+  EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", {{"Host", "evil.example:8080"}}).status, 403);
+  EXPECT_EQ(client_->request("POST", "/api/jobs/1/cancel", "", "", {{"Origin", "http://evil.example"}}).status, 403);
+  EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", {{"Origin", "http://127.0.0.1:1234"}}).status, 200);
+  EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", {{"Host", "localhost:9"}}).status, 200);
+}
+
+TEST_F(ServerErrors, ABodyOverTheLimitIsRefusedFromItsLengthBeforeItIsRead) {
+  start_server({"--max-body-mb", "1"});
+  const client::Response r = client_->request("POST", "/api/jobs", std::string(8 << 20, ' '), "application/json");
+  EXPECT_EQ(r.status, 413);  // the answer arrives although 8 MB were sent after it
+  EXPECT_EQ(client_->get("/api/health").status, 200);
 }
 
 TEST_F(ServerErrors, WithATokenEveryRequestMustCarryIt) {
@@ -81,6 +113,12 @@ TEST_F(ServerErrors, WithATokenEveryRequestMustCarryIt) {
   EXPECT_EQ(client_->get("/").status, 401);
   const client::HttpClient right(server_->url(), "s3cret");
   EXPECT_EQ(right.get("/api/jobs").status, 200);
+  // a page opened with the token in its address gets it as a cookie for its scripts
+  const client::Response page = client_->get("/?access_token=s3cret");
+  EXPECT_EQ(page.status, 200);
+  EXPECT_NE(page.header("set-cookie").find("dem_token=s3cret"), std::string::npos);
+  EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", {{"Cookie", "a=b; dem_token=s3cret"}}).status, 200);
+  EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", {{"Cookie", "dem_token=guess"}}).status, 401);
   EXPECT_EQ(right.get("/api/jobs?access_token=s3cret").status, 200);
   EXPECT_EQ(client_->get("/api/jobs?access_token=s3cret").status, 200);
 }

@@ -164,7 +164,7 @@ TEST_F(ServerJobs, BundledCasesAreOfferedWithTheirMeshesInlinedAndCanBeSubmitted
   const client::Response submitted = client_->request("POST", "/api/jobs", landslide.body, "application/json");
   EXPECT_EQ(submitted.status, 201) << submitted.body;
   EXPECT_EQ(client_->get("/api/cases/nothing").status, 404);
-  EXPECT_EQ(client_->get("/api/cases/..%2Fcases%2Fdemo").status, 404);
+  EXPECT_EQ(client_->get("/api/cases/..%2Fcases%2Fdemo").status, 400);  // an escaped separator: no such path
 }
 
 TEST_F(ServerJobs, HealthAndTheOpenApiDescriptionAreServed) {
