@@ -1,6 +1,7 @@
 #include "client/http_client.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -27,7 +28,10 @@ std::string lower(std::string s) {
 void connect(beast::tcp_stream& stream, boost::asio::io_context& io, const HttpClient& client) {
   try {
     tcp::resolver resolver(io);
-    stream.connect(resolver.resolve(client.host(), client.port()));
+    std::string host = client.host();  // "[::1]" names the address ::1
+    if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+    stream.expires_after(std::chrono::seconds(30));
+    stream.connect(resolver.resolve(host, client.port()));
   } catch (const boost::system::system_error& e) {
     throw ClientError("cannot reach the server at " + client.url() + ": " + e.code().message());
   }
@@ -79,10 +83,12 @@ Response HttpClient::request(const std::string& method, const std::string& targe
   req.body() = body;
   req.prepare_payload();
   try {
+    stream.expires_after(std::chrono::seconds(120));  // a server that stops answering is not waited on forever
     http::write(stream, req);
     beast::flat_buffer buffer;
     http::response_parser<http::string_body> parser;
     parser.body_limit(boost::none);
+    if (req.method() == http::verb::head) parser.skip(true);  // a HEAD answer has a length but no body
     http::read(stream, buffer, parser);
     http::response<http::string_body> res = parser.release();
     Response out = to_response(res);
@@ -101,12 +107,13 @@ Response HttpClient::download(const std::string& target, const std::string& path
   connect(stream, io, *this);
   http::request<http::empty_body> req{http::verb::get, target, 11};
   add_headers(req, *this, {});
+  stream.expires_never();  // a large file may take long
+  const std::string partial = path + ".part";
   try {
     http::write(stream, req);
     beast::flat_buffer buffer;
     http::response_parser<http::file_body> parser;
     parser.body_limit(boost::none);
-    const std::string partial = path + ".part";
     beast::error_code ec;
     parser.get().body().open(partial.c_str(), beast::file_mode::write, ec);
     if (ec) throw ClientError("cannot write " + partial + ": " + ec.message());
@@ -124,6 +131,8 @@ Response HttpClient::download(const std::string& target, const std::string& path
     }
     return out;
   } catch (const boost::system::system_error& e) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);  // no half file left behind
     throw ClientError("GET " + url() + target + ": " + e.code().message());
   }
 }
