@@ -1,0 +1,459 @@
+// Time-series charts of a job drawn on 2D canvases (no chart library), in #charts:
+//   kinetic-energy   kinetic energy (J) over time: live frames' scalars, or ANIMATION_3D.dat's
+//   plate-force      loading-plate force (N) over time: Force_Displacement.dat
+//   plate-displacement  loading-plate displacement (file length unit) over time: Force_Displacement.dat
+//   broken-bonds     broken bonds (cumulative; tension, shear) over time: Bond_Breaks.dat (or Fragments.dat)
+//   largest-fragment particles in the largest fragment over time: Fragments.dat
+//   fragments        number of fragments over time: Fragments.dat
+// A chart is in #charts (a div.chart holding its canvas) only while it has data. Each canvas carries data-chart (its id) and data-points (the
+// number of points of its first series). Click a chart to switch its y axis between linear and
+// logarithmic (positive values only).
+
+const COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd'];
+
+const DEFINITIONS = [
+  { id: 'kinetic-energy', title: 'Kinetic energy', y: 'kinetic energy (J)', series: ['kinetic energy'] },
+  { id: 'plate-force', title: 'Loading plate force', y: 'force (N)', series: ['force'] },
+  { id: 'plate-displacement', title: 'Loading plate displacement', y: 'displacement', unitKey: 'length', series: ['displacement'] },
+  { id: 'broken-bonds', title: 'Broken bonds', y: 'broken bonds (count)', series: ['total', 'tension', 'shear'] },
+  { id: 'largest-fragment', title: 'Largest fragment', y: 'particles (count)', series: ['largest fragment'] },
+  { id: 'fragments', title: 'Fragments', y: 'fragments (count)', series: ['fragments'] },
+];
+
+// Numbers as axis labels: short, with an exponent for very large or small magnitudes.
+export function formatTick(v) {
+  if (!Number.isFinite(v)) return '';
+  if (v === 0) return '0';
+  const a = Math.abs(v);
+  if (a >= 1e5 || a < 1e-3) return v.toExponential(2).replace('e+', 'e');
+  return Number(v.toPrecision(a >= 1000 ? 5 : 3)).toString();
+}
+
+// Parses the rows of a statistics file (docs/formats.md section 5): whitespace-separated reals, one
+// row per line; blank lines skipped; a row with another column count (a cut last line) ends the read.
+export function parseRows(text, columns) {
+  const rows = [];
+  const lines = text.split('\n');
+  // A last line without its line end may have been cut while being written: not used.
+  const complete = text.endsWith('\n') ? lines.length : lines.length - 1;
+  for (let k = 0; k < complete; k++) {
+    const tokens = lines[k].trim().split(/\s+/).filter(Boolean);
+    if (!tokens.length) continue;
+    if (tokens.length !== columns) break;
+    const row = tokens.map(Number);
+    if (row.some((v) => !Number.isFinite(v))) break;
+    rows.push(row);
+  }
+  return rows;
+}
+
+// The charts' own look (the page's style.css is the core's): a grid of charts, added once.
+const STYLE = `
+#charts.live-charts:not(:empty) { display: grid; grid-template-columns: repeat(auto-fill, minmax(300px, 1fr));
+  gap: 4px 12px; padding: 6px 10px; }
+#charts.live-charts .chart canvas { width: 100%; height: 150px; display: block; cursor: pointer; }
+`;
+
+function addStyle() {
+  if (typeof document === 'undefined' || document.getElementById('live-charts-style')) return;
+  const style = document.createElement('style');
+  style.id = 'live-charts-style';
+  style.textContent = STYLE;
+  document.head.appendChild(style);
+}
+
+class Chart {
+  constructor(container, def, order) {
+    this.container = container;
+    this.order = order;
+    this.def = def;
+    this.series = def.series.map((name, k) => ({ name, colour: COLOURS[k % COLOURS.length], x: [], y: [] }));
+    this.log = false;
+    this.unit = '';
+    this.cursor = NaN;
+    this.element = document.createElement('div');
+    this.element.className = 'chart';
+    this.element.dataset.chart = def.id;
+    this.canvas = document.createElement('canvas');
+    this.canvas.dataset.chart = def.id;
+    this.canvas.dataset.points = '0';
+    this.canvas.title = `${def.title}: click to switch the y axis between linear and logarithmic`;
+    this.canvas.addEventListener('click', () => {
+      this.log = !this.log;
+      this.draw();
+    });
+    this.element.appendChild(this.canvas);
+    this.element.dataset.order = String(order);
+    // Attached to the container only while it has data (#charts stays :empty without any).
+  }
+
+  points() {
+    return this.series[0].x.length;
+  }
+
+  hasData() {
+    return this.series.some((s) => s.x.length > 0);
+  }
+
+  clear() {
+    for (const s of this.series) {
+      s.x = [];
+      s.y = [];
+    }
+    this.update();
+  }
+
+  set(seriesIndex, x, y) {
+    const s = this.series[seriesIndex];
+    s.x = Array.from(x);
+    s.y = Array.from(y);
+    this.update();
+  }
+
+  add(seriesIndex, x, y) {
+    const s = this.series[seriesIndex];
+    if (!Number.isFinite(x) || !Number.isFinite(y)) return;
+    // Live frames may repeat or go back (a reconnect, a resumed job): keep x increasing.
+    while (s.x.length && s.x[s.x.length - 1] >= x) {
+      s.x.pop();
+      s.y.pop();
+    }
+    s.x.push(x);
+    s.y.push(y);
+    this.update();
+  }
+
+  update() {
+    this.canvas.dataset.points = String(this.points());
+    const show = this.hasData();
+    if (show && !this.element.isConnected) {
+      const after = Array.from(this.container.children).find((el) => Number(el.dataset.order) > this.order);
+      this.container.insertBefore(this.element, after || null);
+    } else if (!show && this.element.parentNode) {
+      this.element.remove();
+    }
+  }
+
+  draw() {
+    if (!this.element.isConnected) return;
+    const canvas = this.canvas;
+    const ratio = (typeof window !== 'undefined' && window.devicePixelRatio) || 1;
+    const cssWidth = canvas.clientWidth || 320;
+    const cssHeight = canvas.clientHeight || 150;
+    const width = Math.round(cssWidth * ratio);
+    const height = Math.round(cssHeight * ratio);
+    if (canvas.width !== width) canvas.width = width;
+    if (canvas.height !== height) canvas.height = height;
+    const g = canvas.getContext('2d');
+    if (!g) return;
+    g.setTransform(ratio, 0, 0, ratio, 0, 0);
+    g.clearRect(0, 0, cssWidth, cssHeight);
+    const style = typeof getComputedStyle === 'function' ? getComputedStyle(canvas) : null;
+    const ink = (style && style.color) || '#222';
+    g.fillStyle = ink;
+    g.strokeStyle = ink;
+    g.font = '11px sans-serif';
+
+    const title = `${this.def.title}${this.log ? ' (log scale)' : ''}`;
+    const shown = this.series.filter((s) => s.x.length);
+    const legendWidth = shown.length > 1 ? shown.reduce((w, s) => w + g.measureText(s.name).width + 12, -12) : 0;
+    const left = 64;
+    const right = 10;
+    // The legend goes right of the title when they fit side by side, else on a line of its own.
+    const legendBelow = shown.length > 1 && g.measureText(title).width + 16 + legendWidth > cssWidth - left - right;
+    const top = legendBelow ? 32 : 20;
+    const bottom = 32;
+    const plotW = Math.max(10, cssWidth - left - right);
+    const plotH = Math.max(10, cssHeight - top - bottom);
+
+    // Ranges over every series.
+    const useLog = this.log;
+    let xMin = Infinity, xMax = -Infinity, yMin = Infinity, yMax = -Infinity;
+    for (const s of this.series) {
+      for (let k = 0; k < s.x.length; k++) {
+        const y = s.y[k];
+        if (useLog && !(y > 0)) continue;
+        if (s.x[k] < xMin) xMin = s.x[k];
+        if (s.x[k] > xMax) xMax = s.x[k];
+        if (y < yMin) yMin = y;
+        if (y > yMax) yMax = y;
+      }
+    }
+    g.textAlign = 'left';
+    g.textBaseline = 'top';
+    g.fillText(title, left, 3);
+    if (!(xMin <= xMax) || !(yMin <= yMax)) {
+      g.fillText(useLog ? 'no positive values' : 'no data', left + 4, top + plotH / 2);
+      return;
+    }
+    if (xMin === xMax) { xMin -= 0.5; xMax += 0.5; }
+    let ty = (v) => v;
+    if (useLog) {
+      ty = Math.log10;
+      if (yMin === yMax) { yMin /= 10; yMax *= 10; }
+    } else if (yMin === yMax) {
+      const pad = Math.abs(yMin) * 0.1 || 1;
+      yMin -= pad;
+      yMax += pad;
+    }
+    const ly0 = ty(yMin), ly1 = ty(yMax);
+    const px = (x) => left + ((x - xMin) / (xMax - xMin)) * plotW;
+    const py = (y) => top + plotH - ((ty(y) - ly0) / (ly1 - ly0)) * plotH;
+
+    // Axes.
+    g.lineWidth = 1;
+    g.globalAlpha = 0.8;
+    g.beginPath();
+    g.moveTo(left, top);
+    g.lineTo(left, top + plotH);
+    g.lineTo(left + plotW, top + plotH);
+    g.stroke();
+    // Ticks: min and max on both axes (and the middle of x).
+    g.beginPath();
+    for (const x of [left, left + plotW / 2, left + plotW]) {
+      g.moveTo(x, top + plotH);
+      g.lineTo(x, top + plotH + 4);
+    }
+    for (const y of [top, top + plotH]) {
+      g.moveTo(left - 4, y);
+      g.lineTo(left, y);
+    }
+    g.stroke();
+    g.globalAlpha = 1;
+    g.textBaseline = 'top';
+    g.textAlign = 'left';
+    g.fillText(formatTick(xMin), left, top + plotH + 5);
+    g.textAlign = 'center';
+    g.fillText(formatTick((xMin + xMax) / 2), left + plotW / 2, top + plotH + 5);
+    g.textAlign = 'right';
+    g.fillText(formatTick(xMax), left + plotW, top + plotH + 5);
+    g.textAlign = 'right';
+    g.textBaseline = 'middle';
+    g.fillText(formatTick(yMax), left - 6, top);
+    g.fillText(formatTick(yMin), left - 6, top + plotH);
+    // Axis labels.
+    g.textAlign = 'center';
+    g.textBaseline = 'bottom';
+    g.fillText('time (s)', left + plotW / 2, cssHeight - 1);
+    g.save();
+    g.translate(12, top + plotH / 2);
+    g.rotate(-Math.PI / 2);
+    g.textBaseline = 'middle';
+    g.fillText(this.yLabel(), 0, 0);
+    g.restore();
+
+    // Lines: at most two points (min and max) per pixel column.
+    g.lineWidth = 1.5;
+    for (const s of this.series) {
+      if (!s.x.length) continue;
+      g.strokeStyle = s.colour;
+      g.fillStyle = s.colour;
+      g.beginPath();
+      let started = false;
+      let column = NaN, lo = 0, hi = 0, last = 0;
+      const flush = () => {
+        if (Number.isNaN(column)) return;
+        if (!started) {
+          g.moveTo(column, lo);
+          started = true;
+        } else g.lineTo(column, lo);
+        if (hi !== lo) g.lineTo(column, hi);
+        if (last !== hi) g.lineTo(column, last);
+      };
+      for (let k = 0; k < s.x.length; k++) {
+        const y = s.y[k];
+        if (useLog && !(y > 0)) continue;
+        const cx = Math.round(px(s.x[k]) * 2) / 2;
+        const cy = py(y);
+        if (cx !== column) {
+          flush();
+          column = cx;
+          lo = hi = last = cy;
+        } else {
+          lo = Math.min(lo, cy);
+          hi = Math.max(hi, cy);
+          last = cy;
+        }
+      }
+      flush();
+      g.stroke();
+      if (s.x.length === 1) {
+        g.beginPath();
+        g.arc(px(s.x[0]), py(s.y[0]), 2.5, 0, 2 * Math.PI);
+        g.fill();
+      }
+    }
+    // The time of the frame shown in the view.
+    const cursor = this.cursor;
+    if (Number.isFinite(cursor) && cursor >= xMin && cursor <= xMax) {
+      g.save();
+      g.strokeStyle = ink;
+      g.globalAlpha = 0.5;
+      g.lineWidth = 1;
+      g.setLineDash([3, 3]);
+      g.beginPath();
+      g.moveTo(px(cursor), top);
+      g.lineTo(px(cursor), top + plotH);
+      g.stroke();
+      g.restore();
+    }
+
+    // Legend for charts with more than one series with data.
+    if (shown.length > 1) {
+      g.textAlign = 'right';
+      g.textBaseline = 'top';
+      const y = legendBelow ? 16 : 3;
+      let x = left + plotW;
+      for (let k = shown.length - 1; k >= 0; k--) {
+        const s = shown[k];
+        g.fillStyle = s.colour;
+        g.fillText(s.name, x, y);
+        x -= g.measureText(s.name).width + 12;
+      }
+    }
+  }
+
+  yLabel() {
+    return this.unit ? `${this.def.y} (${this.unit})` : this.def.y;
+  }
+}
+
+// The charts of one job. All methods are safe to call when #charts is missing (they do nothing).
+export class Charts {
+  constructor(container) {
+    this.container = container || null;
+    this.charts = new Map();
+    this.pending = false;
+    if (!this.container) return;
+    addStyle();
+    this.container.classList.add('live-charts');
+    DEFINITIONS.forEach((def, k) => this.charts.set(def.id, new Chart(this.container, def, k)));
+    if (typeof ResizeObserver === 'function') {
+      this.resize = new ResizeObserver(() => this.redraw());
+      this.resize.observe(this.container);
+    } else if (typeof window !== 'undefined') {
+      window.addEventListener('resize', () => this.redraw());
+    }
+  }
+
+  chart(id) {
+    return this.charts.get(id) || null;
+  }
+
+  // Forget every series (a new job).
+  clear() {
+    for (const c of this.charts.values()) c.clear();
+    this.redraw();
+  }
+
+  // The length unit of the files ("m", "cm", "mm"; "" when unknown) for the displacement axis.
+  setLengthUnit(unit) {
+    const c = this.chart('plate-displacement');
+    if (c) c.unit = unit || 'file length unit';
+    this.redraw();
+  }
+
+  // The time (s) of the frame shown in the view: a dashed line on every chart (NaN: none).
+  setCursor(time) {
+    const t = Number.isFinite(time) ? time : NaN;
+    let changed = false;
+    for (const c of this.charts.values()) {
+      if (!(c.cursor === t || (Number.isNaN(c.cursor) && Number.isNaN(t)))) changed = true;
+      c.cursor = t;
+    }
+    if (changed) this.redraw();
+  }
+
+  // Live: one frame's kinetic energy.
+  addFrame(frame) {
+    const c = this.chart('kinetic-energy');
+    if (!c || !frame || !frame.scalars) return;
+    c.add(0, frame.time, frame.scalars.kineticEnergy);
+    this.redraw();
+  }
+
+  // A finished job: the kinetic energy of ANIMATION_3D.dat's frames (their scalars), replacing the
+  // live points.
+  setAnimationFrames(frames) {
+    const c = this.chart('kinetic-energy');
+    if (!c || !frames) return;
+    const x = [], y = [];
+    for (const f of frames) {
+      const s = f.scalars;
+      if (!s) continue;
+      x.push(Number.isFinite(s.time) ? s.time : f.time);
+      y.push(s.kineticEnergy);
+    }
+    c.set(0, x, y);
+    this.redraw();
+  }
+
+  // Force_Displacement.dat: time, displacement (length unit), force (N).
+  setForceDisplacement(text) {
+    const rows = parseRows(text, 3);
+    const force = this.chart('plate-force');
+    const disp = this.chart('plate-displacement');
+    if (force) force.set(0, rows.map((r) => r[0]), rows.map((r) => r[2]));
+    if (disp) disp.set(0, rows.map((r) => r[0]), rows.map((r) => r[1]));
+    this.redraw();
+    return rows.length;
+  }
+
+  // Fragments.dat: time, fragments, particles in the largest, intact bonds, broken in tension, in
+  // shear. Gives the largest fragment (and the fragment count), and the broken bonds when
+  // `brokenBonds` (used when there is no Bond_Breaks.dat).
+  setFragments(text, { brokenBonds = true } = {}) {
+    const rows = parseRows(text, 6);
+    const t = rows.map((r) => r[0]);
+    const largest = this.chart('largest-fragment');
+    if (largest) largest.set(0, t, rows.map((r) => r[2]));
+    const count = this.chart('fragments');
+    if (count) count.set(0, t, rows.map((r) => r[1]));
+    const broken = this.chart('broken-bonds');
+    if (broken && brokenBonds) {
+      broken.set(0, t, rows.map((r) => r[4] + r[5]));
+      broken.set(1, t, rows.map((r) => r[4]));
+      broken.set(2, t, rows.map((r) => r[5]));
+    }
+    this.redraw();
+    return rows.length;
+  }
+
+  // Bond_Breaks.dat: one row per broken bond: time, i, j, mode (1 tension, 2 shear). Drawn as the
+  // cumulative count over time. `endTime`: carries the last count to that time (the run's end).
+  setBondBreaks(text, endTime) {
+    const rows = parseRows(text, 4).sort((a, b) => a[0] - b[0]);
+    const broken = this.chart('broken-bonds');
+    if (!broken) return rows.length;
+    const series = [[[], []], [[], []], [[], []]]; // total, tension, shear: [x, y]
+    const counts = [0, 0, 0];
+    const push = (k, t) => {
+      series[k][0].push(t);
+      series[k][1].push(counts[k]);
+    };
+    if (rows.length) for (let k = 0; k < 3; k++) push(k, Math.min(0, rows[0][0]));
+    for (const r of rows) {
+      const mode = r[3] === 2 ? 2 : 1;
+      counts[0] += 1;
+      counts[mode] += 1;
+      push(0, r[0]);
+      push(mode, r[0]);
+    }
+    if (rows.length && Number.isFinite(endTime) && endTime > rows[rows.length - 1][0]) for (let k = 0; k < 3; k++) push(k, endTime);
+    for (let k = 0; k < 3; k++) broken.set(k, series[k][0], series[k][1]);
+    this.redraw();
+    return rows.length;
+  }
+
+  // Draws at the next animation frame (many updates a frame cost one drawing).
+  redraw() {
+    if (!this.container || this.pending) return;
+    this.pending = true;
+    const run = () => {
+      this.pending = false;
+      for (const c of this.charts.values()) c.draw();
+    };
+    if (typeof requestAnimationFrame === 'function' && !(typeof document !== 'undefined' && document.hidden)) requestAnimationFrame(run);
+    else setTimeout(run, 50);
+  }
+}

@@ -1,0 +1,331 @@
+// The viewer page: owns the Viewer (the run being shown and the display settings), wires the side
+// panel's controls to it, loads files dropped or chosen offline, and lets the live panel (written
+// separately, src/live/panel.js) feed it frames from dem-server. docs/viewer.md is the contract for
+// the run model, the element ids and window.demViewer.
+
+import { Stage } from './view/scene.js';
+import { Particles } from './view/particles.js';
+import { ForceChainView } from './view/force_chains.js';
+import { BoundaryView } from './view/boundary.js';
+import { particleColours, hexToRgb } from './view/colours.js';
+import { addStats } from './formats/stats.js';
+import { wireControls } from './view/controls.js';
+import { Playback } from './view/playback.js';
+import { loadFiles } from './view/file_drop.js';
+
+const $ = (id) => document.getElementById(id);
+
+export class Viewer {
+  constructor(stage) {
+    this.stage = stage;
+    this.particles = new Particles(stage);
+    this.chains = new ForceChainView(stage);
+    this.boundary = new BoundaryView(stage);
+    this.playback = new Playback(this);
+    this.run = null;
+    this.frameIndex = -1;
+    this.live = false;
+    this.follow = true; // live: show each new frame as it arrives (until the user moves away)
+    this.chainsByStep = new Map();
+    this.fnMax = 0;
+    this.bounds = null; // { min, max, speed, diameter, partMax } over the frames of the run
+    this.settings = {
+      colourMode: 'speed', constantColour: '#2e8b57',
+      sectionFront: 0, sectionRear: 1000,
+      showChains: false, chainThickness: 30, chainShowParticles: true, particleOpacity: 1,
+      showBoundary: true,
+    };
+    this.visible = new Uint32Array(0); // indices of the particles left by the section
+    this.shown = new Uint8Array(0); // 1 per particle left by the section
+    this.colours = new Float32Array(0);
+    this.drawnCount = 0;
+    this.listeners = [];
+  }
+
+  // ---- the methods other modules call (docs/viewer.md) ----
+
+  // Replaces the run: frames (maybe none yet), mesh, unit. Resets chains and the live flag.
+  setRun(run) {
+    this.playback.pause();
+    this.run = { frames: [], mesh: null, unit: 'file', ...run };
+    this.run.frames = this.run.frames || [];
+    this.live = false;
+    this.liveSet = false;
+    this.follow = true;
+    this.chainsByStep = new Map();
+    this.fnMax = 0;
+    this.bounds = null;
+    for (const frame of this.run.frames) {
+      this.extendBounds(addStats(frame));
+      this.extendChainScale(frame.forceChains);
+    }
+    this.boundary.setMesh(this.run.mesh);
+    this.frameCamera();
+    this.frameIndex = -1;
+    if (this.run.frames.length) this.showFrame(0);
+    else this.clearView();
+    this.changed();
+  }
+
+  // Appends a frame (live). Shown at once while following the newest frame.
+  addFrame(frame) {
+    if (!this.run) this.setRun({ frames: [], mesh: null, unit: 'm' });
+    if (!this.liveSet) this.live = true; // unless the live panel says otherwise with setLive
+    addStats(frame);
+    if (!frame.forceChains && this.chainsByStep.has(frame.step)) frame.forceChains = this.chainsByStep.get(frame.step);
+    this.extendChainScale(frame.forceChains);
+    const first = this.run.frames.length === 0;
+    this.run.frames.push(frame);
+    this.extendBounds(frame);
+    if (first) this.frameCamera();
+    if (this.follow || first) this.showFrame(this.run.frames.length - 1);
+    else this.changed();
+  }
+
+  // Attaches force-chain frames ({ step, count, i, j, fn, ft }) to the run's frames of equal step.
+  setForceChains(framesOfChains) {
+    this.chainsByStep = new Map();
+    this.fnMax = 0;
+    for (const chains of framesOfChains || []) {
+      this.chainsByStep.set(chains.step, chains);
+      this.extendChainScale(chains);
+    }
+    let matched = 0;
+    for (const frame of this.run ? this.run.frames : []) {
+      frame.forceChains = this.chainsByStep.get(frame.step) || null;
+      if (frame.forceChains) matched += 1;
+    }
+    this.redraw();
+    return matched;
+  }
+
+  // A fixed boundary mesh { vertices, triangles } (or null).
+  setMesh(mesh) {
+    if (!this.run) this.setRun({ frames: [], mesh: null, unit: 'file' });
+    this.run.mesh = mesh;
+    this.boundary.setMesh(mesh);
+    this.frameCamera(); // a terrain is usually larger than the particles on it
+  }
+
+  // Shows frame `index` (0-based; clamped to the run).
+  showFrame(index) {
+    if (!this.run || !this.run.frames.length) return;
+    const last = this.run.frames.length - 1;
+    this.frameIndex = Math.max(0, Math.min(last, Math.round(Number(index) || 0)));
+    this.follow = this.frameIndex === last;
+    this.redraw();
+  }
+
+  message(text, isError = false) {
+    const element = $('message');
+    element.textContent = text;
+    element.classList.toggle('error', Boolean(isError));
+  }
+
+  // Marks the run as live (frames still arriving) or finished; addFrame sets it, setRun clears it.
+  setLive(on) {
+    this.live = Boolean(on);
+    this.liveSet = true;
+    this.changed();
+  }
+
+  state() {
+    const frame = this.currentFrame();
+    return {
+      particles: frame ? frame.count : 0,
+      frames: this.run ? this.run.frames.length : 0,
+      frameIndex: this.frameIndex,
+      time: frame ? frame.time : null,
+      step: frame ? frame.step : null,
+      visible: frame ? this.drawnCount : 0,
+      colourMode: this.settings.colourMode,
+      playing: this.playback.playing,
+      live: this.live,
+    };
+  }
+
+  // ---- display ----
+
+  currentFrame() {
+    return this.run && this.frameIndex >= 0 ? this.run.frames[this.frameIndex] || null : null;
+  }
+
+  // Changes display settings ({ colourMode: 'part', ... }) and redraws.
+  set(changes) {
+    Object.assign(this.settings, changes);
+    this.redraw();
+  }
+
+  // Called after any change of what is shown: the controls refresh their read-outs.
+  onChange(listener) {
+    this.listeners.push(listener);
+  }
+
+  changed() {
+    for (const listener of this.listeners) listener(this);
+  }
+
+  extendBounds(frame) {
+    const s = frame.stats;
+    if (!frame.count) return;
+    if (!this.bounds) {
+      this.bounds = { min: [...s.min], max: [...s.max], speed: [...s.speed], diameter: [...s.diameter], partMax: s.partMax };
+      return;
+    }
+    const b = this.bounds;
+    for (let c = 0; c < 3; c++) {
+      b.min[c] = Math.min(b.min[c], s.min[c]);
+      b.max[c] = Math.max(b.max[c], s.max[c]);
+    }
+    b.speed = [Math.min(b.speed[0], s.speed[0]), Math.max(b.speed[1], s.speed[1])];
+    b.diameter = [Math.min(b.diameter[0], s.diameter[0]), Math.max(b.diameter[1], s.diameter[1])];
+    b.partMax = Math.max(b.partMax, s.partMax);
+  }
+
+  // The largest |Fn| of the run (shown in the legend next to the frame's own).
+  extendChainScale(chains) {
+    if (chains) this.fnMax = Math.max(this.fnMax, addStats(chains).stats.fnMax);
+  }
+
+  // The colour scale's [min, max] for the current mode (the run's range, as the legacy bar).
+  colourRange() {
+    const mode = this.settings.colourMode;
+    if (!this.bounds) return null;
+    if (mode === 'speed') return this.bounds.speed;
+    if (mode === 'diameter') return this.bounds.diameter;
+    return null;
+  }
+
+  // Puts the camera on the run: the particles' extent and the frame's plates, or the mesh alone.
+  frameCamera() {
+    let min = null, max = null;
+    const grow = (lo, hi) => {
+      if (!min) { min = [...lo]; max = [...hi]; return; }
+      for (let c = 0; c < 3; c++) { min[c] = Math.min(min[c], lo[c]); max[c] = Math.max(max[c], hi[c]); }
+    };
+    if (this.bounds) {
+      const r = this.bounds.diameter[1] / 2;
+      grow(this.bounds.min.map((v) => v - r), this.bounds.max.map((v) => v + r));
+    }
+    const first = this.run && this.run.frames[0];
+    if (first && first.plates) {
+      for (let k = 0; k < first.plates.length; k += 3) grow(first.plates.subarray(k, k + 3), first.plates.subarray(k, k + 3));
+    }
+    const meshBox = this.boundary.meshBounds();
+    if (meshBox) grow(meshBox[0], meshBox[1]);
+    if (min) this.stage.frame(min, max);
+  }
+
+  clearView() {
+    this.drawnCount = 0;
+    this.particles.clear();
+    this.chains.hide();
+    this.boundary.drawFrame(null);
+  }
+
+  // Draws the current frame with the current settings.
+  redraw() {
+    const frame = this.currentFrame();
+    if (!frame) {
+      this.clearView();
+      this.changed();
+      return;
+    }
+    const n = frame.count;
+    if (this.visible.length < n) {
+      this.visible = new Uint32Array(n);
+      this.shown = new Uint8Array(n);
+      this.colours = new Float32Array(n * 3);
+    }
+    // Section along y (legacy Scaling Front / Rear): Front hides from the front (small y), Rear
+    // from the back, in thousandths of the run's y extent.
+    const s = this.settings;
+    const y0 = this.bounds ? this.bounds.min[1] : 0;
+    const dy = this.bounds ? this.bounds.max[1] - y0 : 0;
+    const front = s.sectionFront <= 0 ? -Infinity : y0 + (s.sectionFront / 1000) * dy;
+    const rear = s.sectionRear >= 1000 ? Infinity : y0 + (s.sectionRear / 1000) * dy;
+    const p = frame.positions;
+    let drawn = 0;
+    for (let k = 0; k < n; k++) {
+      const y = p[k * 3 + 1];
+      const inside = y >= front && y <= rear ? 1 : 0;
+      this.shown[k] = inside;
+      if (inside) this.visible[drawn++] = k;
+    }
+    this.drawnCount = drawn;
+
+    particleColours(frame, s.colourMode, this.colourRange() || [0, 1], hexToRgb(s.constantColour), this.colours);
+    this.particles.draw(frame, this.visible, drawn, this.colours);
+    this.particles.setVisible(!s.showChains || s.chainShowParticles);
+
+    if (s.showChains && frame.forceChains) {
+      const baseRadius = (this.bounds ? this.bounds.diameter[1] / 2 : 1) * 0.5 * (s.chainThickness / 30);
+      // Scaled to this frame's strongest chain: a run's largest force is often an impact early on,
+      // which would leave the resting packing's network uniformly thin and blue.
+      const fnMax = addStats(frame.forceChains).stats.fnMax;
+      this.chains.draw(frame, frame.forceChains, this.indexOfId(frame), this.shown, fnMax, baseRadius);
+    } else {
+      this.chains.hide();
+    }
+    this.boundary.drawFrame(frame);
+    this.changed();
+  }
+
+  // Maps a 0-based particle id (force chains) to the particle's index in the frame: the identity
+  // when the frame lists ids 1..N in order, as the engine writes them; a table otherwise (particles
+  // removed from the run leave gaps).
+  indexOfId(frame) {
+    if (!frame.ids) return (id) => (id < frame.count ? id : -1);
+    if (!frame.indexOfId) {
+      let identity = true;
+      let maxId = 0;
+      for (let k = 0; k < frame.count; k++) {
+        if (frame.ids[k] !== k + 1) identity = false;
+        if (frame.ids[k] > maxId) maxId = frame.ids[k];
+      }
+      if (identity) {
+        frame.indexOfId = (id) => (id < frame.count ? id : -1);
+      } else {
+        const table = new Int32Array(maxId).fill(-1);
+        for (let k = 0; k < frame.count; k++) if (frame.ids[k] > 0) table[frame.ids[k] - 1] = k;
+        frame.indexOfId = (id) => (id >= 0 && id < table.length ? table[id] : -1);
+      }
+    }
+    return frame.indexOfId;
+  }
+}
+
+// ---- the page ----
+
+function start() {
+  const stage = new Stage($('view'));
+  const viewer = new Viewer(stage);
+  wireControls(viewer);
+  window.demViewer = { state: () => viewer.state(), viewer, loadFiles: (files) => loadFiles(viewer, files) };
+
+  // Offline files: the file input and drag-and-drop anywhere on the page.
+  $('file-input').addEventListener('change', (event) => {
+    loadFiles(viewer, [...event.target.files]);
+    event.target.value = ''; // choosing the same file again reloads it
+  });
+  document.addEventListener('dragover', (event) => {
+    event.preventDefault();
+    document.body.classList.add('dragging');
+  });
+  document.addEventListener('dragleave', (event) => {
+    if (!event.relatedTarget) document.body.classList.remove('dragging');
+  });
+  document.addEventListener('drop', (event) => {
+    event.preventDefault();
+    document.body.classList.remove('dragging');
+    if (event.dataTransfer && event.dataTransfer.files.length) loadFiles(viewer, [...event.dataTransfer.files]);
+  });
+
+  // The live panel (src/live/panel.js) is optional: the build supplies an empty module when the
+  // file does not exist, and a failure in it must not take the offline viewer down.
+  import('./live/panel.js')
+    .then((module) => module.initLivePanel && module.initLivePanel(viewer))
+    .catch((error) => viewer.message(`live panel: ${error.message}`, true));
+}
+
+start();

@@ -1,0 +1,86 @@
+// Loads files chosen with #file-input or dropped on the page into the Viewer: parses them in the
+// worker (one after another, one progress bar for all), then applies them in the order that makes
+// sense whatever the order they came in: the animation first (it makes the run), then its force
+// chains, then a boundary mesh. A bad file is reported by name and line and leaves the run that
+// was shown before untouched.
+
+import { parseFile } from '../formats/load_files.js';
+
+const ORDER = { animation: 0, forceChains: 1, mesh: 2 };
+let queue = Promise.resolve(); // loads run one at a time, in the order the user asked
+let waitingChains = null; // force chains opened before any animation: attached to the next one
+
+export function loadFiles(viewer, files) {
+  queue = queue.then(() => load(viewer, [...files])).catch((error) => viewer.message(String(error), true));
+  return queue;
+}
+
+async function load(viewer, files) {
+  if (!files.length) return;
+  const progress = document.getElementById('load-progress');
+  progress.hidden = false;
+  progress.value = 0;
+  viewer.message(`Loading ${files.map((f) => f.name).join(', ')}, please wait`);
+  const parsed = [];
+  try {
+    for (let k = 0; k < files.length; k++) {
+      const file = files[k];
+      try {
+        const result = await parseFile(file, (fraction) => { progress.value = (k + fraction) / files.length; });
+        parsed.push({ file, result });
+      } catch (error) {
+        parsed.push({ file, result: { kind: null, problem: `could not be read: ${error.message}` } });
+      }
+    }
+  } finally {
+    progress.value = 1;
+    progress.hidden = true;
+  }
+  // sort is stable: files of one kind keep the order they were given in
+  parsed.sort((a, b) => (ORDER[a.result.kind] ?? 3) - (ORDER[b.result.kind] ?? 3));
+
+  const notes = [];
+  let failed = false;
+  for (const { file, result } of parsed) {
+    const name = file.name;
+    // A malformed file (not merely cut short) is refused whole: frames after a bad line cannot be
+    // trusted, and the run shown before stays.
+    if (!result.kind || (result.problem && !result.truncated)) {
+      notes.push(`${name}: ${result.problem}`);
+      failed = true;
+      continue;
+    }
+    if (result.kind === 'mesh') {
+      viewer.setMesh(result.mesh);
+      notes.push(`${name}: mesh of ${result.mesh.vertices.length / 3} vertices and ${result.mesh.triangles.length / 3} triangles`);
+      continue;
+    }
+    if (!result.frames.length) {
+      notes.push(`${name}: no complete frame (${result.problem || 'the file is empty'})`);
+      failed = true;
+      continue;
+    }
+    const cut = result.truncated ? `; the file is cut short, the last frame is incomplete and not shown: ${result.problem}` : '';
+    if (result.kind === 'animation') {
+      // A mesh loaded on its own before any animation (a terrain first) stays with the new run.
+      const previous = viewer.run;
+      const keepMesh = previous && !previous.frames.length ? previous.mesh : null;
+      viewer.setRun({ frames: result.frames, mesh: keepMesh, unit: 'file' });
+      const count = result.frames[0].count;
+      notes.push(`${name}: ${result.frames.length} frames of ${count} particles${cut}`);
+      if (waitingChains) {
+        const matched = viewer.setForceChains(waitingChains.frames);
+        notes.push(`${waitingChains.name} (opened before): ${matched} frames matched by step`);
+        waitingChains = null;
+      }
+    } else if (!viewer.run || !viewer.run.frames.length) {
+      waitingChains = { name, frames: result.frames };
+      notes.push(`${name}: ${result.frames.length} frames of force chains, kept for the animation file to come${cut}`);
+    } else {
+      const matched = viewer.setForceChains(result.frames);
+      const frames = viewer.run ? viewer.run.frames.length : 0;
+      notes.push(`${name}: ${result.frames.length} frames of force chains, ${matched} of the ${frames} animation frames matched by step${cut}`);
+    }
+  }
+  viewer.message(notes.join('\n'), failed);
+}

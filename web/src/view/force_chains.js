@@ -1,0 +1,92 @@
+// Force chains: one thin cylinder per contact between the two particle centres, coloured blue to
+// red and made thicker with |Fn| (legacy "force chain": colour and width both tell the force).
+// Cylinders are instanced: a single draw call for hundreds of thousands of chains, and their width
+// is in scene units, so it keeps its proportion to the particles at any zoom.
+
+import * as THREE from 'three';
+import { mapLinear } from './colours.js';
+
+export class ForceChainView {
+  constructor(stage) {
+    this.stage = stage;
+    this.capacity = 0;
+    this.mesh = null;
+    this.geometry = new THREE.CylinderGeometry(1, 1, 1, 8, 1, true); // along +y, height 1
+    this.material = new THREE.MeshPhongMaterial({ color: 0xffffff, shininess: 20 });
+    this.drawn = 0;
+  }
+
+  ensure(count) {
+    if (this.mesh && count <= this.capacity) return;
+    if (this.mesh) {
+      this.stage.scene.remove(this.mesh);
+      this.mesh.dispose();
+    }
+    this.capacity = Math.max(count, 1024);
+    this.mesh = new THREE.InstancedMesh(this.geometry, this.material, this.capacity);
+    this.mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
+    this.mesh.instanceColor = new THREE.InstancedBufferAttribute(new Float32Array(this.capacity * 3), 3);
+    this.mesh.frustumCulled = false;
+    this.stage.scene.add(this.mesh);
+  }
+
+  // chains: { i, j (0-based ids), fn } of the frame; indexOf(id0) gives the particle's index in the
+  // frame or -1; shown: Uint8Array, 1 for the particles left visible by the section (a chain is
+  // drawn when both its particles are); fnMax: the force at the top of the colour scale;
+  // baseRadius: the radius of the strongest chain at thickness 1.
+  draw(frame, chains, indexOf, shown, fnMax, baseRadius) {
+    const count = chains ? chains.count ?? chains.i.length : 0; // live frames may carry no count
+    if (!count) {
+      this.hide();
+      return;
+    }
+    this.ensure(count);
+    const m = this.mesh.instanceMatrix.array;
+    const col = this.mesh.instanceColor.array;
+    const p = frame.positions;
+    const scale = fnMax > 0 ? 1 / fnMax : 0;
+    let n = 0;
+    for (let k = 0; k < count; k++) {
+      const a = indexOf(chains.i[k]);
+      const b = indexOf(chains.j[k]);
+      if (a < 0 || b < 0 || !shown[a] || !shown[b]) continue;
+      const ax = p[a * 3], ay = p[a * 3 + 1], az = p[a * 3 + 2];
+      const dx = p[b * 3] - ax, dy = p[b * 3 + 1] - ay, dz = p[b * 3 + 2] - az;
+      const length = Math.sqrt(dx * dx + dy * dy + dz * dz);
+      if (length === 0) continue;
+      const t = Math.abs(chains.fn[k]) * scale;
+      const radius = baseRadius * (0.15 + 0.85 * Math.min(t, 1));
+      // e1, e2: unit vectors across the chain (e1 from the cross product with the axis the chain is
+      // least along, so it never degenerates)
+      const ux = dx / length, uy = dy / length, uz = dz / length;
+      let e1x, e1y, e1z;
+      if (Math.abs(ux) < 0.9) { e1x = 0; e1y = uz; e1z = -uy; } else { e1x = -uz; e1y = 0; e1z = ux; }
+      const e1 = Math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z);
+      e1x /= e1; e1y /= e1; e1z /= e1;
+      const e2x = uy * e1z - uz * e1y, e2y = uz * e1x - ux * e1z, e2z = ux * e1y - uy * e1x;
+      const o = n * 16;
+      // columns: x across (radius), y along (the full chain), z across (radius), then the midpoint
+      m[o] = e1x * radius; m[o + 1] = e1y * radius; m[o + 2] = e1z * radius; m[o + 3] = 0;
+      m[o + 4] = dx; m[o + 5] = dy; m[o + 6] = dz; m[o + 7] = 0;
+      m[o + 8] = e2x * radius; m[o + 9] = e2y * radius; m[o + 10] = e2z * radius; m[o + 11] = 0;
+      m[o + 12] = ax + dx / 2; m[o + 13] = ay + dy / 2; m[o + 14] = az + dz / 2; m[o + 15] = 1;
+      mapLinear(t, col, n * 3);
+      n += 1;
+    }
+    this.drawn = n;
+    this.mesh.count = n;
+    this.mesh.visible = n > 0;
+    this.mesh.instanceMatrix.needsUpdate = true;
+    this.mesh.instanceColor.needsUpdate = true;
+    this.stage.requestRender();
+  }
+
+  hide() {
+    this.drawn = 0;
+    if (this.mesh) {
+      this.mesh.count = 0;
+      this.mesh.visible = false;
+    }
+    this.stage.requestRender();
+  }
+}
