@@ -36,22 +36,29 @@ class Checkpointer {
   std::chrono::steady_clock::time_point last_;
 };
 
-// Encodes and publishes a frame only while somebody watches (an unwatched job pays nothing), and at
-// most `max_rate` frames a second (a screen shows no more; the file has every frame). The last
-// frame always goes out.
-class FramePublisher final : public Observer {
+// Encodes and publishes a frame only while somebody watches (an unwatched job pays nothing). With a
+// rate, a frame goes out whenever 1/rate seconds have passed, at any step, so a run whose files
+// have a frame a minute still moves on screen (force chains come with the files' frames only);
+// with rate 0, at every frame of the files. The last step always goes out.
+class FramePublisher {
  public:
   FramePublisher(std::int64_t job, std::shared_ptr<FrameChannel> channel, double max_rate)
       : encoder_(job), channel_(std::move(channel)), min_interval_(max_rate > 0 ? 1.0 / max_rate : 0.0) {}
-  void frame(const Simulation& sim) override {
+  void after_step(const Simulation& sim, bool file_frame) {
     if (!channel_ || !channel_->has_viewers()) return;
-    const auto now = std::chrono::steady_clock::now();
     const bool last = sim.step_count() == sim.total_steps();
-    if (published_ && !last && std::chrono::duration<double>(now - last_).count() < min_interval_) return;
+    if (!last) {
+      if (min_interval_ == 0 && !file_frame) return;
+      if (min_interval_ > 0) {
+        const auto now = std::chrono::steady_clock::now();
+        if (published_ && std::chrono::duration<double>(now - last_).count() < min_interval_) return;
+      }
+    }
+    const auto start = std::chrono::steady_clock::now();
     channel_->publish(std::make_shared<const EncodedFrame>(encoder_.encode(sim, channel_->wants_force_chains())));
-    last_ = now;
+    last_ = start;
     published_ = true;
-    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - now).count();
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   double seconds() const { return seconds_; }  // the engine's time spent on live frames
 
@@ -87,21 +94,21 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     if (hooks.on_start) hooks.on_start(sim);
 
     std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, folder.outputs().string(), resume);
-    auto publisher = std::make_unique<FramePublisher>(hooks.job, hooks.frames, hooks.max_frame_rate);
+    FramePublisher publisher(hooks.job, hooks.frames, hooks.max_frame_rate);
     Checkpointer checkpointer(folder, hooks.checkpoint_seconds, hooks.on_checkpoint);
     std::vector<Observer*> observers;
     for (auto& w : writers) observers.push_back(w.get());
-    observers.push_back(publisher.get());
 
     RunOptions options;
     options.cancel = hooks.stop;
     options.on_progress = hooks.on_progress;
     options.progress_seconds = 0.5;
     options.periodically = [&](const Simulation& s) { checkpointer.maybe_save(s); };
+    options.after_step = [&](const Simulation& s, bool frame) { publisher.after_step(s, frame); };
     const RunOutcome outcome = run(sim, observers, options);
     writers.clear();  // closes the files
     result.run_seconds = outcome.loop_seconds;
-    result.stream_seconds = publisher->seconds();
+    result.stream_seconds = publisher.seconds();
     if (outcome.cancelled) {
       result.kind = ExecutionResult::Kind::Stopped;
       if (hooks.checkpoint_on_stop && hooks.checkpoint_on_stop->load()) checkpointer.save(sim);

@@ -22,7 +22,10 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
   std::int64_t steps_at_report = sim.step_count();
   try {
     guard.check(sim);
-    if (sim.step_count() == 0) frame();  // a continued run's first frame is its saved state's last
+    if (sim.step_count() == 0) {  // a continued run's first frame is its saved state's last
+      frame();
+      if (options.after_step) options.after_step(sim, true);
+    }
     while (sim.step_count() < total) {
       if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
         outcome.cancelled = true;
@@ -37,6 +40,7 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
       const std::int64_t s = sim.step_count();
       if (s % check_every == 0 || s == total) guard.check(sim);
       if (frame_due) frame();
+      if (options.after_step) options.after_step(sim, frame_due);
       if (options.on_progress || options.periodically) {
         const auto now = Clock::now();
         const double since = std::chrono::duration<double>(now - last_report).count();

@@ -39,6 +39,9 @@ struct RunOptions {
   // Also about every progress_seconds, between steps (the server's checkpoints: the state may be
   // saved at any step, since the files change only at frames).
   std::function<void(const Simulation&)> periodically;
+  // After every step, told whether it was a frame (the server's live frames, which may come more
+  // often than the files' frames).
+  std::function<void(const Simulation&, bool frame)> after_step;
   double progress_seconds = 0.5;
   const std::atomic<bool>* cancel = nullptr;
 };

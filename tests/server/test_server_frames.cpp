@@ -131,6 +131,24 @@ TEST_F(ServerFrames, LiveFramesAreCappedAtTheMaximumRateButTheLastOneAlwaysComes
   EXPECT_EQ(read_bytes(dir_ / "data" / "jobs" / std::to_string(id) / "outputs" / "Masscenter.dat").empty(), false);
 }
 
+TEST_F(ServerFrames, LiveFramesComeBetweenTheFilesFramesWhenThoseAreFew) {
+  start_server({"--max-frame-rate", "20"});
+  const long id = queue_held(pouring_spec(0.012, 12000, 6000));  // file frames at steps 0, 6000, 12000 only
+  client::FrameStream stream(*client_, "/api/jobs/" + std::to_string(id) + "/frames");
+  release();
+  const std::vector<api::Frame> frames = read_all(stream);
+  ASSERT_GT(frames.size(), 3u) << "live frames should not wait for the files' frames";
+  bool between = false;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    if (k > 0) {
+      EXPECT_GT(frames[k].step(), frames[k - 1].step());
+    }
+    between = between || frames[k].step() % 6000 != 0;
+  }
+  EXPECT_TRUE(between);
+  EXPECT_EQ(frames.back().step(), 12000);
+}
+
 TEST_F(ServerFrames, AFinishedJobClosesTheStreamSayingWhere) {
   start_server();
   const long id = submit_json(pouring_spec(0.015, 100, 50))["id"];

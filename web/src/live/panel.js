@@ -208,6 +208,9 @@ class LivePanel {
     this.refreshJobs();
     this.timer = setInterval(() => this.refreshJobs(), POLL_MS);
     this.loadCases();
+    // a link to a job (?job=N, as scripts/start prints it) opens it at once: live or replayed
+    const wanted = Number(new URLSearchParams(window.location.search).get('job'));
+    if (Number.isInteger(wanted) && wanted > 0) this.open(wanted);
     return this;
   }
 
