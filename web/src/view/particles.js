@@ -9,6 +9,13 @@ import { SphereImpostors } from './impostors.js';
 
 export const IMPOSTOR_THRESHOLD = 100000;
 
+// ?impostorsAbove=N in the page's address moves the switch (bench/viewer compares the two ways).
+function impostorThreshold() {
+  const given = typeof window === 'undefined' ? null : new URLSearchParams(window.location.search).get('impostorsAbove');
+  const n = Number(given);
+  return given !== null && Number.isFinite(n) && n >= 0 ? n : IMPOSTOR_THRESHOLD;
+}
+
 export class Particles {
   constructor(stage) {
     this.stage = stage;
@@ -50,7 +57,7 @@ export class Particles {
   // of them; colours: linear RGB per particle (3 floats each).
   draw(frame, visible, drawn, colours) {
     this.drawn = drawn;
-    if (frame.count > IMPOSTOR_THRESHOLD) {
+    if (frame.count > impostorThreshold()) {
       if (this.mesh) this.mesh.visible = false;
       this.impostors.draw(frame, visible, drawn, colours);
       this.stage.requestRender();
