@@ -13,6 +13,9 @@ import { wireControls } from './view/controls.js';
 import { Playback } from './view/playback.js';
 import { loadFiles } from './view/file_drop.js';
 
+// Live frames kept in memory: about this many bytes of positions, velocities and radii.
+const LIVE_BYTES = 512 * 1024 * 1024;
+
 const $ = (id) => document.getElementById(id);
 
 export class Viewer {
@@ -76,6 +79,15 @@ export class Viewer {
     this.extendChainScale(frame.forceChains);
     const first = this.run.frames.length === 0;
     this.run.frames.push(frame);
+    // A live run keeps its newest frames only, about LIVE_BYTES of them: a long job of many
+    // particles would otherwise fill the page's memory (Replay loads the whole run from its files).
+    const perFrame = 28 * frame.count + 1;
+    const kept = Math.max(2, Math.floor(LIVE_BYTES / perFrame));
+    if (this.run.frames.length > kept) {
+      const drop = this.run.frames.length - kept;
+      this.run.frames.splice(0, drop);
+      this.frameIndex = Math.max(0, this.frameIndex - drop);
+    }
     this.extendBounds(frame);
     if (first) this.frameCamera();
     if (this.follow || first) this.showFrame(this.run.frames.length - 1);
