@@ -1,0 +1,90 @@
+// Save picture (#save-picture -> dem-view.png) and record (#record -> dem-run.webm).
+import fs from 'node:fs';
+import {
+  test, expect, ANIMATION, readAnimation, openViewer, state, loadFiles, showFrame, viewCanvas,
+  keep, keepPage, pngColourCount,
+} from './helpers.js';
+
+const PNG_SIGNATURE = Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]);
+const EBML_HEADER = Buffer.from([0x1a, 0x45, 0xdf, 0xa3]);
+
+test('save picture downloads a PNG of the view', async ({ page }, testInfo) => {
+  const frames = readAnimation(ANIMATION());
+  await openViewer(page);
+  await loadFiles(page, [ANIMATION()], frames.length);
+  await showFrame(page, frames.length - 1);
+
+  const [download] = await Promise.all([
+    page.waitForEvent('download'),
+    page.locator('#save-picture').click(),
+  ]);
+  expect(download.suggestedFilename()).toBe('dem-view.png');
+  const png = fs.readFileSync(await download.path());
+  expect(png.subarray(0, 8).equals(PNG_SIGNATURE), 'dem-view.png starts with the PNG signature').toBe(true);
+  await keep(testInfo, 'dem-view', png);
+  await keepPage(page, testInfo, 'page');
+
+  // the picture is the view: the canvas's shape, and not blank (a WebGL canvas read after it was
+  // presented without preserveDrawingBuffer comes out empty)
+  const picture = await pngColourCount(page, png);
+  const box = await (await viewCanvas(page)).boundingBox();
+  expect(picture.width).toBeGreaterThan(0);
+  expect(Math.abs(picture.width / picture.height - box.width / box.height),
+         `dem-view.png is ${picture.width}x${picture.height}, the view ${box.width}x${box.height}`).toBeLessThan(0.02);
+  expect(picture.colours, 'dem-view.png is not blank').toBeGreaterThan(16);
+});
+
+test('record downloads a WebM that Chromium plays', async ({ page, context }, testInfo) => {
+  const frames = readAnimation(ANIMATION());
+  await openViewer(page);
+  await loadFiles(page, [ANIMATION()], frames.length);
+  await showFrame(page, 0);
+
+  const record = page.locator('#record');
+  await page.locator('#play').click();
+  await expect.poll(async () => (await state(page)).playing).toBe(true);
+  await record.click();
+  await page.waitForTimeout(2500);
+  await keepPage(page, testInfo, 'recording');
+  const [download] = await Promise.all([
+    page.waitForEvent('download', { timeout: 60_000 }),
+    record.click(),
+  ]);
+  expect(download.suggestedFilename()).toBe('dem-run.webm');
+  const webm = fs.readFileSync(await download.path());
+  fs.writeFileSync(testInfo.outputPath('dem-run.webm'), webm);
+  await testInfo.attach('dem-run.webm', { path: testInfo.outputPath('dem-run.webm'), contentType: 'video/webm' });
+  expect(webm.subarray(0, 4).equals(EBML_HEADER), 'dem-run.webm starts with the EBML header 1A 45 DF A3').toBe(true);
+  expect(webm.length, 'dem-run.webm holds more than a header').toBeGreaterThan(1000);
+
+  // play it in a fresh page, from a blob URL
+  const player = await context.newPage();
+  await player.setContent('<body style="margin:0;background:#222"><video id="v" muted playsinline style="width:100%"></video></body>');
+  const played = await player.evaluate(async (b64) => {
+    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const video = document.getElementById('v');
+    const ready = new Promise((resolve, reject) => {
+      video.onloadedmetadata = resolve;
+      video.onerror = () => reject(new Error(`video error ${video.error && video.error.code}: ${video.error && video.error.message}`));
+    });
+    video.src = URL.createObjectURL(new Blob([bytes], { type: 'video/webm' }));
+    await ready;
+    const result = { readyState: video.readyState, duration: video.duration, width: video.videoWidth, height: video.videoHeight };
+    await video.play();
+    await new Promise((resolve) => {
+      const t0 = performance.now();
+      const check = () => (video.currentTime > 0 || video.ended || performance.now() - t0 > 10000 ? resolve() : setTimeout(check, 50));
+      check();
+    });
+    video.pause();
+    result.currentTime = video.currentTime;
+    return result;
+  }, webm.toString('base64'));
+  testInfo.annotations.push({ type: 'video', description: JSON.stringify(played) });
+  expect(played.readyState, 'the video has metadata').toBeGreaterThanOrEqual(1);
+  expect(played.duration, 'the video has a duration').toBeGreaterThan(0);
+  expect(played.width, 'the video has frames of the view').toBeGreaterThan(0);
+  expect(played.currentTime, 'the video plays').toBeGreaterThan(0);
+  await keep(testInfo, 'webm-playing', await player.screenshot());
+  await player.close();
+});

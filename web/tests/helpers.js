@@ -1,0 +1,198 @@
+// Shared pieces of the viewer's browser tests: the test fixture (page errors fail the test, the
+// console is attached), a tiny legacy-file reader independent of the viewer's, and helpers that
+// drive the controls of docs/viewer.md.
+import { test as base, expect } from '@playwright/test';
+import fs from 'node:fs';
+import path from 'node:path';
+
+export { expect };
+
+export const serverUrl = () => {
+  if (!process.env.DEM_SERVER_URL) throw new Error('DEM_SERVER_URL is not set: run through playwright.config.js (global setup)');
+  return process.env.DEM_SERVER_URL;
+};
+export const fixture = (...parts) => path.join(process.env.DEM_FIXTURES, ...parts);
+export const ANIMATION = () => fixture('offline', 'ANIMATION_3D.dat');
+export const FORCE_CHAINS = () => fixture('offline', 'ForceChain_3D.dat');
+export const MALFORMED = () => fixture('malformed', 'ANIMATION_3D.dat');
+export const TRUNCATED = () => fixture('truncated', 'ANIMATION_3D.dat');
+
+// `test` with an automatic fixture: any uncaught exception in the page fails the test, and the
+// page's console is attached to the report.
+export const test = base.extend({
+  pageErrors: [async ({ page }, use, testInfo) => {
+    const errors = [];
+    const consoleLines = [];
+    page.on('pageerror', (e) => errors.push(`${e.name}: ${e.message}\n${e.stack || ''}`));
+    page.on('console', (m) => consoleLines.push(`[${m.type()}] ${m.text()}`));
+    await use(errors);
+    if (consoleLines.length) {
+      await testInfo.attach('console.txt', { body: consoleLines.join('\n'), contentType: 'text/plain' });
+    }
+    expect(errors, 'uncaught exceptions in the page').toEqual([]);
+  }, { auto: true }],
+});
+
+// --- a tiny reader of ANIMATION_3D.dat and ForceChain_3D.dat (docs/formats.md sections 3, 4) ---
+
+// Frames of an ANIMATION_3D.dat: [{ step, particles, time }], from each '3DA:' header, the first
+// scalar (time, s) two lines after it and the "step NP NW" line four lines after it.
+export function readAnimation(file) {
+  const lines = fs.readFileSync(file, 'utf8').split(/\r?\n/).filter((l) => l.trim() !== '');
+  const frames = [];
+  for (let i = 0; i < lines.length; i++) {
+    if (lines[i].trim() !== '3DA:') continue;
+    const time = Number(lines[i + 2].trim().split(/\s+/)[0]);
+    const [step, particles] = lines[i + 4].trim().split(/\s+/).map(Number);
+    frames.push({ step, particles, time });
+  }
+  return frames;
+}
+
+// Frames of a ForceChain_3D.dat: [{ step, chains }] from the '3DF: step NC' headers.
+export function readForceChains(file) {
+  return fs.readFileSync(file, 'utf8').split(/\r?\n/)
+    .filter((l) => l.startsWith('3DF:'))
+    .map((l) => { const [, step, chains] = l.trim().split(/\s+/).map(Number); return { step, chains }; });
+}
+
+// --- driving the page ---
+
+export async function openViewer(page) {
+  await page.goto(`${serverUrl()}/`);
+  await page.waitForFunction(() => window.demViewer && typeof window.demViewer.state === 'function',
+                             null, { timeout: 60_000 });
+}
+
+export const state = (page) => page.evaluate(() => window.demViewer.state());
+
+// The number shown in an element ("1,571" or "1571 particles" -> 1571; "0.1 s" -> 0.1).
+export async function shownNumber(page, selector) {
+  const text = (await page.locator(selector).textContent()) || '';
+  const m = text.replace(/,/g, '').match(/[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?/);
+  if (!m) throw new Error(`${selector} shows no number: ${JSON.stringify(text)}`);
+  return Number(m[0]);
+}
+
+// Loads files through #file-input and waits until the viewer holds `frames` frames.
+export async function loadFiles(page, files, frames) {
+  await page.locator('#file-input').setInputFiles(files);
+  if (frames !== undefined) {
+    await expect.poll(async () => (await state(page)).frames, { timeout: 60_000 }).toBe(frames);
+    await expect(page.locator('#frame-count')).toHaveText(new RegExp(`\\b${frames}\\b`));
+  }
+}
+
+// Sets an <input type=range> (Playwright cannot fill those) and fires input and change.
+export async function setRange(page, selector, value) {
+  await page.locator(selector).evaluate((el, v) => {
+    el.value = String(v);
+    el.dispatchEvent(new Event('input', { bubbles: true }));
+    el.dispatchEvent(new Event('change', { bubbles: true }));
+  }, value);
+  await settle(page);
+}
+
+// Waits for two animation frames, so that the last change is drawn.
+export async function settle(page) {
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(r, 50)))));
+}
+
+export async function pause(page) {
+  if ((await state(page)).playing) await page.locator('#pause').click();
+  await expect.poll(async () => (await state(page)).playing).toBe(false);
+}
+
+// Shows frame `index` (0-based) with #time-slider (from its min: 0-based or 1-based) and waits
+// until #frame-index says so.
+export async function showFrame(page, index) {
+  await pause(page);
+  const min = Number(await page.locator('#time-slider').getAttribute('min')) || 0;
+  await setRange(page, '#time-slider', min + index);
+  await expect(page.locator('#frame-index')).toHaveText(new RegExp(`\\b${index + 1}\\b`));
+  await settle(page);
+}
+
+// The three.js canvas: the largest <canvas> on the page (the colour bar and the charts are smaller).
+export async function viewCanvas(page) {
+  await page.evaluate(() => {
+    const all = [...document.querySelectorAll('canvas')];
+    if (!all.length) throw new Error('no canvas on the page');
+    const area = (c) => { const r = c.getBoundingClientRect(); return r.width * r.height; };
+    all.sort((a, b) => area(b) - area(a));
+    for (const c of all) c.removeAttribute('data-test-view');
+    all[0].setAttribute('data-test-view', '');
+  });
+  return page.locator('canvas[data-test-view]');
+}
+
+// A PNG of the view (the canvas as composited on the page).
+export async function canvasShot(page) {
+  await settle(page);
+  return (await viewCanvas(page)).screenshot();
+}
+
+// Keeps a picture for a person: a PNG in the test's output folder, attached to the report.
+export async function keep(testInfo, name, png) {
+  const file = testInfo.outputPath(`${name}.png`);
+  fs.writeFileSync(file, png);
+  await testInfo.attach(name, { path: file, contentType: 'image/png' });
+}
+
+// A screenshot of the whole page, kept.
+export async function keepPage(page, testInfo, name) {
+  await settle(page);
+  await keep(testInfo, name, await page.screenshot());
+}
+
+// Distinct colours in a PNG (sampled), decoded by the browser: a blank picture has one or two.
+export async function pngColourCount(page, png) {
+  return page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.naturalWidth; c.height = img.naturalHeight;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const d = g.getImageData(0, 0, c.width, c.height).data;
+    const seen = new Set();
+    const stride = Math.max(1, Math.floor(d.length / 4 / 200000)) * 4;
+    for (let i = 0; i < d.length; i += stride) seen.add((d[i] << 24) | (d[i + 1] << 16) | (d[i + 2] << 8) | d[i + 3]);
+    return { width: c.width, height: c.height, colours: seen.size };
+  }, png.toString('base64'));
+}
+
+// How two PNGs of the same size differ, decoded by the browser: the share of pixels (0 to 1) with a
+// channel that differs by more than 8 of 255 (so that dithering and rounding do not count).
+export async function pixelDiff(page, a, b) {
+  return page.evaluate(async ([a64, b64]) => {
+    const pixels = async (b) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${b}`;
+      await img.decode();
+      const c = document.createElement('canvas');
+      c.width = img.naturalWidth; c.height = img.naturalHeight;
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      return g.getImageData(0, 0, c.width, c.height);
+    };
+    const [pa, pb] = [await pixels(a64), await pixels(b64)];
+    if (pa.width !== pb.width || pa.height !== pb.height) return 1;
+    let differ = 0;
+    for (let i = 0; i < pa.data.length; i += 4) {
+      if (Math.abs(pa.data[i] - pb.data[i]) > 8 || Math.abs(pa.data[i + 1] - pb.data[i + 1]) > 8 ||
+          Math.abs(pa.data[i + 2] - pb.data[i + 2]) > 8) differ++;
+    }
+    return differ / (pa.width * pa.height);
+  }, [a.toString('base64'), b.toString('base64')]);
+}
+
+// Expects two pictures of the view to differ visibly: at least 0.2% of the pixels.
+export async function expectPicturesDiffer(page, a, b, what) {
+  const share = await pixelDiff(page, a, b);
+  expect(share, `${what}: ${(100 * share).toFixed(3)}% of the pixels differ`).toBeGreaterThan(0.002);
+  return share;
+}
+
+export const closeTo = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(Math.abs(a), Math.abs(b)) + 1e-9;

@@ -1,0 +1,67 @@
+// Live use: submit a bundled case from the page, follow its frames, replay the finished run.
+import { test, expect, serverUrl, openViewer, state, shownNumber, pause, canvasShot, keep, keepPage } from './helpers.js';
+
+const DURATION = 0.2;  // s of the demo case (1,571 spheres): a few seconds of wall time, ~20 frames
+
+test('submit the demo case, follow it live, replay it', async ({ page, request }, testInfo) => {
+  test.setTimeout(360_000);
+  const api = (p) => `${serverUrl()}${p}`;
+  const jobsBefore = new Set(((await (await request.get(api('/api/jobs'))).json()).jobs).map((j) => j.id));
+
+  await openViewer(page);
+  const select = page.locator('#case-select');
+  await expect.poll(() => select.evaluate((s) => [...s.options].some((o) => /demo/i.test(o.value + o.text))),
+                    { message: '#case-select offers the demo case' }).toBe(true);
+  const demo = await select.evaluate((s) => [...s.options].find((o) => o.value === 'demo' || /demo/i.test(o.value + o.text)).value);
+  await select.selectOption(demo);
+  await expect.poll(() => page.locator('#case-spec').inputValue(), { message: '#case-spec holds the demo spec' })
+    .toContain('granite');
+  await page.locator('#case-duration').fill(String(DURATION));
+  await page.locator('#case-duration').dispatchEvent('change');
+  await keepPage(page, testInfo, 'case-form');
+
+  await page.locator('#submit-case').click();
+
+  // the new job on the server, with the duration asked for
+  let job;
+  await expect.poll(async () => {
+    const jobs = (await (await request.get(api('/api/jobs'))).json()).jobs.filter((j) => !jobsBefore.has(j.id));
+    job = jobs[jobs.length - 1];
+    return jobs.length;
+  }, { message: 'submitting makes one job on the server' }).toBe(1);
+  expect(job.totalSteps * job.timeStep, `the job runs ${DURATION} s (#case-duration)`).toBeCloseTo(DURATION, 3);
+
+  // frames arrive: #live-step shows two different steps
+  const steps = new Set();
+  await expect.poll(async () => {
+    const text = ((await page.locator('#live-step').textContent()) || '').replace(/,/g, '');
+    const m = text.match(/\d+/);
+    if (m) steps.add(Number(m[0]));
+    if (steps.size === 1) await keepPage(page, testInfo, 'live-first-frame');
+    return steps.size;
+  }, { message: '#live-step advances', timeout: 120_000, intervals: [100] }).toBeGreaterThanOrEqual(2);
+  expect((await state(page)).particles, 'live frames carry every particle').toBe(job.particles);
+  await keep(testInfo, 'live-view', await canvasShot(page));
+  await keepPage(page, testInfo, 'live');
+  await expect(page.locator(`#jobs li[data-id="${job.id}"]`), 'the job is listed in #jobs').toHaveCount(1);
+
+  // the job finishes
+  await expect.poll(async () => (await (await request.get(api(`/api/jobs/${job.id}`))).json()).state,
+                    { message: 'the job succeeds', timeout: 240_000, intervals: [500] }).toBe('succeeded');
+  const animation = await (await request.get(api(`/api/jobs/${job.id}/artifacts/ANIMATION_3D.dat`))).text();
+  const fileFrames = animation.split('\n').filter((l) => l.trim() === '3DA:').length;
+  expect(fileFrames).toBeGreaterThan(1);
+  await expect.poll(async () => Number(((await page.locator('#live-step').textContent()) || '').replace(/\D/g, '')),
+                    { message: '#live-step reaches the last step' }).toBe(job.totalSteps);
+
+  // replay the finished run from its files
+  await page.locator('#replay').click();
+  await expect.poll(async () => (await state(page)).frames, { message: 'the replay holds every frame of ANIMATION_3D.dat', timeout: 120_000 })
+    .toBe(fileFrames);
+  expect(await shownNumber(page, '#frame-count')).toBe(fileFrames);
+  expect(await shownNumber(page, '#frame-count')).toBeGreaterThan(1);
+  expect(await shownNumber(page, '#particle-count')).toBe(job.particles);
+  await pause(page);
+  await keep(testInfo, 'replay-view', await canvasShot(page));
+  await keepPage(page, testInfo, 'replay');
+});
