@@ -161,7 +161,7 @@ ActionResult JobManager::cancel(std::int64_t id) {
   if (it == jobs_.end()) return {Outcome::NotFound, "no job " + std::to_string(id), {}};
   JobRecord& job = it->second;
   if (is_final(job.state))
-    return {Outcome::Conflict, "job " + std::to_string(id) + " has already " + to_string(job.state), job};
+    return {Outcome::Conflict, "job " + std::to_string(id) + " has already ended (" + to_string(job.state) + ")", job};
   if (job.state == JobState::Running) {
     running_.at(id)->cancelled = true;
     running_.at(id)->stop = true;

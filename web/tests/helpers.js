@@ -145,31 +145,15 @@ export async function keepPage(page, testInfo, name) {
   await keep(testInfo, name, await page.screenshot());
 }
 
-// Distinct colours in a PNG (sampled), decoded by the browser: a blank picture has one or two.
-export async function pngColourCount(page, png) {
-  return page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.naturalWidth; c.height = img.naturalHeight;
-    const g = c.getContext('2d');
-    g.drawImage(img, 0, 0);
-    const d = g.getImageData(0, 0, c.width, c.height).data;
-    const seen = new Set();
-    const stride = Math.max(1, Math.floor(d.length / 4 / 200000)) * 4;
-    for (let i = 0; i < d.length; i += stride) seen.add((d[i] << 24) | (d[i + 1] << 16) | (d[i + 2] << 8) | d[i + 3]);
-    return { width: c.width, height: c.height, colours: seen.size };
-  }, png.toString('base64'));
-}
-
-// How two PNGs of the same size differ, decoded by the browser: the share of pixels (0 to 1) with a
-// channel that differs by more than 8 of 255 (so that dithering and rounding do not count).
-export async function pixelDiff(page, a, b) {
+// Decodes one or two PNGs in the browser and measures them: the size and the number of distinct
+// colours (sampled) of the first, and with a second the share of pixels (0 to 1) with a channel
+// that differs by more than 8 of 255 (so that dithering and rounding do not count; 1 when the sizes
+// differ).
+async function measurePngs(page, a, b) {
   return page.evaluate(async ([a64, b64]) => {
-    const pixels = async (b) => {
+    const pixels = async (data) => {
       const img = new Image();
-      img.src = `data:image/png;base64,${b}`;
+      img.src = `data:image/png;base64,${data}`;
       await img.decode();
       const c = document.createElement('canvas');
       c.width = img.naturalWidth; c.height = img.naturalHeight;
@@ -177,15 +161,33 @@ export async function pixelDiff(page, a, b) {
       g.drawImage(img, 0, 0);
       return g.getImageData(0, 0, c.width, c.height);
     };
-    const [pa, pb] = [await pixels(a64), await pixels(b64)];
-    if (pa.width !== pb.width || pa.height !== pb.height) return 1;
+    const pa = await pixels(a64);
+    const seen = new Set();
+    const stride = Math.max(1, Math.floor(pa.data.length / 4 / 200000)) * 4;
+    for (let i = 0; i < pa.data.length; i += stride)
+      seen.add((pa.data[i] << 24) | (pa.data[i + 1] << 16) | (pa.data[i + 2] << 8) | pa.data[i + 3]);
+    const out = { width: pa.width, height: pa.height, colours: seen.size, differ: null };
+    if (b64 === null) return out;
+    const pb = await pixels(b64);
+    if (pa.width !== pb.width || pa.height !== pb.height) return { ...out, differ: 1 };
     let differ = 0;
     for (let i = 0; i < pa.data.length; i += 4) {
       if (Math.abs(pa.data[i] - pb.data[i]) > 8 || Math.abs(pa.data[i + 1] - pb.data[i + 1]) > 8 ||
           Math.abs(pa.data[i + 2] - pb.data[i + 2]) > 8) differ++;
     }
-    return differ / (pa.width * pa.height);
-  }, [a.toString('base64'), b.toString('base64')]);
+    return { ...out, differ: differ / (pa.width * pa.height) };
+  }, [a.toString('base64'), b ? b.toString('base64') : null]);
+}
+
+// Distinct colours in a PNG (sampled): a blank picture has one or two.
+export async function pngColourCount(page, png) {
+  const { width, height, colours } = await measurePngs(page, png);
+  return { width, height, colours };
+}
+
+// The share of pixels that differ between two PNGs of the same size (see measurePngs).
+export async function pixelDiff(page, a, b) {
+  return (await measurePngs(page, a, b)).differ;
 }
 
 // Expects two pictures of the view to differ visibly: at least 0.2% of the pixels.

@@ -151,23 +151,8 @@ export async function listArtifacts(jobId) {
 
 // GET /api/jobs/{id}/artifacts/{name} as text. onProgress(received, total) while it downloads
 // (total: Content-Length, or 0 when unknown).
-export async function downloadArtifact(jobId, name, { onProgress, signal } = {}) {
-  const response = await request(`/api/jobs/${id(jobId)}/artifacts/${encodeURIComponent(name)}`, { signal });
-  if (!onProgress || !response.body || typeof response.body.getReader !== 'function') return response.text();
-  const total = Number(response.headers.get('Content-Length')) || 0;
-  const reader = response.body.getReader();
-  const decoder = new TextDecoder();
-  const pieces = [];
-  let received = 0;
-  for (;;) {
-    const { done, value } = await reader.read();
-    if (done) break;
-    received += value.length;
-    pieces.push(decoder.decode(value, { stream: true }));
-    onProgress(received, total);
-  }
-  pieces.push(decoder.decode());
-  return pieces.join('');
+export async function downloadArtifact(jobId, name, options = {}) {
+  return (await downloadArtifactBlob(jobId, name, options)).text();
 }
 
 // GET /api/jobs/{id}/artifacts/{name} as a Blob (for the parse worker), with onProgress as above.
