@@ -1,8 +1,5 @@
 #include "server/checkpoint.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "server/durable_file.hpp"
 #include "sim/state_io.hpp"
 
 namespace dem::server {
@@ -24,21 +22,10 @@ std::map<std::string, std::uintmax_t> output_sizes(const std::string& folder) {
   std::map<std::string, std::uintmax_t> sizes;
   for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
     if (!e.is_regular_file()) continue;
-    const int fd = ::open(e.path().c_str(), O_RDONLY);
-    if (fd >= 0) {
-      ::fsync(fd);
-      ::close(fd);
-    }
+    sync_path(e.path());
     sizes[e.path().filename().string()] = e.file_size();
   }
   return sizes;
-}
-
-void sync_folder(const fs::path& folder) {
-  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
 }
 
 }  // namespace
@@ -51,15 +38,7 @@ void write_checkpoint(const Simulation& sim, const std::string& output_folder, c
   StateIO::write(sim, out);
   const std::string bytes = std::move(out).str();
 
-  const std::string temporary = path + ".tmp";
-  std::FILE* f = std::fopen(temporary.c_str(), "wb");
-  if (!f) throw std::runtime_error("cannot write the checkpoint " + temporary);
-  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && std::fflush(f) == 0 &&
-                       ::fsync(fileno(f)) == 0;
-  std::fclose(f);
-  if (!written) throw std::runtime_error("cannot write the checkpoint " + temporary + " (disk full?)");
-  fs::rename(temporary, path);
-  sync_folder(fs::path(path).parent_path());
+  write_file_durably(path, bytes);
 }
 
 void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, const std::string& path) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "server/durable_file.hpp"
 #include "server/job_execution.hpp"
 #include "server/tar_archive.hpp"
 #include "spec/mesh_files.hpp"
@@ -17,17 +18,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kCancelled = "cancelled on request";
-
-void write_file_atomically(const fs::path& path, const std::string& bytes) {
-  const fs::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + temporary.string());
-  }
-  fs::rename(temporary, path);
-}
 
 }  // namespace
 
@@ -126,7 +116,7 @@ JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::st
     const JobFolder f = folder(id);
     fs::remove_all(f.root);
     fs::create_directories(f.outputs());
-    write_file_atomically(f.spec(), bytes);
+    write_file_durably(f.spec(), bytes);
   });
   if (!idempotency_key.empty()) by_key_[idempotency_key] = job.id;
   jobs_[job.id] = job;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "output/legacy_output.hpp"
+#include "server/durable_file.hpp"
 
 namespace dem::server {
 namespace fs = std::filesystem;
@@ -79,9 +80,11 @@ void write_tar(const std::string& folder, const std::string& archive) {
   }
   const std::vector<char> end(2 * kBlock, 0);  // two zero blocks end the archive
   ok = ok && std::fwrite(end.data(), 1, end.size(), out) == end.size();
+  ok = ok && sync_file(out);
   ok = std::fclose(out_file.release()) == 0 && ok;
   if (!ok) throw std::runtime_error("cannot write " + temporary + " (disk full?)");
   fs::rename(temporary, archive);
+  sync_folder(fs::path(archive).parent_path());
 }
 
 }  // namespace dem::server
