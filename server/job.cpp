@@ -45,6 +45,7 @@ nlohmann::json to_json(const JobRecord& job) {  // dumped with invalid UTF-8 rep
       {"totalSteps", job.total_steps},
       {"timeStep", job.time_step},
       {"particles", job.particles},
+      {"lengthUnit", job.length_unit},
       {"createdAt", job.created_at},
   };
   if (!job.started_at.empty()) j["startedAt"] = job.started_at;

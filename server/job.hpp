@@ -23,6 +23,7 @@ struct JobRecord {
   std::string created_at, started_at, finished_at;  // ISO 8601 UTC; empty until it happens
   std::string error;                                // why it failed or was interrupted
   std::string idempotency_key;
+  std::string length_unit = "m";  // of the legacy files: "m", "cm" or "mm" (outputs.lengthUnit)
   std::int64_t particles = 0;
   std::int64_t step = 0;
   std::int64_t total_steps = 0;

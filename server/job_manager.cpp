@@ -103,6 +103,7 @@ JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::st
   {
     const Simulation sim(spec::to_scene(spec));  // the checks of `dem validate`, the time step's included
     job.name = spec.name();
+    job.length_unit = spec.outputs().length_unit().empty() ? "m" : spec.outputs().length_unit();
     job.particles = static_cast<std::int64_t>(sim.particles().size());
     job.total_steps = sim.total_steps();
     job.time_step = sim.dt();

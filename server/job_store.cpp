@@ -48,7 +48,7 @@ class Statement {
 
 constexpr const char* kColumns =
     "id, name, state, created_at, started_at, finished_at, error, idempotency_key, particles, step, total_steps, "
-    "time_step, checkpoint_step, run_seconds, stream_seconds";
+    "time_step, checkpoint_step, run_seconds, stream_seconds, length_unit";
 
 }  // namespace
 
@@ -80,7 +80,14 @@ JobStore::JobStore(const std::string& path) : path_(path) {
       " time_step REAL NOT NULL DEFAULT 0,"
       " checkpoint_step INTEGER NOT NULL DEFAULT -1,"
       " run_seconds REAL NOT NULL DEFAULT 0,"
-      " stream_seconds REAL NOT NULL DEFAULT 0)");
+      " stream_seconds REAL NOT NULL DEFAULT 0,"
+      " length_unit TEXT NOT NULL DEFAULT 'm')");
+  // columns added since the table was first made: a data folder of an older server gains them
+  for (const char* column : {"run_seconds REAL NOT NULL DEFAULT 0", "stream_seconds REAL NOT NULL DEFAULT 0",
+                             "length_unit TEXT NOT NULL DEFAULT 'm'"}) {
+    const std::string sql = std::string("ALTER TABLE jobs ADD COLUMN ") + column;
+    sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr);  // fails, harmlessly, when it is there
+  }
   exec("CREATE UNIQUE INDEX IF NOT EXISTS jobs_idempotency ON jobs(idempotency_key) WHERE idempotency_key IS NOT NULL");
 }
 
@@ -118,6 +125,7 @@ std::vector<JobRecord> JobStore::load_all() {
     j.checkpoint_step = q.column_int(12);
     j.run_seconds = q.column_real(13);
     j.stream_seconds = q.column_real(14);
+    j.length_unit = q.column_text(15);
     jobs.push_back(std::move(j));
   }
   return jobs;
@@ -127,12 +135,12 @@ void JobStore::insert(JobRecord& job, const std::function<void(std::int64_t)>& b
   exec("BEGIN IMMEDIATE");
   try {
     Statement q(db_,
-                "INSERT INTO jobs (name, state, created_at, idempotency_key, particles, total_steps, time_step)"
-                " VALUES (?, ?, ?, ?, ?, ?, ?)",
+                "INSERT INTO jobs (name, state, created_at, idempotency_key, particles, total_steps, time_step, length_unit)"
+                " VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
                 path_);
     q.text(1, job.name).text(2, to_string(job.state)).text(3, job.created_at);
     if (!job.idempotency_key.empty()) q.text(4, job.idempotency_key);  // unbound stays NULL: unique only when given
-    q.integer(5, job.particles).integer(6, job.total_steps).real(7, job.time_step);
+    q.integer(5, job.particles).integer(6, job.total_steps).real(7, job.time_step).text(8, job.length_unit);
     q.row();
     job.id = sqlite3_last_insert_rowid(db_);
     before_commit(job.id);

@@ -41,6 +41,7 @@ TEST_F(ServerJobs, SubmittedAsJsonAndAsProtobufGiveTheBytesOfDemRun) {
     const nlohmann::json done = wait_for(id, "succeeded,failed");
     ASSERT_EQ(done["state"], "succeeded") << done.dump();
     EXPECT_EQ(done["progress"], 1.0);
+    EXPECT_EQ(done["lengthUnit"], "m");
     EXPECT_FALSE(done["startedAt"].get<std::string>().empty());
     EXPECT_FALSE(done["finishedAt"].get<std::string>().empty());
     for (const char* name : {"ANIMATION_3D.dat", "ForceChain_3D.dat", "Masscenter.dat"}) {
