@@ -11,10 +11,23 @@ import { particleColours, hexToRgb } from './view/colours.js';
 import { addStats } from './formats/stats.js';
 import { wireControls } from './view/controls.js';
 import { Playback } from './view/playback.js';
-import { loadFiles } from './view/file_drop.js';
+import { loadFiles, forgetWaitingChains } from './view/file_drop.js';
 
-// Live frames kept in memory: about this many bytes of positions, velocities and radii.
+// Live frames kept in memory: about this many bytes (positions, velocities, radii, parts, force
+// chains and a fixed overhead per frame), and at most this many frames.
 const LIVE_BYTES = 512 * 1024 * 1024;
+const LIVE_FRAMES = 5000;
+const FRAME_OVERHEAD = 2048;
+const BYTES_PER_CONTACT = 16;
+
+// The bytes a live frame holds (an estimate, for the live memory cap).
+function frameBytes(frame) {
+  const n = frame.count || 0;
+  let bytes = FRAME_OVERHEAD + 28 * n;
+  if (frame.parts) bytes += 4 * n;
+  if (frame.forceChains) bytes += BYTES_PER_CONTACT * (frame.forceChains.count ?? (frame.forceChains.i ? frame.forceChains.i.length : 0));
+  return bytes;
+}
 
 const $ = (id) => document.getElementById(id);
 
@@ -26,6 +39,8 @@ export class Viewer {
     this.boundary = new BoundaryView(stage);
     this.playback = new Playback(this);
     this.run = null;
+    this.runGeneration = 0; // bumped by setRun: late results meant for an older run are dropped
+    this.liveBytes = 0; // bytes of the live frames kept (frameBytes)
     this.frameIndex = -1;
     this.live = false;
     this.follow = true; // live: show each new frame as it arrives (until the user moves away)
@@ -47,8 +62,13 @@ export class Viewer {
 
   // ---- the methods other modules call (docs/viewer.md) ----
 
-  // Replaces the run: frames (maybe none yet), mesh, unit. Resets chains and the live flag.
-  setRun(run) {
+  // Replaces the run: frames (maybe none yet), mesh, unit. Resets chains and the live flag. Returns
+  // the run's generation (runGeneration): addFrame / setForceChains / setMesh given an older one
+  // are ignored. options.fromFiles: set by the file loader (file_drop.js); any other caller (a
+  // follow or replay) also drops force chains the file loader keeps for an animation to come.
+  setRun(run, options = {}) {
+    this.runGeneration += 1;
+    if (!options.fromFiles) forgetWaitingChains();
     this.playback.pause();
     this.run = { frames: [], mesh: null, unit: 'file', ...run };
     this.run.frames = this.run.frames || [];
@@ -65,37 +85,60 @@ export class Viewer {
     this.boundary.setMesh(this.run.mesh);
     this.frameCamera();
     this.frameIndex = -1;
+    this.liveBytes = 0;
     if (this.run.frames.length) this.showFrame(0);
     else this.clearView();
     this.changed();
+    return this.runGeneration;
   }
 
-  // Appends a frame (live). Shown at once while following the newest frame.
-  addFrame(frame) {
+  // Whether a call made for run generation `generation` (undefined: no generation given) is stale.
+  stale(generation) {
+    return generation !== undefined && generation !== null && generation !== this.runGeneration;
+  }
+
+  // Appends a frame (live). Shown at once while following the newest frame. `generation` (optional,
+  // setRun's answer): the frame is dropped (false returned) when another run has replaced that one.
+  addFrame(frame, generation) {
+    if (this.stale(generation)) return false;
     if (!this.run) this.setRun({ frames: [], mesh: null, unit: 'm' });
     if (!this.liveSet) this.live = true; // unless the live panel says otherwise with setLive
     addStats(frame);
     if (!frame.forceChains && this.chainsByStep.has(frame.step)) frame.forceChains = this.chainsByStep.get(frame.step);
     this.extendChainScale(frame.forceChains);
     const first = this.run.frames.length === 0;
+    frame.liveBytes = frameBytes(frame);
     this.run.frames.push(frame);
-    // A live run keeps its newest frames only, about LIVE_BYTES of them: a long job of many
-    // particles would otherwise fill the page's memory (Replay loads the whole run from its files).
-    const perFrame = 28 * frame.count + 1;
-    const kept = Math.max(2, Math.floor(LIVE_BYTES / perFrame));
-    if (this.run.frames.length > kept) {
-      const drop = this.run.frames.length - kept;
-      this.run.frames.splice(0, drop);
+    this.liveBytes += frame.liveBytes;
+    // A live run keeps its newest frames only, about LIVE_BYTES and at most LIVE_FRAMES of them: a
+    // long job of many particles would otherwise fill the page's memory (Replay loads the whole run
+    // from its files).
+    const frames = this.run.frames;
+    let drop = 0;
+    let bytes = this.liveBytes;
+    while (frames.length - drop > 2 && (bytes > LIVE_BYTES || frames.length - drop > LIVE_FRAMES)) {
+      bytes -= frames[drop].liveBytes ?? frameBytes(frames[drop]);
+      drop += 1;
+    }
+    let viewGone = false; // the frame in view was among those dropped
+    if (drop > 0) {
+      frames.splice(0, drop);
+      this.liveBytes = bytes;
+      viewGone = this.frameIndex >= 0 && this.frameIndex < drop;
       this.frameIndex = Math.max(0, this.frameIndex - drop);
     }
     this.extendBounds(frame);
     if (first) this.frameCamera();
-    if (this.follow || first) this.showFrame(this.run.frames.length - 1);
+    if (this.follow || first) this.showFrame(frames.length - 1);
+    else if (viewGone) this.redraw(); // the frame in view may have gone: picture and read-outs agree
     else this.changed();
+    return true;
   }
 
   // Attaches force-chain frames ({ step, count, i, j, fn, ft }) to the run's frames of equal step.
-  setForceChains(framesOfChains) {
+  // `generation` (optional, setRun's answer): ignored (0 returned) when another run replaced that one.
+  setForceChains(framesOfChains, generation) {
+    if (this.stale(generation)) return 0;
     this.chainsByStep = new Map();
     this.fnMax = 0;
     for (const chains of framesOfChains || []) {
@@ -112,8 +155,9 @@ export class Viewer {
   }
 
   // A fixed boundary mesh { vertices, triangles } (or null).
-  setMesh(mesh) {
-    if (!this.run) this.setRun({ frames: [], mesh: null, unit: 'file' });
+  setMesh(mesh, generation) {
+    if (this.stale(generation)) return;
+    if (!this.run) this.setRun({ frames: [], mesh: null, unit: 'file' }, { fromFiles: true }); // keeps chains waiting
     this.run.mesh = mesh;
     this.boundary.setMesh(mesh);
     this.frameCamera(); // a terrain is usually larger than the particles on it

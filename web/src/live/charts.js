@@ -9,6 +9,9 @@
 // number of points of its first series). Click a chart to switch its y axis between linear and
 // logarithmic (positive values only).
 
+// A live series keeps at most this many points: when full, every other point is dropped.
+const LIVE_POINTS = 10000;
+
 const COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd'];
 
 const DEFINITIONS = [
@@ -117,6 +120,11 @@ class Chart {
     while (s.x.length && s.x[s.x.length - 1] >= x) {
       s.x.pop();
       s.y.pop();
+    }
+    if (s.x.length >= LIVE_POINTS) {
+      // halve the resolution rather than grow forever (a long job followed for hours)
+      s.x = s.x.filter((_, k) => k % 2 === 0);
+      s.y = s.y.filter((_, k) => k % 2 === 0);
     }
     s.x.push(x);
     s.y.push(y);

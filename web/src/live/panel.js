@@ -11,13 +11,13 @@ import * as server from './server.js';
 import { FrameDecoder } from './frame_decode.js';
 import { Charts } from './charts.js';
 import { formatSpec } from './spec_format.js';
-import { parseText } from '../formats/parse.js';
 import { parseFile } from '../formats/load_files.js';
 import { addStats } from '../formats/stats.js';
 
 const ACTIVE = new Set(['queued', 'running']);
 const POLL_MS = 1000;
-const STATS_EVERY_POLLS = 5; // statistics files of a followed job re-read every 5 s
+const STATS_EVERY_POLLS = 5; // statistics files of a followed job re-read every 5 s (when their size changed)
+const STATS_FILES = ['Force_Displacement.dat', 'Fragments.dat', 'Bond_Breaks.dat'];
 const RECONNECTS = 5;
 const METRES_PER = { m: 1, cm: 0.01, mm: 0.001 };
 const UNITS_KEY = 'dem-live-job-units';
@@ -95,6 +95,11 @@ class LivePanel {
   constructor(viewer) {
     this.viewer = viewer || {};
     this.session = 0; // bumped by every follow / replay / stop: late answers of older ones are dropped
+    this.openToken = 0; // bumped by every job click: an older click's late answer opens nothing
+    this.downloads = null; // AbortController of the current follow / replay's downloads
+    this.generation = undefined; // the viewer's run generation (setRun's answer) of the current follow / replay
+    this.statsInFlight = 0; // loadStatsCharts calls running
+    this.statsSizes = new Map(); // statistics file -> its size when last read (current follow / replay)
     this.socket = null;
     this.selected = null; // the job followed or replayed: {id, state, name, ...}
     this.jobs = new Map(); // id -> job object (last poll)
@@ -262,7 +267,8 @@ class LivePanel {
         if (job) this.selectedChanged(job);
         else if (this.selected.state !== 'deleted') this.selectedChanged({ ...this.selected, state: 'deleted' });
       }
-      if (this.socket && this.selected && this.polls % STATS_EVERY_POLLS === 0) this.loadStatsCharts(this.selected.id, this.session);
+      // one round at a time: a round still downloading skips this one
+      if (this.socket && this.selected && this.polls % STATS_EVERY_POLLS === 0 && this.statsInFlight === 0) this.loadStatsCharts(this.selected.id, this.session);
     } catch (e) {
       this.serverStatus.textContent = `Job list: ${errorText(e)}`;
       this.serverStatus.classList.add('error');
@@ -321,15 +327,20 @@ class LivePanel {
   // A click on a job: follow it if it runs or waits, else replay it.
   async open(id) {
     if (this.socket && this.selected && this.selected.id === id) return; // already followed
+    // A later click (or another follow / replay) while this one waits for the server wins.
+    const token = ++this.openToken;
+    const session = this.session;
     let job = this.jobs.get(id);
     try {
       job = await server.getJob(id);
     } catch (e) {
+      if (token !== this.openToken || session !== this.session) return;
       if (!job) {
         this.say(errorText(e), true);
         return;
       }
     }
+    if (token !== this.openToken || session !== this.session) return;
     if (ACTIVE.has(job.state)) this.follow(job);
     else this.replay(job.id, job);
   }
@@ -391,6 +402,8 @@ class LivePanel {
   follow(job) {
     this.closeSocket();
     const session = ++this.session;
+    this.downloads = new AbortController();
+    this.statsSizes = new Map();
     this.select(job);
     this.decoder = new FrameDecoder();
     this.framesReceived = 0;
@@ -400,7 +413,7 @@ class LivePanel {
     this.stepLabel.textContent = '';
     this.charts.clear();
     // An empty live run (lengths in metres); the frames are appended as they come.
-    this.call('setRun', { frames: [], mesh: null, unit: 'm', source: `job ${job.id}` });
+    this.generation = this.call('setRun', { frames: [], mesh: null, unit: 'm', source: `job ${job.id}` });
     this.setLive(true);
     this.unitOfJob(job).then((unit) => {
       if (session === this.session) this.charts.setLengthUnit(unit);
@@ -454,10 +467,16 @@ class LivePanel {
         console.warn(e);
       }
     }
+    if (this.generation !== undefined && this.viewer.runGeneration !== undefined && this.viewer.runGeneration !== this.generation) {
+      // files were opened over the live run: it is not this job's any more
+      this.stopFollowing();
+      this.statusLabel.textContent = 'stopped following: another run was opened';
+      return;
+    }
     this.framesReceived += 1;
     this.lastFrame = frame;
     try {
-      this.call('addFrame', frame);
+      this.call('addFrame', frame, this.generation);
     } catch (e) {
       console.error(e);
       if (!this.viewerErrorShown) this.say(`the viewer could not show a live frame: ${errorText(e)}`, true);
@@ -505,7 +524,12 @@ class LivePanel {
     if (job && !ACTIVE.has(job.state)) this.loadStatsCharts(id, session, job);
   }
 
+  // Ends the current follow / replay's connection and downloads.
   closeSocket() {
+    if (this.downloads) {
+      this.downloads.abort();
+      this.downloads = null;
+    }
     const socket = this.socket;
     this.socket = null;
     if (socket) {
@@ -531,22 +555,32 @@ class LivePanel {
 
   // The fixed mesh of a followed job (Wall.dat, in the files' length unit) in metres, as the frames.
   async loadLiveMesh(job, session) {
+    const generation = this.generation;
     try {
       const artifacts = await server.listArtifacts(job.id);
-      if (!artifacts.some((a) => a.name === 'Wall.dat')) return;
-      const [text, unit] = await Promise.all([server.downloadArtifact(job.id, 'Wall.dat'), this.unitOfJob(job)]);
-      if (session !== this.session) return;
-      const result = parseText(text);
+      if (session !== this.session || !artifacts.some((a) => a.name === 'Wall.dat')) return;
+      const [result, unit] = await Promise.all([this.fetchMesh(job.id, session), this.unitOfJob(job)]);
+      if (session !== this.session || !result) return;
       if (result.kind !== 'mesh' || !result.mesh) return;
       const scale = METRES_PER[unit] || 1;
       if (scale !== 1) {
         const v = result.mesh.vertices;
         for (let k = 0; k < v.length; k++) v[k] *= scale;
       }
-      this.call('setMesh', result.mesh);
+      this.call('setMesh', result.mesh, generation);
     } catch (e) {
-      console.warn('Wall.dat of the followed job', e);
+      if (session === this.session) console.warn('Wall.dat of the followed job', e);
     }
+  }
+
+  // A job's Wall.dat, downloaded as a Blob and parsed off the main thread (parseFile); null when
+  // another follow / replay took over meanwhile.
+  async fetchMesh(id, session) {
+    const signal = this.downloads ? this.downloads.signal : undefined;
+    const blob = await server.downloadArtifactBlob(id, 'Wall.dat', { signal });
+    if (session !== this.session) return null;
+    const result = await parseFile(blob);
+    return session === this.session ? result : null;
   }
 
   // ---- replaying a finished job ----------------------------------------------------------------
@@ -554,6 +588,8 @@ class LivePanel {
   async replay(id, job = null) {
     this.closeSocket();
     const session = ++this.session;
+    this.downloads = new AbortController();
+    this.statsSizes = new Map();
     this.setLive(false);
     if (!job) {
       try {
@@ -576,7 +612,7 @@ class LivePanel {
       const artifacts = await server.listArtifacts(id);
       const names = new Set(artifacts.map((a) => a.name));
       if (session !== this.session) return;
-      this.loadStatsCharts(id, session, job, names);
+      this.loadStatsCharts(id, session, job, artifacts);
       if (!names.has('ANIMATION_3D.dat')) {
         this.say(`job ${id} has no ANIMATION_3D.dat to replay (${job.state})`, true);
         return;
@@ -592,16 +628,16 @@ class LivePanel {
       let mesh = null;
       if (names.has('Wall.dat')) {
         try {
-          const meshResult = parseText(await server.downloadArtifact(id, 'Wall.dat'));
-          if (meshResult.kind === 'mesh') mesh = meshResult.mesh;
+          const meshResult = await this.fetchMesh(id, session);
+          if (meshResult && meshResult.kind === 'mesh') mesh = meshResult.mesh;
         } catch (e) {
-          console.warn('Wall.dat', e);
+          if (session === this.session) console.warn('Wall.dat', e);
         }
       }
       if (session !== this.session) return;
       const run = { frames: result.frames, mesh, unit: 'file', source: `job ${id}` };
       if (unit) run.lengthUnit = unit;
-      this.call('setRun', run);
+      this.generation = this.call('setRun', run);
       this.charts.setAnimationFrames(result.frames);
       const last = result.frames[result.frames.length - 1];
       this.stepLabel.textContent = '';
@@ -611,7 +647,7 @@ class LivePanel {
         const chains = await this.fetchAndParse(id, 'ForceChain_3D.dat', artifacts, session);
         if (!chains) return;
         if (chains.kind === 'forceChains') {
-          this.call('setForceChains', chains.frames);
+          this.call('setForceChains', chains.frames, this.generation);
           note += `, ${chains.frames.length} frames of force chains`;
           if (chains.problem) note += ` (ForceChain_3D.dat: ${chains.problem})`;
         }
@@ -655,6 +691,7 @@ class LivePanel {
     try {
       show(0, `downloading ${name} (${(size / 1e6).toFixed(1)} MB)`);
       const blob = await server.downloadArtifactBlob(id, name, {
+        signal: this.downloads ? this.downloads.signal : undefined,
         onProgress: (got, total) => show(0.5 * (got / (total || size || got)), `downloading ${name}: ${percent(got / (total || size || got))}`),
       });
       if (session !== this.session) return null;
@@ -662,7 +699,8 @@ class LivePanel {
       const result = await parseFile(blob, (fraction) => show(0.5 + 0.5 * fraction, `reading ${name}: ${percent(fraction)}`));
       return session === this.session ? result : null;
     } finally {
-      if (progress && session === this.session) {
+      // hidden whatever happened (an aborted or superseded download too); a newer download shows it again
+      if (progress) {
         progress.value = 1;
         progress.hidden = true;
       }
@@ -670,14 +708,24 @@ class LivePanel {
   }
 
   // Force_Displacement.dat, Fragments.dat and Bond_Breaks.dat into the charts, when the job has them.
-  async loadStatsCharts(id, session, job = null, names = null) {
+  // A file is downloaded again only when its size in the artifact list changed since it was read.
+  async loadStatsCharts(id, session, job = null, artifacts = null) {
+    this.statsInFlight += 1;
     try {
-      if (!names) names = new Set((await server.listArtifacts(id)).map((a) => a.name));
-      const get = (name) => (names.has(name) ? server.downloadArtifact(id, name) : Promise.resolve(null));
-      const [fd, fragments, breaks] = await Promise.all([get('Force_Displacement.dat'), get('Fragments.dat'), get('Bond_Breaks.dat')]);
+      if (!artifacts) artifacts = await server.listArtifacts(id);
       if (session !== this.session) return;
+      const sizes = new Map(artifacts.map((a) => [a.name, a.size]));
+      const signal = this.downloads ? this.downloads.signal : undefined;
+      const final = !!job && !ACTIVE.has(job.state); // the job's last read: every file, whatever its size
+      const changed = (name) => sizes.has(name) && (final || sizes.get(name) === undefined || this.statsSizes.get(name) !== sizes.get(name));
+      const get = (name) => (changed(name) ? server.downloadArtifact(id, name, { signal }) : Promise.resolve(null));
+      const [fd, fragments, breaks] = await Promise.all(STATS_FILES.map(get));
+      if (session !== this.session) return;
+      STATS_FILES.forEach((name, k) => {
+        if ([fd, fragments, breaks][k] !== null) this.statsSizes.set(name, sizes.get(name));
+      });
       if (fd !== null) this.charts.setForceDisplacement(fd);
-      if (fragments !== null) this.charts.setFragments(fragments, { brokenBonds: breaks === null });
+      if (fragments !== null) this.charts.setFragments(fragments, { brokenBonds: !sizes.has('Bond_Breaks.dat') });
       if (breaks !== null) {
         let end = NaN;
         if (job && !ACTIVE.has(job.state) && Number.isFinite(job.timeStep) && Number.isFinite(job.step)) end = job.step * job.timeStep;
@@ -685,7 +733,9 @@ class LivePanel {
         this.charts.setBondBreaks(breaks, end);
       }
     } catch (e) {
-      console.warn('statistics files', e);
+      if (session === this.session) console.warn('statistics files', e);
+    } finally {
+      this.statsInFlight -= 1;
     }
   }
 

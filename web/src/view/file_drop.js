@@ -10,6 +10,12 @@ const ORDER = { animation: 0, forceChains: 1, mesh: 2 };
 let queue = Promise.resolve(); // loads run one at a time, in the order the user asked
 let waitingChains = null; // force chains opened before any animation: attached to the next one
 
+// Drops the force chains kept for an animation to come: the Viewer calls it when a run is set by
+// anything but this loader (a live follow or a replay).
+export function forgetWaitingChains() {
+  waitingChains = null;
+}
+
 export function loadFiles(viewer, files) {
   queue = queue.then(() => load(viewer, [...files])).catch((error) => viewer.message(String(error), true));
   return queue;
@@ -21,6 +27,9 @@ async function load(viewer, files) {
   progress.hidden = false;
   progress.value = 0;
   viewer.message(`Loading ${files.map((f) => f.name).join(', ')}, please wait`);
+  // A follow or replay started while the files are parsed replaces the run: their result is then
+  // dropped rather than put over it.
+  const generation = viewer.runGeneration;
   const parsed = [];
   try {
     for (let k = 0; k < files.length; k++) {
@@ -35,6 +44,10 @@ async function load(viewer, files) {
   } finally {
     progress.value = 1;
     progress.hidden = true;
+  }
+  if (viewer.runGeneration !== generation) {
+    viewer.message(`${files.map((f) => f.name).join(', ')}: not shown, another run was opened while they were read`);
+    return;
   }
   // sort is stable: files of one kind keep the order they were given in
   parsed.sort((a, b) => (ORDER[a.result.kind] ?? 3) - (ORDER[b.result.kind] ?? 3));
@@ -65,7 +78,7 @@ async function load(viewer, files) {
       // A mesh loaded on its own before any animation (a terrain first) stays with the new run.
       const previous = viewer.run;
       const keepMesh = previous && !previous.frames.length ? previous.mesh : null;
-      viewer.setRun({ frames: result.frames, mesh: keepMesh, unit: 'file' });
+      viewer.setRun({ frames: result.frames, mesh: keepMesh, unit: 'file' }, { fromFiles: true });
       const count = result.frames[0].count;
       notes.push(`${name}: ${result.frames.length} frames of ${count} particles${cut}`);
       if (waitingChains) {
