@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "clumps/mass_properties.hpp"
 #include "mesh/mesh_io.hpp"
 #include "spec/lattice.hpp"
 #include "spec/inside_mesh.hpp"
@@ -241,6 +243,72 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
     }
   } catch (const std::runtime_error& e) {
     check.fail(path, e.what());
+  }
+}
+
+// Rigid clumps: each clump's members become particles of the scene (after the others), with the
+// clump's body (mass properties of the union of its shape's spheres, principal axes) in
+// Scene::clumps.
+template <class MaterialOf>
+void add_clumps(const api::JobSpec& spec, Checker& check, Scene& scene, MaterialOf&& material_of) {
+  std::map<std::string, int> shape_index;
+  std::vector<MassProperties> shape_mass;
+  for (int k = 0; k < spec.clump_shapes_size(); ++k) {
+    const api::ClumpShape& in = spec.clump_shapes(k);
+    const std::string path = "clumpShapes[" + std::to_string(k) + "]";
+    if (in.name().empty()) check.fail(path + ".name", "a clump shape needs a name");
+    else if (!shape_index.emplace(in.name(), k).second) check.fail(path + ".name", "\"" + in.name() + "\" is given twice");
+    std::vector<MemberSphere> spheres;
+    for (int s = 0; s < in.spheres_size(); ++s) {
+      const std::string sp = path + ".spheres[" + std::to_string(s) + "]";
+      check.finite(sp + ".center", in.spheres(s).center());
+      check.positive(sp + ".radius", in.spheres(s).radius());
+      spheres.push_back({vec(in.spheres(s).center()), in.spheres(s).radius()});
+    }
+    if (spheres.empty()) check.fail(path + ".spheres", "a clump shape needs at least one sphere");
+    const bool usable = !spheres.empty() && std::all_of(spheres.begin(), spheres.end(), [](const MemberSphere& m) {
+      return m.radius > 0 && std::isfinite(m.radius) && m.centre.allFinite();
+    });
+    shape_mass.push_back(usable ? union_mass_properties(spheres, 1e-4) : MassProperties{});
+  }
+  for (int k = 0; k < spec.clumps_size(); ++k) {
+    const api::Clump& in = spec.clumps(k);
+    const std::string path = "clumps[" + std::to_string(k) + "]";
+    const auto shape = shape_index.find(in.shape());
+    if (shape == shape_index.end()) {
+      check.fail(path + ".shape", "unknown clump shape \"" + in.shape() + "\"");
+      continue;
+    }
+    const int material = material_of(in.material(), path + ".material");
+    check.finite(path + ".position", in.position());
+    check.finite(path + ".velocity", in.velocity());
+    check.finite(path + ".angularVelocity", in.angular_velocity());
+    const MassProperties& mp = shape_mass[shape->second];
+    if (material < 0 || !(mp.volume > 0)) continue;
+    const double density = scene.materials[material].density;
+    const Eigen::Matrix3d turn = rotation(in.rotation_axis(), in.rotation_degrees(), path, check);
+    ClumpInit c;
+    c.first = static_cast<int>(scene.particles.size());
+    c.mass = density * mp.volume;
+    c.moments = density * mp.principal_moments;
+    c.position = vec(in.position());
+    c.orientation = Eigen::Quaterniond(turn * mp.principal_axes).normalized();  // body (principal) -> space
+    c.velocity = vec(in.velocity());
+    c.angular_velocity = vec(in.angular_velocity());
+    const api::ClumpShape& s = spec.clump_shapes(shape->second);
+    for (const api::Sphere& sphere : s.spheres()) {
+      ParticleInit p;
+      const Vec3 arm = turn * (vec(sphere.center()) - mp.centroid);
+      p.position = c.position + arm;
+      p.velocity = c.velocity + c.angular_velocity.cross(arm);
+      p.angular_velocity = c.angular_velocity;
+      p.radius = sphere.radius();
+      p.material = material;
+      p.clump = static_cast<int>(scene.clumps.size());
+      scene.particles.push_back(p);
+    }
+    c.count = s.spheres_size();
+    scene.clumps.push_back(c);
   }
 }
 
@@ -499,7 +567,10 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   for (int k = 0; k < spec.packings_size(); ++k)
     add_packing(spec.packings(k), at("packings", k), base_dir, check, scene,
                 particle_material(spec.packings(k).material(), at("packings", k) + ".material"));
-  if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty())
+  add_clumps(spec, check, scene, particle_material);
+  if (!scene.clumps.empty() && spec.has_growth() && spec.growth().factor() != 1)
+    check.fail("growth", "radius growth and rigid clumps cannot be combined (a clump's shape is fixed)");
+  if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty() && spec.clumps().empty())
     check.fail("particles", "the scene has no particles");
 
   // walls

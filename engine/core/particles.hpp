@@ -25,6 +25,10 @@ struct Particles {
   std::vector<int> material;
   std::vector<int> id;              // index in the scene (files and observers use it)
   std::vector<Vec3> external;       // constant external force; empty when no particle has one
+  // Members of rigid clumps (empty when the scene has none): the body, -1 for a free sphere, and
+  // the member's centre in the body frame. A member's x, v and w are set from its body each step.
+  std::vector<int> body;
+  std::vector<Vec3> body_offset;
 
   std::size_t size() const { return x.size(); }
 
@@ -53,6 +57,10 @@ inline void Particles::permute(const std::vector<int>& new_to_old) {
   permute_array(material, new_to_old);
   permute_array(id, new_to_old);
   if (!external.empty()) permute_array(external, new_to_old);
+  if (!body.empty()) {
+    permute_array(body, new_to_old);
+    permute_array(body_offset, new_to_old);
+  }
 }
 
 }  // namespace dem

@@ -48,6 +48,20 @@ struct ParticleInit {
   int material = 0;
   bool fixed = false;
   Vec3 force = Vec3::Zero();  // constant external force, N
+  int clump = -1;             // index in Scene::clumps of the rigid clump it belongs to, -1: free
+};
+
+// A rigid clump: overlapping member spheres (Scene::particles first .. first + count - 1) moving as
+// one body. The body frame has its origin at the centroid and its axes along the principal axes.
+struct ClumpInit {
+  int first = 0;
+  int count = 0;
+  double mass = 0;
+  Vec3 moments = Vec3::Zero();  // principal moments of inertia, kg m^2
+  Vec3 position = Vec3::Zero();  // of the centroid
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // body frame -> space
+  Vec3 velocity = Vec3::Zero();
+  Vec3 angular_velocity = Vec3::Zero();
 };
 
 struct PlaneShape {
@@ -173,6 +187,7 @@ struct Scene {
   std::vector<Interaction> interactions;  // materials.size()^2, symmetric, index a * n + b
   ContactSettings contact;
   std::vector<ParticleInit> particles;
+  std::vector<ClumpInit> clumps;
   std::vector<WallInit> walls;
   Vec3 gravity = Vec3::Zero();
   TimeSettings time;

@@ -97,6 +97,7 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
         const bool same_level = static_cast<int>(l) == level_of[i];
         grids[l].for_each_near(xi, ri + levels[l].r_max + options.skin, [&](int j) {
           if (same_level ? j <= i : false) return;
+          if (!p.body.empty() && p.body[i] >= 0 && p.body[i] == p.body[j]) return;  // one rigid body
           const double cut = ri + p.radius[j] + options.skin;
           if ((p.x[j] - xi).squaredNorm() < cut * cut) out.emplace_back(std::min(i, j), std::max(i, j));
         });

@@ -74,6 +74,8 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
     scene_.outputs.every_steps =
         std::max<std::int64_t>(1, std::llround(scene_.outputs.interval_seconds / state_.dt));
   state_.particles = make_particles(scene_);
+  state_.bodies = make_bodies(scene_);
+  mark_members(scene_, state_.bodies, state_.particles);
   state_.f_next.assign(state_.particles.size(), Vec3::Zero());
   state_.half_kick.assign(state_.particles.size(), Vec3::Zero());
   state_.gravity = scene_.gravity;
@@ -115,6 +117,7 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
   // Forces at t = 0 for the first half kick: a zero step leaves history and velocities unchanged.
   state_.dt = 0;
   kernel_->compute_and_kick(state_);
+  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
   settle_walls(0, 0);
   state_.dt = time_step_.dt;
 }
@@ -182,7 +185,9 @@ void Simulation::step() {
   const double t_new = static_cast<double>(step_ + 1) * state_.dt;
   move_walls(t_new, state_.dt);
   state_.time = t_new;
-  const double moved2 = half_kick_and_drift();
+  double moved2 = half_kick_and_drift();
+  if (!state_.bodies.empty())  // the members move with their bodies, not as the drift above moved them
+    moved2 = std::max(moved2, drift_bodies(state_.bodies, state_.particles, x_at_build_, state_.dt));
   const double grown = grow();
   const double half_skin = 0.5 * skin_;
   const int interval = scene_.numerics.search_interval;
@@ -191,6 +196,7 @@ void Simulation::step() {
       (interval > 0 && step_ + 1 - last_build_step_ >= interval))
     build_neighbors();
   kernel_->compute_and_kick(state_);
+  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, state_.dt);
   settle_walls(t_new, state_.dt);
   contacts_recorded_ = state_.record_contacts;
   ++step_;
@@ -411,16 +417,21 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
 
 double Simulation::kinetic_energy() const {
   const Particles& p = state_.particles;
-  double e = 0;
-  for (std::size_t i = 0; i < p.size(); ++i)
+  double e = bodies_kinetic_energy(state_.bodies);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.body.empty() && p.body[i] >= 0) continue;  // counted with its body
     e += 0.5 * p.mass[i] * (p.v[i].squaredNorm() + 0.4 * p.radius[i] * p.radius[i] * p.w[i].squaredNorm());
+  }
   return e;
 }
 
 double Simulation::gravitational_energy() const {
   const Particles& p = state_.particles;
   double e = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) e -= p.mass[i] * state_.gravity.dot(p.x[i]);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body.empty() || p.body[i] < 0) e -= p.mass[i] * state_.gravity.dot(p.x[i]);
+  const ClumpBodies& b = state_.bodies;
+  for (std::size_t k = 0; k < b.size(); ++k) e -= b.mass[k] * state_.gravity.dot(b.x[k]);
   return e;
 }
 
@@ -450,8 +461,12 @@ std::vector<int> Simulation::contact_counts() const {
 }
 
 std::vector<int> Simulation::fragments() const {
-  if (state_.bonds.empty()) return std::vector<int>(state_.particles.size(), 0);
-  return state_.bonds.fragments(state_.particles.id);
+  const Particles& p = state_.particles;
+  std::vector<int> part = state_.bonds.empty() ? std::vector<int>(p.size(), 0) : state_.bonds.fragments(p.id);
+  if (!p.body.empty())  // a clump's members are its part: the clump's number from 1
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body[i] >= 0) part[i] = p.body[i] + 1;
+  return part;
 }
 
 std::vector<WallContact> Simulation::wall_contacts() const {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "clumps/clump_bodies.hpp"
 #include "bonds/bond_set.hpp"
 #include "contact/pair_params.hpp"
 #include "core/particles.hpp"
@@ -91,6 +92,7 @@ struct SimState {
   std::vector<MeshWall> meshes;
   MeshContacts mesh_contacts;
   BondSet bonds;
+  ClumpBodies bodies;  // rigid clumps; their members are particles
   double time = 0;  // of the forces being computed
   double local_damping = 0;
   PairTable table;

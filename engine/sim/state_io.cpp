@@ -91,6 +91,9 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   put(out, sim.growth_at_build_);
   put(out, sim.growth_scale_);
   put(out, s.bonds.bonds());
+  put(out, p.body); put(out, p.body_offset);
+  const ClumpBodies& cb = s.bodies;
+  put(out, cb.x); put(out, cb.v); put(out, cb.rotation); put(out, cb.force); put(out, cb.torque);
   if (!out) throw std::runtime_error("cannot write the saved state");
 }
 
@@ -156,6 +159,10 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   std::vector<Bond> saved_bonds;
   r.get(saved_bonds, "the bonds");
   s.bonds.restore(std::move(saved_bonds));
+  r.get(p.body, "the clumps"); r.get(p.body_offset, "the clumps");
+  ClumpBodies& cb = s.bodies;
+  r.get(cb.x, "the clumps"); r.get(cb.v, "the clumps"); r.get(cb.rotation, "the clumps");
+  r.get(cb.force, "the clumps"); r.get(cb.torque, "the clumps");
 }
 
 void StateIO::write_file(const Simulation& sim, const std::string& path) {

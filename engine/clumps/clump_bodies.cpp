@@ -1,0 +1,107 @@
+#include "clumps/clump_bodies.hpp"
+
+#include <algorithm>
+
+namespace dem {
+namespace {
+
+// Position, velocity and spin of every member from its body.
+void place_members(const ClumpBodies& bodies, Particles& p, const std::vector<Vec3>* x_at_build, double* moved2) {
+  const int n = static_cast<int>(p.size());
+  for (int i = 0; i < n; ++i) {
+    const int b = p.body[i];
+    if (b < 0) continue;
+    const Vec3 arm = bodies.rotation[b].orientation * p.body_offset[i];
+    const Vec3 w = angular_velocity(bodies.rotation[b], bodies.moments[b]);
+    p.x[i] = bodies.x[b] + arm;
+    p.v[i] = bodies.v[b] + w.cross(arm);
+    p.w[i] = w;
+    if (moved2) *moved2 = std::max(*moved2, (p.x[i] - (*x_at_build)[i]).squaredNorm());
+  }
+}
+
+}  // namespace
+
+ClumpBodies make_bodies(const Scene& scene) {
+  ClumpBodies b;
+  for (const ClumpInit& c : scene.clumps) {
+    b.x.push_back(c.position);
+    b.v.push_back(c.velocity);
+    RigidRotation r;
+    r.orientation = c.orientation;
+    // L = R I R^T w for the given angular velocity
+    r.angular_momentum = c.orientation * (c.moments.cwiseProduct(c.orientation.conjugate() * c.angular_velocity));
+    b.rotation.push_back(r);
+    b.mass.push_back(c.mass);
+    b.moments.push_back(c.moments);
+    b.force.push_back(Vec3::Zero());
+    b.torque.push_back(Vec3::Zero());
+  }
+  return b;
+}
+
+void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p) {
+  if (bodies.empty()) return;
+  p.body.assign(p.size(), -1);
+  p.body_offset.assign(p.size(), Vec3::Zero());
+  for (std::size_t c = 0; c < scene.clumps.size(); ++c) {
+    const ClumpInit& clump = scene.clumps[c];
+    for (int i = clump.first; i < clump.first + clump.count; ++i) {
+      p.body[i] = static_cast<int>(c);
+      p.body_offset[i] = clump.orientation.conjugate() * (scene.particles[i].position - clump.position);
+      p.mass[i] = clump.mass;
+      p.inv_mass[i] = 1 / clump.mass;
+    }
+  }
+  place_members(bodies, p, nullptr, nullptr);
+}
+
+double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt) {
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    bodies.v[b] += (0.5 * dt / bodies.mass[b]) * bodies.force[b];
+    bodies.x[b] += dt * bodies.v[b];
+    bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
+    rotate_free(bodies.rotation[b], bodies.moments[b], dt);
+  }
+  double moved2 = 0;
+  place_members(bodies, p, &x_at_build, &moved2);
+  return moved2;
+}
+
+void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt) {
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    bodies.force[b] = bodies.mass[b] * gravity;
+    bodies.torque[b].setZero();
+  }
+  // in particle order: the same sums on any number of threads
+  const int n = static_cast<int>(p.size());
+  for (int i = 0; i < n; ++i) {
+    const int b = p.body[i];
+    if (b < 0) continue;
+    const Vec3 contact = p.f[i] - p.mass[i] * gravity;
+    bodies.force[b] += contact;
+    bodies.torque[b] += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
+  }
+  if (dt == 0) return;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    bodies.v[b] += (0.5 * dt / bodies.mass[b]) * bodies.force[b];
+    bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
+  }
+  for (int i = 0; i < n; ++i) {  // the velocities and spins the kick changed
+    const int b = p.body[i];
+    if (b < 0) continue;
+    const Vec3 arm = p.x[i] - bodies.x[b];
+    const Vec3 w = angular_velocity(bodies.rotation[b], bodies.moments[b]);
+    p.v[i] = bodies.v[b] + w.cross(arm);
+    p.w[i] = w;
+  }
+}
+
+double bodies_kinetic_energy(const ClumpBodies& bodies) {
+  double e = 0;
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    e += 0.5 * bodies.mass[b] * bodies.v[b].squaredNorm() + rotational_energy(bodies.rotation[b], bodies.moments[b]);
+  return e;
+}
+
+}  // namespace dem

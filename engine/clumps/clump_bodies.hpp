@@ -1,0 +1,44 @@
+// The rigid clumps of a running simulation: each body's translation (velocity Verlet) and rotation
+// (rigid_rotation.hpp), driven by the sum of its member spheres' contact forces. The members stay
+// particles for contact detection and the force laws; each step their position, velocity and spin
+// are set from their body, and contacts between members of one body are never listed.
+#pragma once
+
+#include <vector>
+
+#include "clumps/rigid_rotation.hpp"
+#include "core/particles.hpp"
+#include "core/scene.hpp"
+
+namespace dem {
+
+struct ClumpBodies {
+  std::vector<Vec3> x, v;              // centroid and its velocity
+  std::vector<RigidRotation> rotation;
+  std::vector<double> mass;
+  std::vector<Vec3> moments;           // principal, body frame
+  std::vector<Vec3> force, torque;     // of the last force evaluation (space frame)
+
+  bool empty() const { return x.empty(); }
+  std::size_t size() const { return x.size(); }
+};
+
+ClumpBodies make_bodies(const Scene& scene);
+
+// Member particles (whose indices follow the scene's until the first re-sort): body index, offset
+// in the body frame, and the body's mass (the contact laws' damping and the time step see a member
+// as the whole body).
+void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p);
+
+// The first half kick and the drift of every body, then its members placed; returns the largest
+// squared move of a member since `x_at_build` (for the neighbour-list rebuild).
+double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt);
+
+// Sums the members' forces and torques (the force kernel added gravity to each member as if it had
+// the body's mass: that is taken out and the body's weight put in once), then the second half
+// kick, then the members' velocities and spins. dt = 0 only sums.
+void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt);
+
+double bodies_kinetic_energy(const ClumpBodies& bodies);
+
+}  // namespace dem

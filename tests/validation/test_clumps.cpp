@@ -1,0 +1,167 @@
+// Rigid clumps in the engine: members move as one body driven by their summed contact forces.
+// A two-sphere clump dropped flat comes to rest without drifting; a free asymmetric clump keeps its
+// energy and its shape; on an incline a clump slides or rolls as its shape dictates, with the
+// closed-form accelerations.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "clumps/mass_properties.hpp"
+#include "sim/simulation.hpp"
+#include "sim/state_io.hpp"
+#include "spec/spec_loader.hpp"
+#include "support/report.hpp"
+
+namespace dem::test {
+namespace {
+
+constexpr double kR = 0.01, kG = 9.81;
+
+// A scene of clumps of two spheres (radius kR, centres `gap` apart along x in the shape's frame)
+// on a plane through the origin with normal `normal`, with the given clumps (JSON objects).
+std::string clump_spec(double mu, const Vec3& normal, const std::string& clumps, double gravity, double duration) {
+  std::ostringstream s;
+  s.precision(17);
+  s << R"({"name": "clumps",
+  "materials": [{"name": "rock", "density": 2650, "normalStiffness": 2e5}, {"name": "steel", "rigid": true}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5, "friction": )" << mu << R"(},
+                   {"a": "rock", "b": "steel", "restitution": 0.5, "friction": )" << mu << R"(}],
+  "contact": {"normal": "LINEAR", "rolling": "NONE"},
+  "clumpShapes": [{"name": "pair", "spheres": [{"center": {"x": -0.006}, "radius": 0.01}, {"center": {"x": 0.006}, "radius": 0.01}]},
+                  {"name": "odd", "spheres": [{"center": {}, "radius": 0.01}, {"center": {"x": 0.012}, "radius": 0.006},
+                                             {"center": {"y": 0.009, "z": 0.004}, "radius": 0.007}]}],
+  "clumps": [)" << clumps << R"(],
+  "walls": [{"material": "steel", "plane": {"point": {}, "normal": {"x": )" << normal.x() << R"(, "y": )" << normal.y()
+    << R"(, "z": )" << normal.z() << R"(}}}],
+  "gravity": {"z": )" << -gravity << R"(},
+  "time": {"duration": )" << duration << R"(},
+  "outputs": {"everySteps": 1000000}})";
+  return s.str();
+}
+
+Simulation simulation_of(const std::string& json) { return Simulation(spec::to_scene(spec::parse_json(json))); }
+
+void run_until(Simulation& sim, double t) {
+  while (sim.time() < t && sim.step_count() < sim.total_steps()) sim.step();
+}
+
+TEST(Clumps, ATwoSphereClumpDroppedFlatComesToRestWithoutDrifting) {
+  Simulation sim = simulation_of(clump_spec(0.5, Vec3::UnitZ(), R"({"shape": "pair", "material": "rock", "position": {"z": 0.03}})", kG, 1.0));
+  ASSERT_EQ(sim.particles().size(), 2u);
+  run_until(sim, 1.0);
+  const ClumpBodies& b = sim.state().bodies;
+  const Particles& p = sim.particles();
+  std::printf("at rest: |v| %.2e m/s, centroid (%.2e, %.2e, %.6f) m, member heights %.7f %.7f m\n", b.v[0].norm(),
+              b.x[0].x(), b.x[0].y(), b.x[0].z(), p.x[0].z(), p.x[1].z());
+  EXPECT_LT(b.v[0].norm(), 1e-4);
+  EXPECT_LT(std::hypot(b.x[0].x(), b.x[0].y()), 1e-9) << "a symmetric drop must not drift";
+  EXPECT_NEAR(p.x[0].z(), p.x[1].z(), 1e-9) << "it lies flat";
+  EXPECT_NEAR(p.x[0].z(), kR, 0.02 * kR);  // resting on the plane, overlap about m g / k
+  EXPECT_NEAR((p.x[0] - p.x[1]).norm(), 0.012, 1e-12) << "the members keep their places";
+}
+
+TEST(Clumps, AFreeAsymmetricClumpKeepsItsEnergyAndItsShape) {
+  // no gravity, far above the plane: torque-free motion of the "odd" clump
+  Simulation sim = simulation_of(clump_spec(
+      0.5, Vec3::UnitZ(), R"({"shape": "odd", "material": "rock", "position": {"z": 1}, "velocity": {"x": 0.1}, "angularVelocity": {"x": 3, "y": -20, "z": 5}})",
+      0, 1.0));
+  const double e0 = sim.kinetic_energy();
+  const Particles& p = sim.particles();
+  const double d01 = (p.x[0] - p.x[1]).norm(), d02 = (p.x[0] - p.x[2]).norm();
+  double worst = 0;
+  while (sim.step_count() < sim.total_steps()) {
+    sim.step();
+    if (sim.step_count() % 100 == 0) worst = std::max(worst, std::abs(sim.kinetic_energy() / e0 - 1));
+  }
+  std::printf("free clump: %lld steps, largest relative energy change %.2e\n", static_cast<long long>(sim.step_count()), worst);
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_NEAR((p.x[0] - p.x[1]).norm(), d01, 1e-12);
+  EXPECT_NEAR((p.x[0] - p.x[2]).norm(), d02, 1e-12);
+  EXPECT_GT(sim.step_count(), 100000);
+}
+
+// An incline of theta, made by tilting gravity (the plane stays z = 0, +x runs downhill): a clump
+// lying along the slope (its axis downhill) cannot roll and slides at g (sin - mu cos); lying
+// across it (turned 90 degrees about z), it rolls about its axis at g sin / (1 + I_axis / (m r^2))
+// when friction holds it. The acceleration of the centroid over 0.1..0.4 s.
+double downhill_acceleration(double theta_deg, double mu, double clump_turn_deg) {
+  const double th = theta_deg * std::numbers::pi / 180;
+  std::ostringstream clump;
+  clump.precision(17);
+  clump << R"({"shape": "pair", "material": "rock", "position": {"z": )" << kR * 0.9999
+        << R"(}, "rotationAxis": {"z": 1}, "rotationDegrees": )" << clump_turn_deg << "}";
+  Scene s = spec::to_scene(spec::parse_json(clump_spec(mu, Vec3::UnitZ(), clump.str(), 0, 0.5)));
+  s.gravity = Vec3(kG * std::sin(th), 0, -kG * std::cos(th));
+  Simulation sim(s);
+  run_until(sim, 0.1);
+  const double v1 = sim.state().bodies.v[0].x(), t1 = sim.time();
+  run_until(sim, 0.4);
+  return (sim.state().bodies.v[0].x() - v1) / (sim.time() - t1);
+}
+
+TEST(Clumps, OnAnInclineAClumpSlidesOrRollsAsItsShapeDictates) {
+  const double theta = 20, th = theta * std::numbers::pi / 180;
+  // along the slope: two contacts one behind the other, no rolling: it slides
+  const double mu_slide = 0.2;
+  const double slide = downhill_acceleration(theta, mu_slide, 0);
+  const double slide_want = kG * (std::sin(th) - mu_slide * std::cos(th));
+  report("two-sphere clump sliding along the slope", slide, slide_want);
+  EXPECT_NEAR(slide, slide_want, 5e-3 * slide_want);
+  // across the slope: it rolls about its own axis (I_axis of the union of the two spheres)
+  const MassProperties mp = union_mass_properties({{Vec3(-0.006, 0, 0), kR}, {Vec3(0.006, 0, 0), kR}}, 1e-4);
+  const double roll = downhill_acceleration(theta, 0.5, 90);
+  const double roll_want = kG * std::sin(th) / (1 + mp.principal_moments[0] / (mp.volume * kR * kR));
+  report("two-sphere clump rolling across the slope", roll, roll_want);
+  EXPECT_NEAR(roll, roll_want, 5e-3 * roll_want);
+}
+
+TEST(Clumps, MembersAreTheirClumpsPartAndNeverTouchEachOther) {
+  Simulation sim = simulation_of(clump_spec(0.5, Vec3::UnitZ(),
+                                            R"({"shape": "pair", "material": "rock", "position": {"z": 0.05}},
+                                               {"shape": "odd", "material": "rock", "position": {"x": 0.1, "z": 0.05}})",
+                                            kG, 0.01));
+  const std::vector<int> part = sim.fragments();
+  const std::vector<int>& id = sim.particles().id;
+  for (std::size_t i = 0; i < part.size(); ++i) EXPECT_EQ(part[i], id[i] < 2 ? 1 : 2);
+  EXPECT_EQ(sim.state().neighbors.partner.size(), 0u) << "members of one clump are not neighbours";
+}
+
+TEST(Clumps, ARunContinuedFromItsSavedStateIsTheUninterruptedRunBitForBit) {
+  const std::string spec = clump_spec(0.5, Vec3::UnitZ(),
+                                      R"({"shape": "pair", "material": "rock", "position": {"z": 0.03}, "angularVelocity": {"y": 4}},
+                                         {"shape": "odd", "material": "rock", "position": {"x": 0.005, "y": 0.002, "z": 0.07}})",
+                                      kG, 0.2);
+  Simulation whole = simulation_of(spec), first = simulation_of(spec), second = simulation_of(spec);
+  run_until(whole, 0.2);
+  run_until(first, 0.1);
+  std::stringstream saved;
+  StateIO::write(first, saved);
+  StateIO::read(second, saved);
+  run_until(second, 0.2);
+  for (int b = 0; b < 2; ++b) {
+    EXPECT_EQ(whole.state().bodies.x[b], second.state().bodies.x[b]);
+    EXPECT_EQ(whole.state().bodies.rotation[b].angular_momentum, second.state().bodies.rotation[b].angular_momentum);
+  }
+  EXPECT_EQ(whole.particles().x, second.particles().x);
+}
+
+TEST(Clumps, BadClumpsAreRefusedWithTheirPaths) {
+  std::string bad = clump_spec(0.5, Vec3::UnitZ(), R"({"shape": "nothing", "material": "rock"}, {"shape": "pair", "material": "lead"})", kG, 0.1);
+  try {
+    spec::to_scene(spec::parse_json(bad));
+    FAIL() << "expected a SpecError";
+  } catch (const spec::SpecError& e) {
+    const std::string all = [&] {
+      std::string t;
+      for (const auto& s : e.problems()) t += s + "\n";
+      return t;
+    }();
+    EXPECT_NE(all.find("clumps[0].shape: unknown clump shape \"nothing\""), std::string::npos) << all;
+    EXPECT_NE(all.find("clumps[1].material"), std::string::npos) << all;
+  }
+}
+
+}  // namespace
+}  // namespace dem::test
