@@ -66,13 +66,24 @@ EncodedFrame FrameEncoder::encode(const Simulation& sim, bool with_force_chains)
   base.set_positions(vectors_by_id(p.x, p.id));
   base.set_velocities(vectors_by_id(p.v, p.id));
   base.set_kinetic_energy(sim.kinetic_energy());
-  if (!sim.bonds().empty()) {
+  if (!sim.bonds().empty() || !sim.state().bodies.empty()) {
     const std::vector<int> fragment = sim.fragments();
     std::vector<std::int32_t> by_id(p.size());
     for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = fragment[i];
     base.set_fragments(bytes_of(by_id));
   }
   add_walls(sim, base);
+  const ClumpBodies& bodies = sim.state().bodies;
+  if (!bodies.empty()) {
+    std::vector<float> centres, turns;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      for (int d = 0; d < 3; ++d) centres.push_back(static_cast<float>(bodies.x[b][d]));
+      const Eigen::Quaterniond& q = bodies.rotation[b].orientation;
+      for (double c : {q.w(), q.x(), q.y(), q.z()}) turns.push_back(static_cast<float>(c));
+    }
+    base.set_clump_positions(bytes_of(centres));
+    base.set_clump_orientations(bytes_of(turns));
+  }
   out.base = std::make_shared<const std::string>(base.SerializeAsString());
 
   std::vector<float> radii(p.size());

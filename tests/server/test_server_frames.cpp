@@ -149,6 +149,36 @@ TEST_F(ServerFrames, LiveFramesComeBetweenTheFilesFramesWhenThoseAreFew) {
   EXPECT_EQ(frames.back().step(), 12000);
 }
 
+TEST_F(ServerFrames, FramesOfClumpsCarryTheirPartsPositionsAndOrientations) {
+  start_server({"--max-frame-rate", "0"});
+  const long id = queue_held(R"({"name": "clumps",
+    "materials": [{"name": "rock", "density": 2650, "normalStiffness": 2e5}, {"name": "steel", "rigid": true}],
+    "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5, "friction": 0.5},
+                     {"a": "rock", "b": "steel", "restitution": 0.5, "friction": 0.5}],
+    "clumpShapes": [{"name": "pair", "spheres": [{"center": {"x": -0.006}, "radius": 0.01}, {"center": {"x": 0.006}, "radius": 0.01}]}],
+    "clumps": [{"shape": "pair", "material": "rock", "position": {"z": 0.05}, "angularVelocity": {"z": 2}},
+               {"shape": "pair", "material": "rock", "position": {"x": 0.1, "z": 0.05}}],
+    "particles": [{"position": {"x": -0.1, "z": 0.05}, "radius": 0.01, "material": "rock"}],
+    "walls": [{"material": "steel", "plane": {"point": {}, "normal": {"z": 1}}}],
+    "gravity": {"z": -9.81}, "time": {"steps": 2000}, "outputs": {"everySteps": 500}})");
+  client::FrameStream stream(*client_, "/api/jobs/" + std::to_string(id) + "/frames");
+  release();
+  const std::vector<api::Frame> frames = read_all(stream);
+  ASSERT_EQ(frames.size(), 5u);
+  for (const api::Frame& f : frames) {
+    EXPECT_EQ(f.particle_count(), 5u);
+    EXPECT_EQ(array_of<std::int32_t>(f.fragments()), (std::vector<std::int32_t>{0, 1, 1, 2, 2}));
+    EXPECT_EQ(f.clump_positions().size(), 2u * 12);
+    EXPECT_EQ(f.clump_orientations().size(), 2u * 16);
+  }
+  const std::vector<float> q = array_of<float>(frames.back().clump_orientations());
+  EXPECT_NEAR(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3], 1.0f, 1e-5f);
+  const std::vector<float> q0 = array_of<float>(frames[0].clump_orientations());
+  float turned = 0;  // the spinning clump's quaternion changed
+  for (int c = 0; c < 4; ++c) turned = std::max(turned, std::abs(q[c] - q0[c]));
+  EXPECT_GT(turned, 1e-3f);
+}
+
 TEST_F(ServerFrames, AFinishedJobClosesTheStreamSayingWhere) {
   start_server();
   const long id = submit_json(pouring_spec(0.015, 100, 50))["id"];
