@@ -17,6 +17,7 @@
 #include "clumps/mass_properties.hpp"
 #include "mesh/mesh_io.hpp"
 #include "spec/lattice.hpp"
+#include "spec/ballast_stones.hpp"
 #include "spec/inside_mesh.hpp"
 #include "spec/packing.hpp"
 
@@ -568,9 +569,46 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     add_packing(spec.packings(k), at("packings", k), base_dir, check, scene,
                 particle_material(spec.packings(k).material(), at("packings", k) + ".material"));
   add_clumps(spec, check, scene, particle_material);
+  for (int k = 0; k < spec.ballast_stones_size(); ++k) {
+    const api::BallastStones& in = spec.ballast_stones(k);
+    const std::string path = at("ballastStones", k);
+    StoneRequest r;
+    r.count = in.count();
+    r.log_mean = in.mass_log_mean();
+    r.log_sigma = in.mass_log_sigma();
+    r.mass_min = in.mass_min();
+    r.mass_max = in.mass_max();
+    r.min_spheres = in.min_spheres() == 0 ? 3 : in.min_spheres();
+    r.max_spheres = in.max_spheres() == 0 ? std::max(12, r.min_spheres) : in.max_spheres();
+    r.shapes = in.shapes() == 0 ? 32 : in.shapes();
+    r.lo = vec(in.min());
+    r.hi = vec(in.max());
+    r.seed = in.seed() == 0 ? 1 : in.seed();
+    check.in_range(path + ".count", r.count, 1, 1e6, false, false);
+    check.non_negative(path + ".massLogSigma", r.log_sigma);
+    check.positive(path + ".massMin", r.mass_min);
+    if (!(r.mass_max > r.mass_min)) check.fail(path + ".massMax", "must be above massMin (got " + num(r.mass_max) + ")");
+    check.in_range(path + ".minSpheres", r.min_spheres, 1, 20, false, false);
+    check.in_range(path + ".maxSpheres", r.max_spheres, r.min_spheres, 20, false, false);
+    check.in_range(path + ".shapes", r.shapes, 1, 1000, false, false);
+    if (!((r.hi - r.lo).minCoeff() > 0)) check.fail(path + ".max", "must be above min in x, y and z");
+    // the bounded distribution must not be (nearly) empty: the sampler redraws until it hits it
+    const auto cdf = [&](double m) { return 0.5 * std::erfc(-(std::log(m) - r.log_mean) / (r.log_sigma * std::sqrt(2.0))); };
+    if (r.mass_min > 0 && r.mass_max > r.mass_min && r.log_sigma > 0 && cdf(r.mass_max) - cdf(r.mass_min) < 1e-3)
+      check.fail(path + ".massMin", "and massMax hold less than 0.1% of the lognormal distribution: check massLogMean");
+    r.material = particle_material(in.material(), path + ".material");
+    if (!check.problems.empty() || r.material < 0) continue;
+    r.density = scene.materials[r.material].density;
+    try {
+      add_ballast_stones(r, scene);
+    } catch (const std::runtime_error& e) {
+      check.fail(path, e.what());
+    }
+  }
   if (!scene.clumps.empty() && spec.has_growth() && spec.growth().factor() != 1)
     check.fail("growth", "radius growth and rigid clumps cannot be combined (a clump's shape is fixed)");
-  if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty() && spec.clumps().empty())
+  if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty() && spec.clumps().empty() &&
+      spec.ballast_stones().empty())
     check.fail("particles", "the scene has no particles");
 
   // walls
