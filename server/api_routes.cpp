@@ -111,28 +111,14 @@ http::message_generator artifact(const Request& req, std::int64_t id, const std:
                               "/artifacts; no folders, no '..')");
   const JobFolder folder = ctx.jobs.folder(id);
   const fs::path path = name == JobFolder::kArchiveName ? folder.archive() : folder.outputs() / name;
-  boost::beast::error_code ec;
-  http::file_body::value_type body;
-  if (fs::is_regular_file(path)) body.open(path.c_str(), boost::beast::file_mode::scan, ec);
-  if (!fs::is_regular_file(path) || ec)
-    return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
-  const auto size = body.size();
-  http::response<http::file_body> res{std::piecewise_construct, std::make_tuple(std::move(body)),
-                                      std::make_tuple(http::status::ok, req.version())};
   const bool tar = name == JobFolder::kArchiveName;
-  res.set(http::field::content_type, tar ? "application/x-tar" : "text/plain; charset=utf-8");
-  res.set(http::field::content_disposition, "attachment; filename=\"" + name + "\"");
-  res.set(http::field::cache_control, "no-store");
-  res.content_length(size);
-  res.keep_alive(req.keep_alive());
-  if (req.method() == http::verb::head) {
-    http::response<http::empty_body> head{http::status::ok, req.version()};
-    for (const auto& field : res.base()) head.set(field.name_string(), field.value());
-    head.content_length(size);
-    head.keep_alive(req.keep_alive());
-    return head;
-  }
-  return res;
+  std::optional<http::message_generator> file =
+      file_response(req, path,
+                    {{http::field::content_type, tar ? "application/x-tar" : "text/plain; charset=utf-8"},
+                     {http::field::content_disposition, "attachment; filename=\"" + name + "\""},
+                     {http::field::cache_control, "no-store"}});
+  if (!file) return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
+  return std::move(*file);
 }
 
 }  // namespace

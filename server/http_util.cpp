@@ -90,6 +90,31 @@ http::response<http::string_body> error_response(const Request& req, http::statu
   return json_response(req, status, body);
 }
 
+std::optional<http::message_generator> file_response(const Request& req, const std::filesystem::path& path,
+                                                     const Headers& headers) {
+  std::error_code is_file_error;
+  if (!std::filesystem::is_regular_file(path, is_file_error)) return std::nullopt;
+  boost::beast::error_code ec;
+  http::file_body::value_type body;
+  body.open(path.c_str(), boost::beast::file_mode::scan, ec);
+  if (ec) return std::nullopt;
+  const auto size = body.size();
+  auto fill = [&](auto& res) {
+    for (const auto& [field, value] : headers) res.set(field, value);
+    res.content_length(size);
+    res.keep_alive(req.keep_alive());
+  };
+  if (req.method() == http::verb::head) {
+    http::response<http::empty_body> head{http::status::ok, req.version()};
+    fill(head);
+    return http::message_generator(std::move(head));
+  }
+  http::response<http::file_body> res{std::piecewise_construct, std::make_tuple(std::move(body)),
+                                      std::make_tuple(http::status::ok, req.version())};
+  fill(res);
+  return http::message_generator(std::move(res));
+}
+
 std::optional<std::int64_t> parse_job_id(const std::string& text) {
   if (text.empty() || text.size() > 18) return std::nullopt;
   for (char c : text)

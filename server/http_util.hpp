@@ -2,6 +2,7 @@
 // escapes, JSON answers, and comparing tokens in constant time.
 #pragma once
 
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
@@ -36,6 +37,12 @@ http::response<http::string_body> error_response(const Request& req, http::statu
 
 // A job id as it appears in a path: decimal digits only.
 std::optional<std::int64_t> parse_job_id(const std::string& text);
+
+// The file at `path`, with `headers` (for HEAD: the headers alone, Content-Length included);
+// nothing when it is not a regular file or cannot be opened.
+using Headers = std::vector<std::pair<http::field, std::string>>;
+std::optional<http::message_generator> file_response(const Request& req, const std::filesystem::path& path,
+                                                     const Headers& headers);
 
 bool tokens_equal(std::string_view a, std::string_view b);  // time independent of where they differ
 // The token of a request: "Authorization: Bearer T", or ?access_token=T (browsers cannot set

@@ -44,25 +44,11 @@ http::message_generator serve_static(const Request& req, const Target& target, c
   if (!found && target.segments.empty()) {
     return text_response(req, http::status::ok, "text/html; charset=utf-8", kNoViewerPage);
   }
-  boost::beast::error_code open_error;
-  http::file_body::value_type body;
-  if (found) body.open(path.c_str(), boost::beast::file_mode::scan, open_error);
-  if (!found || open_error) return error_response(req, http::status::not_found, "no such file: " + std::string(req.target()));
-  const auto size = body.size();
-  http::response<http::file_body> res{std::piecewise_construct, std::make_tuple(std::move(body)),
-                                      std::make_tuple(http::status::ok, req.version())};
-  res.set(http::field::content_type, mime_type(path));
-  if (!set_cookie.empty()) res.set(http::field::set_cookie, set_cookie);
-  res.content_length(size);
-  res.keep_alive(req.keep_alive());
-  if (req.method() == http::verb::head) {
-    http::response<http::empty_body> head{http::status::ok, req.version()};
-    head.set(http::field::content_type, mime_type(path));
-    head.content_length(size);
-    head.keep_alive(req.keep_alive());
-    return head;
-  }
-  return res;
+  Headers headers{{http::field::content_type, mime_type(path)}};
+  if (!set_cookie.empty()) headers.emplace_back(http::field::set_cookie, set_cookie);
+  std::optional<http::message_generator> file = file_response(req, path, headers);
+  if (!file) return error_response(req, http::status::not_found, "no such file: " + std::string(req.target()));
+  return std::move(*file);
 }
 
 }  // namespace dem::server

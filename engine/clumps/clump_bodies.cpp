@@ -5,18 +5,23 @@
 namespace dem {
 namespace {
 
-// Position, velocity and spin of every member from its body.
-void place_members(const ClumpBodies& bodies, Particles& p, const std::vector<Vec3>* x_at_build, double* moved2) {
+// Each body's angular velocity, found once for all its members.
+std::vector<Vec3> spins(const ClumpBodies& bodies) {
+  std::vector<Vec3> w(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) w[b] = angular_velocity(bodies.rotation[b], bodies.moments[b]);
+  return w;
+}
+
+// Velocity and spin of every member from its body; with `place`, its position first.
+void move_members(const ClumpBodies& bodies, Particles& p, bool place) {
+  const std::vector<Vec3> w = spins(bodies);
   const int n = static_cast<int>(p.size());
   for (int i = 0; i < n; ++i) {
     const int b = p.body[i];
     if (b < 0) continue;
-    const Vec3 arm = bodies.rotation[b].orientation * p.body_offset[i];
-    const Vec3 w = angular_velocity(bodies.rotation[b], bodies.moments[b]);
-    p.x[i] = bodies.x[b] + arm;
-    p.v[i] = bodies.v[b] + w.cross(arm);
-    p.w[i] = w;
-    if (moved2) *moved2 = std::max(*moved2, (p.x[i] - (*x_at_build)[i]).squaredNorm());
+    if (place) p.x[i] = bodies.x[b] + bodies.rotation[b].orientation * p.body_offset[i];
+    p.v[i] = bodies.v[b] + w[b].cross(p.x[i] - bodies.x[b]);
+    p.w[i] = w[b];
   }
 }
 
@@ -53,7 +58,7 @@ void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p) {
       p.inv_mass[i] = 1 / clump.mass;
     }
   }
-  place_members(bodies, p, nullptr, nullptr);
+  move_members(bodies, p, true);
 }
 
 double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt) {
@@ -63,8 +68,10 @@ double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& 
     bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
     rotate_free(bodies.rotation[b], bodies.moments[b], dt);
   }
+  move_members(bodies, p, true);
   double moved2 = 0;
-  place_members(bodies, p, &x_at_build, &moved2);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body[i] >= 0) moved2 = std::max(moved2, (p.x[i] - x_at_build[i]).squaredNorm());
   return moved2;
 }
 
@@ -87,14 +94,7 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
     bodies.v[b] += (0.5 * dt / bodies.mass[b]) * bodies.force[b];
     bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
   }
-  for (int i = 0; i < n; ++i) {  // the velocities and spins the kick changed
-    const int b = p.body[i];
-    if (b < 0) continue;
-    const Vec3 arm = p.x[i] - bodies.x[b];
-    const Vec3 w = angular_velocity(bodies.rotation[b], bodies.moments[b]);
-    p.v[i] = bodies.v[b] + w.cross(arm);
-    p.w[i] = w;
-  }
+  move_members(bodies, p, false);  // the velocities and spins the kick changed
 }
 
 double bodies_kinetic_energy(const ClumpBodies& bodies) {
