@@ -1,11 +1,13 @@
 #include "spec/ballast_stones.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
 
 #include "clumps/mass_properties.hpp"
+#include "spec/stone_fill.hpp"
 
 namespace dem::spec {
 namespace {
@@ -49,6 +51,43 @@ StoneShape random_shape(int spheres, std::mt19937_64& rng) {
   return shape;
 }
 
+// A breakable stone of mass `mass`: the shape scaled until the small spheres that fill it weigh
+// `mass`. The filled solid fraction (~0.6-0.7) depends on the shape and the scale, and the count of
+// spheres is a step function of the scale, so the scale is found by bisection, keeping the closest.
+struct FilledStone {
+  std::vector<Vec3> centres;
+  double scale = 0;
+};
+
+FilledStone fill_stone(const StoneShape& shape, double mass, double density, double r) {
+  const double sphere_mass = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  FilledStone best;
+  double best_error = 0;
+  auto weigh = [&](double scale) {  // the filled mass at this scale; remembers the closest
+    std::vector<MemberSphere> scaled = shape.spheres;
+    for (MemberSphere& m : scaled) {
+      m.centre *= scale;
+      m.radius *= scale;
+    }
+    std::vector<Vec3> centres = fill_with_spheres(scaled, r);
+    const double got = sphere_mass * static_cast<double>(centres.size());
+    if (best.centres.empty() || std::abs(got - mass) < best_error) {
+      best = {std::move(centres), scale};
+      best_error = std::abs(got - mass);
+    }
+    return got;
+  };
+  const double guess = std::cbrt(mass / (0.65 * density * shape.volume));
+  double lo = 0.8 * guess, hi = 1.25 * guess;
+  while (weigh(lo) > mass && lo > 1e-3 * guess) lo *= 0.8;
+  while (weigh(hi) < mass && hi < 1e3 * guess) hi *= 1.25;
+  for (int k = 0; k < 40 && best_error > 0.5 * sphere_mass; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (weigh(mid) < mass ? lo : hi) = mid;
+  }
+  return best;
+}
+
 }  // namespace
 
 std::vector<double> sample_stone_masses(const StoneRequest& r, std::mt19937_64& rng) {
@@ -70,9 +109,19 @@ void add_ballast_stones(const StoneRequest& r, Scene& scene) {
   std::uniform_int_distribution<int> pick(0, r.shapes - 1);
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<std::pair<Vec3, double>> placed;  // bounding spheres of the stones placed
+  int next_stone = 0;  // breakable stones are numbered across the scene: bonds glue only within one
+  for (const ParticleInit& p : scene.particles) next_stone = std::max(next_stone, p.stone + 1);
   for (int s = 0; s < r.count; ++s) {
     const StoneShape& shape = shapes[pick(rng)];
-    const double scale = std::cbrt(masses[s] / (r.density * shape.volume));
+    const bool breakable = r.bonded_sphere_radius > 0;
+    FilledStone filled;
+    if (breakable) {
+      filled = fill_stone(shape, masses[s], r.density, r.bonded_sphere_radius);
+      if (filled.centres.size() < 2)
+        throw std::runtime_error("a stone of " + std::to_string(masses[s]) + " kg holds fewer than 2 bonded spheres of radius " +
+                                 std::to_string(r.bonded_sphere_radius) + " m: make bonded.sphereRadius smaller");
+    }
+    const double scale = breakable ? filled.scale : std::cbrt(masses[s] / (r.density * shape.volume));
     const double reach = scale * shape.reach;
     // random sequential addition of the bounding spheres, each wholly inside the box
     Vec3 at;
@@ -90,6 +139,18 @@ void add_ballast_stones(const StoneRequest& r, Scene& scene) {
     // uniform over rotations: a quaternion of four normal deviates, normalised (from the seeded rng)
     std::normal_distribution<double> n(0, 1);
     const Eigen::Quaterniond turn = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+    if (breakable) {
+      for (const Vec3& centre : filled.centres) {
+        ParticleInit p;
+        p.position = at + turn * centre;
+        p.radius = r.bonded_sphere_radius;
+        p.material = r.material;
+        p.stone = next_stone;
+        scene.particles.push_back(p);
+      }
+      ++next_stone;
+      continue;
+    }
     ClumpInit c;
     c.first = static_cast<int>(scene.particles.size());
     c.count = static_cast<int>(shape.spheres.size());

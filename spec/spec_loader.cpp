@@ -596,9 +596,24 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     const auto cdf = [&](double m) { return 0.5 * std::erfc(-(std::log(m) - r.log_mean) / (r.log_sigma * std::sqrt(2.0))); };
     if (r.mass_min > 0 && r.mass_max > r.mass_min && r.log_sigma > 0 && cdf(r.mass_max) - cdf(r.mass_min) < 1e-3)
       check.fail(path + ".massMin", "and massMax hold less than 0.1% of the lognormal distribution: check massLogMean");
+    if (in.has_bonded()) {
+      r.bonded_sphere_radius = in.bonded().sphere_radius();
+      check.positive(path + ".bonded.sphereRadius", r.bonded_sphere_radius);
+      if (!spec.has_bonds())
+        check.fail(path + ".bonded", "breakable stones need the spec's \"bonds\" block (the bonds' stiffness and strength)");
+    }
     r.material = particle_material(in.material(), path + ".material");
     if (!check.problems.empty() || r.material < 0) continue;
     r.density = scene.materials[r.material].density;
+    if (r.bonded_sphere_radius > 0) {
+      const double sphere_mass = r.density * 4.0 / 3.0 * std::numbers::pi * std::pow(r.bonded_sphere_radius, 3);
+      const double largest = r.mass_max / sphere_mass;  // spheres in the heaviest stone allowed
+      if (largest > 1e6) {
+        check.fail(path + ".bonded.sphereRadius", num(r.bonded_sphere_radius) + " m would put up to " + num(largest) +
+                                                      " spheres in one stone (at most 1 million): make it larger");
+        continue;
+      }
+    }
     try {
       add_ballast_stones(r, scene);
     } catch (const std::runtime_error& e) {

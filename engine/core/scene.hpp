@@ -49,6 +49,7 @@ struct ParticleInit {
   bool fixed = false;
   Vec3 force = Vec3::Zero();  // constant external force, N
   int clump = -1;             // index in Scene::clumps of the rigid clump it belongs to, -1: free
+  int stone = -1;             // the breakable stone it belongs to: bonds glue only spheres of one stone (-1: none)
 };
 
 // A rigid clump: overlapping member spheres (Scene::particles first .. first + count - 1) moving as

@@ -34,9 +34,15 @@ void StatisticsWriter::frame(const Simulation& sim) {
   double mass = 0, largest = 0;
   for (std::size_t i = 0; i < n; ++i) {
     largest = std::max(largest, (p.x[i] - scene.particles[p.id[i]].position).norm());
-    if (p.inv_mass[i] == 0) continue;
+    // a clump member carries its whole body's mass: its body is counted once, below
+    if (p.inv_mass[i] == 0 || (!p.body.empty() && p.body[i] >= 0)) continue;
     centre += p.mass[i] * p.x[i];
     mass += p.mass[i];
+  }
+  const ClumpBodies& bodies = sim.state().bodies;
+  for (std::size_t b = 0; b < bodies.x.size(); ++b) {
+    centre += bodies.mass[b] * bodies.x[b];
+    mass += bodies.mass[b];
   }
   if (mass > 0) centre /= mass;
   const double t = sim.time();

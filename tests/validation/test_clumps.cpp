@@ -5,10 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
 #include "clumps/mass_properties.hpp"
+#include "legacy/legacy_formats.hpp"
+#include "output/statistics_output.hpp"
 #include "sim/simulation.hpp"
 #include "sim/state_io.hpp"
 #include "spec/spec_loader.hpp"
@@ -126,6 +130,30 @@ TEST(Clumps, MembersAreTheirClumpsPartAndNeverTouchEachOther) {
   const std::vector<int>& id = sim.particles().id;
   for (std::size_t i = 0; i < part.size(); ++i) EXPECT_EQ(part[i], id[i] < 2 ? 1 : 2);
   EXPECT_EQ(sim.state().neighbors.partner.size(), 0u) << "members of one clump are not neighbours";
+}
+
+// Masscenter.dat weighs each clump once, with its mass at its centroid (a member is not a body of
+// the clump's whole mass): two clumps of different shapes, one of them turned.
+TEST(Clumps, TheMassCentreCountsEachClumpOnce) {
+  Simulation sim = simulation_of(clump_spec(0.5, Vec3::UnitZ(),
+                                            R"({"shape": "pair", "material": "rock", "position": {"z": 0.05}},
+                                               {"shape": "odd", "material": "rock", "position": {"x": 0.1, "z": 0.08},
+                                                "rotationAxis": {"y": 1}, "rotationDegrees": 40})",
+                                            kG, 0.01));
+  const ClumpBodies& b = sim.state().bodies;
+  ASSERT_EQ(b.x.size(), 2u);
+  const Vec3 want = (b.mass[0] * b.x[0] + b.mass[1] * b.x[1]) / (b.mass[0] + b.mass[1]);
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "dem_clump_mass_centre";
+  std::filesystem::create_directories(dir);
+  {
+    StatisticsWriter writer(dir.string(), sim);
+    writer.frame(sim);
+  }
+  std::ifstream in(dir / "Masscenter.dat");
+  const auto rows = legacy::read_rows(in, 4);
+  ASSERT_EQ(rows.frames.size(), 1u) << rows.problem;
+  for (int d = 0; d < 3; ++d) EXPECT_NEAR(rows.frames[0][1 + d], want[d], 1e-7) << "axis " << d;  // 8 digits in the file
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Clumps, ARunContinuedFromItsSavedStateIsTheUninterruptedRunBitForBit) {
