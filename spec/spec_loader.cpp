@@ -313,6 +313,59 @@ void add_clumps(const api::JobSpec& spec, Checker& check, Scene& scene, Material
   }
 }
 
+// BallastDEM's stones (spec/ballast_stones.hpp): rigid clumps, or breakable bonded agglomerates
+// (which need the spec's bonds). Generated only when the spec has no problems so far.
+void add_stones(const api::BallastStones& in, const std::string& path, bool has_bonds, Checker& check, Scene& scene,
+                int material) {
+  StoneRequest r;
+  r.count = in.count();
+  r.log_mean = in.mass_log_mean();
+  r.log_sigma = in.mass_log_sigma();
+  r.mass_min = in.mass_min();
+  r.mass_max = in.mass_max();
+  r.min_spheres = in.min_spheres() == 0 ? 3 : in.min_spheres();
+  r.max_spheres = in.max_spheres() == 0 ? std::max(12, r.min_spheres) : in.max_spheres();
+  r.shapes = in.shapes() == 0 ? 32 : in.shapes();
+  r.lo = vec(in.min());
+  r.hi = vec(in.max());
+  r.seed = in.seed() == 0 ? 1 : in.seed();
+  check.in_range(path + ".count", r.count, 1, 1e6, false, false);
+  check.non_negative(path + ".massLogSigma", r.log_sigma);
+  check.positive(path + ".massMin", r.mass_min);
+  if (!(r.mass_max > r.mass_min)) check.fail(path + ".massMax", "must be above massMin (got " + num(r.mass_max) + ")");
+  check.in_range(path + ".minSpheres", r.min_spheres, 1, 20, false, false);
+  check.in_range(path + ".maxSpheres", r.max_spheres, r.min_spheres, 20, false, false);
+  check.in_range(path + ".shapes", r.shapes, 1, 1000, false, false);
+  if (!((r.hi - r.lo).minCoeff() > 0)) check.fail(path + ".max", "must be above min in x, y and z");
+  // the bounded distribution must not be (nearly) empty: the sampler redraws until it hits it
+  const auto cdf = [&](double m) { return 0.5 * std::erfc(-(std::log(m) - r.log_mean) / (r.log_sigma * std::sqrt(2.0))); };
+  if (r.mass_min > 0 && r.mass_max > r.mass_min && r.log_sigma > 0 && cdf(r.mass_max) - cdf(r.mass_min) < 1e-3)
+    check.fail(path + ".massMin", "and massMax hold less than 0.1% of the lognormal distribution: check massLogMean");
+  if (in.has_bonded()) {
+    r.bonded_sphere_radius = in.bonded().sphere_radius();
+    check.positive(path + ".bonded.sphereRadius", r.bonded_sphere_radius);
+    if (!has_bonds)
+      check.fail(path + ".bonded", "breakable stones need the spec's \"bonds\" block (the bonds' stiffness and strength)");
+  }
+  r.material = material;
+  if (!check.problems.empty() || r.material < 0) return;  // generation needs a sound spec
+  r.density = scene.materials[r.material].density;
+  if (r.bonded_sphere_radius > 0) {
+    const double sphere_mass = r.density * 4.0 / 3.0 * std::numbers::pi * std::pow(r.bonded_sphere_radius, 3);
+    const double largest = r.mass_max / sphere_mass;  // spheres in the heaviest stone allowed
+    if (largest > 1e6) {
+      check.fail(path + ".bonded.sphereRadius", num(r.bonded_sphere_radius) + " m would put up to " + num(largest) +
+                                                    " spheres in one stone (at most 1 million): make it larger");
+      return;
+    }
+  }
+  try {
+    add_ballast_stones(r, scene);
+  } catch (const std::runtime_error& e) {
+    check.fail(path, e.what());
+  }
+}
+
 double length_unit(const std::string& name, Checker& check) {
   if (name.empty() || name == "m") return 1.0;
   if (name == "cm") return 1e-2;
@@ -569,57 +622,9 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     add_packing(spec.packings(k), at("packings", k), base_dir, check, scene,
                 particle_material(spec.packings(k).material(), at("packings", k) + ".material"));
   add_clumps(spec, check, scene, particle_material);
-  for (int k = 0; k < spec.ballast_stones_size(); ++k) {
-    const api::BallastStones& in = spec.ballast_stones(k);
-    const std::string path = at("ballastStones", k);
-    StoneRequest r;
-    r.count = in.count();
-    r.log_mean = in.mass_log_mean();
-    r.log_sigma = in.mass_log_sigma();
-    r.mass_min = in.mass_min();
-    r.mass_max = in.mass_max();
-    r.min_spheres = in.min_spheres() == 0 ? 3 : in.min_spheres();
-    r.max_spheres = in.max_spheres() == 0 ? std::max(12, r.min_spheres) : in.max_spheres();
-    r.shapes = in.shapes() == 0 ? 32 : in.shapes();
-    r.lo = vec(in.min());
-    r.hi = vec(in.max());
-    r.seed = in.seed() == 0 ? 1 : in.seed();
-    check.in_range(path + ".count", r.count, 1, 1e6, false, false);
-    check.non_negative(path + ".massLogSigma", r.log_sigma);
-    check.positive(path + ".massMin", r.mass_min);
-    if (!(r.mass_max > r.mass_min)) check.fail(path + ".massMax", "must be above massMin (got " + num(r.mass_max) + ")");
-    check.in_range(path + ".minSpheres", r.min_spheres, 1, 20, false, false);
-    check.in_range(path + ".maxSpheres", r.max_spheres, r.min_spheres, 20, false, false);
-    check.in_range(path + ".shapes", r.shapes, 1, 1000, false, false);
-    if (!((r.hi - r.lo).minCoeff() > 0)) check.fail(path + ".max", "must be above min in x, y and z");
-    // the bounded distribution must not be (nearly) empty: the sampler redraws until it hits it
-    const auto cdf = [&](double m) { return 0.5 * std::erfc(-(std::log(m) - r.log_mean) / (r.log_sigma * std::sqrt(2.0))); };
-    if (r.mass_min > 0 && r.mass_max > r.mass_min && r.log_sigma > 0 && cdf(r.mass_max) - cdf(r.mass_min) < 1e-3)
-      check.fail(path + ".massMin", "and massMax hold less than 0.1% of the lognormal distribution: check massLogMean");
-    if (in.has_bonded()) {
-      r.bonded_sphere_radius = in.bonded().sphere_radius();
-      check.positive(path + ".bonded.sphereRadius", r.bonded_sphere_radius);
-      if (!spec.has_bonds())
-        check.fail(path + ".bonded", "breakable stones need the spec's \"bonds\" block (the bonds' stiffness and strength)");
-    }
-    r.material = particle_material(in.material(), path + ".material");
-    if (!check.problems.empty() || r.material < 0) continue;
-    r.density = scene.materials[r.material].density;
-    if (r.bonded_sphere_radius > 0) {
-      const double sphere_mass = r.density * 4.0 / 3.0 * std::numbers::pi * std::pow(r.bonded_sphere_radius, 3);
-      const double largest = r.mass_max / sphere_mass;  // spheres in the heaviest stone allowed
-      if (largest > 1e6) {
-        check.fail(path + ".bonded.sphereRadius", num(r.bonded_sphere_radius) + " m would put up to " + num(largest) +
-                                                      " spheres in one stone (at most 1 million): make it larger");
-        continue;
-      }
-    }
-    try {
-      add_ballast_stones(r, scene);
-    } catch (const std::runtime_error& e) {
-      check.fail(path, e.what());
-    }
-  }
+  for (int k = 0; k < spec.ballast_stones_size(); ++k)
+    add_stones(spec.ballast_stones(k), at("ballastStones", k), spec.has_bonds(), check, scene,
+               particle_material(spec.ballast_stones(k).material(), at("ballastStones", k) + ".material"));
   if (!scene.clumps.empty() && spec.has_growth() && spec.growth().factor() != 1)
     check.fail("growth", "radius growth and rigid clumps cannot be combined (a clump's shape is fixed)");
   if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty() && spec.clumps().empty() &&
