@@ -15,7 +15,7 @@
 #include "cli/commands.hpp"
 #include "cli/job_watch.hpp"
 #include "cli/server_api.hpp"
-#include "spec/mesh_files.hpp"
+#include "spec/referenced_files.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::cli {
@@ -147,7 +147,7 @@ int submit_command(const std::vector<std::string>& args) {
   api::JobSpec spec;
   try {
     spec = spec::read_json_file(path);
-    spec::inline_mesh_files(spec, fs::path(path).parent_path().string());  // the server reads no files of ours
+    spec::inline_files(spec, fs::path(path).parent_path().string());  // the server reads no files of ours
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "%s: invalid spec:\n", path.c_str());
     for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());

@@ -5,7 +5,7 @@
 #include <google/protobuf/util/json_util.h>
 
 #include "server/api_routes.hpp"
-#include "spec/mesh_files.hpp"
+#include "spec/referenced_files.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::server {
@@ -59,7 +59,7 @@ std::optional<std::string> case_spec(const fs::path& root, const std::string& na
   const fs::path folder = root / name;
   if (!fs::exists(folder / "spec.json")) return std::nullopt;
   api::JobSpec spec = spec::read_json_file((folder / "spec.json").string());
-  spec::inline_mesh_files(spec, folder.string());
+  spec::inline_files(spec, folder.string());
   std::string json;
   google::protobuf::util::JsonPrintOptions options;
   options.add_whitespace = true;

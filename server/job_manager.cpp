@@ -10,7 +10,7 @@
 #include "server/durable_file.hpp"
 #include "server/job_execution.hpp"
 #include "server/tar_archive.hpp"
-#include "spec/mesh_files.hpp"
+#include "spec/referenced_files.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::server {
@@ -93,10 +93,10 @@ JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::st
     std::lock_guard lock(mutex_);
     if (auto earlier = replay()) return *earlier;
   }
-  std::vector<std::string> files = spec::mesh_file_references(spec);
+  std::vector<std::string> files = spec::file_references(spec);
   if (!files.empty()) {
     for (std::string& f : files)
-      f += ": the server reads no files of the client's; give the mesh inline (`dem submit` inlines mesh files)";
+      f += ": the server reads no files of the client's; give its content inline (`dem submit` inlines the files a spec names)";
     throw spec::SpecError(files);
   }
   JobRecord job;

@@ -3,6 +3,7 @@
 #include <google/protobuf/util/json_util.h>
 
 #include <nlohmann/json.hpp>
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +19,7 @@
 #include "mesh/mesh_io.hpp"
 #include "spec/lattice.hpp"
 #include "spec/ballast_stones.hpp"
+#include "spec/clump_template.hpp"
 #include "spec/inside_mesh.hpp"
 #include "spec/packing.hpp"
 
@@ -247,30 +249,110 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
   }
 }
 
+// A clump shape ready to place: its spheres (scaled) and its body, found by subdivision or given.
+struct ClumpBody {
+  std::vector<MemberSphere> spheres;
+  bool usable = false;
+  double given_mass = 0;                 // kg; 0: density x volume
+  double volume = 0;                     // m^3 (subdivision)
+  Vec3 centroid = Vec3::Zero();
+  Vec3 principal_moments = Vec3::Zero();  // per unit density (subdivision) or in kg m^2 (given)
+  Eigen::Matrix3d principal_axes = Eigen::Matrix3d::Identity();
+};
+
+// A user's inertia tensor: symmetric positive definite with each principal moment at most the
+// sum of the other two (true of every real body); its principal moments and axes.
+void given_body(const api::GivenMassProperties& in, const std::string& path, Checker& check, ClumpBody& body) {
+  check.positive(path + ".mass", in.mass());
+  check.finite(path + ".centroid", in.centroid());
+  const api::Inertia& t = in.inertia();
+  Eigen::Matrix3d inertia;
+  inertia << t.xx(), t.xy(), t.xz(), t.xy(), t.yy(), t.yz(), t.xz(), t.yz(), t.zz();
+  if (!inertia.allFinite()) {
+    check.fail(path + ".inertia", "must be finite");
+    return;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia);
+  const Vec3 moments = solver.eigenvalues();  // ascending
+  if (!(moments[0] > 0)) {
+    check.fail(path + ".inertia", "is not positive definite (principal moments " + num(moments[0]) + ", " +
+                                      num(moments[1]) + ", " + num(moments[2]) + ")");
+    return;
+  }
+  if (moments[2] > (moments[0] + moments[1]) * (1 + 1e-9)) {
+    check.fail(path + ".inertia", "is not a body's: the largest principal moment " + num(moments[2]) +
+                                      " exceeds the sum of the other two");
+    return;
+  }
+  body.given_mass = in.mass();
+  body.centroid = vec(in.centroid());
+  body.principal_moments = moments;
+  body.principal_axes = solver.eigenvectors();
+  if (body.principal_axes.determinant() < 0) body.principal_axes.col(2) *= -1;  // right-handed
+}
+
+// One clump shape: spheres inline or from a template file, scaled; the body by subdivision to the
+// shape's accuracy, or as given.
+ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const std::string& base_dir, Checker& check) {
+  ClumpBody body;
+  if (!in.file().empty() && in.spheres_size() > 0) check.fail(path, "give spheres or a template file, not both");
+  std::vector<MemberSphere> spheres;
+  if (!in.file().empty()) {
+    try {
+      spheres = read_clump_template(base_dir.empty() || std::filesystem::path(in.file()).is_absolute()
+                                        ? in.file()
+                                        : (std::filesystem::path(base_dir) / in.file()).string());
+    } catch (const std::runtime_error& e) {
+      check.fail(path + ".file", e.what());
+    }
+  }
+  for (int s = 0; s < in.spheres_size(); ++s) {
+    const std::string sp = path + ".spheres[" + std::to_string(s) + "]";
+    check.finite(sp + ".center", in.spheres(s).center());
+    check.positive(sp + ".radius", in.spheres(s).radius());
+    spheres.push_back({vec(in.spheres(s).center()), in.spheres(s).radius()});
+  }
+  if (spheres.empty() && in.file().empty()) check.fail(path + ".spheres", "a clump shape needs at least one sphere");
+  const double scale = in.scale() == 0 ? 1.0 : in.scale();
+  check.positive(path + ".scale", scale);
+  const double accuracy = in.accuracy() == 0 ? 1e-4 : in.accuracy();
+  check.in_range(path + ".accuracy", accuracy, 1e-6, 0.1, false, false);
+  for (MemberSphere& m : spheres) {
+    m.centre *= scale;
+    m.radius *= scale;
+  }
+  body.spheres = spheres;
+  body.usable = !spheres.empty() && scale > 0 && std::all_of(spheres.begin(), spheres.end(), [](const MemberSphere& m) {
+    return m.radius > 0 && std::isfinite(m.radius) && m.centre.allFinite();
+  });
+  if (!body.usable) return body;
+  if (in.has_given()) {
+    given_body(in.given(), path + ".given", check, body);
+    body.usable = body.given_mass > 0;
+    return body;
+  }
+  if (!(accuracy >= 1e-6 && accuracy <= 0.1)) return body;
+  const MassProperties mp = union_mass_properties(spheres, accuracy);
+  body.volume = mp.volume;
+  body.centroid = mp.centroid;
+  body.principal_moments = mp.principal_moments;
+  body.principal_axes = mp.principal_axes;
+  body.usable = mp.volume > 0;
+  return body;
+}
+
 // Rigid clumps: each clump's members become particles of the scene (after the others), with the
-// clump's body (mass properties of the union of its shape's spheres, principal axes) in
-// Scene::clumps.
+// clump's body (its mass properties, principal axes) in Scene::clumps.
 template <class MaterialOf>
-void add_clumps(const api::JobSpec& spec, Checker& check, Scene& scene, MaterialOf&& material_of) {
+void add_clumps(const api::JobSpec& spec, const std::string& base_dir, Checker& check, Scene& scene, MaterialOf&& material_of) {
   std::map<std::string, int> shape_index;
-  std::vector<MassProperties> shape_mass;
+  std::vector<ClumpBody> bodies;
   for (int k = 0; k < spec.clump_shapes_size(); ++k) {
     const api::ClumpShape& in = spec.clump_shapes(k);
     const std::string path = "clumpShapes[" + std::to_string(k) + "]";
     if (in.name().empty()) check.fail(path + ".name", "a clump shape needs a name");
     else if (!shape_index.emplace(in.name(), k).second) check.fail(path + ".name", "\"" + in.name() + "\" is given twice");
-    std::vector<MemberSphere> spheres;
-    for (int s = 0; s < in.spheres_size(); ++s) {
-      const std::string sp = path + ".spheres[" + std::to_string(s) + "]";
-      check.finite(sp + ".center", in.spheres(s).center());
-      check.positive(sp + ".radius", in.spheres(s).radius());
-      spheres.push_back({vec(in.spheres(s).center()), in.spheres(s).radius()});
-    }
-    if (spheres.empty()) check.fail(path + ".spheres", "a clump shape needs at least one sphere");
-    const bool usable = !spheres.empty() && std::all_of(spheres.begin(), spheres.end(), [](const MemberSphere& m) {
-      return m.radius > 0 && std::isfinite(m.radius) && m.centre.allFinite();
-    });
-    shape_mass.push_back(usable ? union_mass_properties(spheres, 1e-4) : MassProperties{});
+    bodies.push_back(clump_body(in, path, base_dir, check));
   }
   for (int k = 0; k < spec.clumps_size(); ++k) {
     const api::Clump& in = spec.clumps(k);
@@ -284,31 +366,30 @@ void add_clumps(const api::JobSpec& spec, Checker& check, Scene& scene, Material
     check.finite(path + ".position", in.position());
     check.finite(path + ".velocity", in.velocity());
     check.finite(path + ".angularVelocity", in.angular_velocity());
-    const MassProperties& mp = shape_mass[shape->second];
-    if (material < 0 || !(mp.volume > 0)) continue;
+    const ClumpBody& body = bodies[shape->second];
+    if (material < 0 || !body.usable) continue;
     const double density = scene.materials[material].density;
     const Eigen::Matrix3d turn = rotation(in.rotation_axis(), in.rotation_degrees(), path, check);
     ClumpInit c;
     c.first = static_cast<int>(scene.particles.size());
-    c.mass = density * mp.volume;
-    c.moments = density * mp.principal_moments;
+    c.mass = body.given_mass > 0 ? body.given_mass : density * body.volume;
+    c.moments = body.given_mass > 0 ? body.principal_moments : Vec3(density * body.principal_moments);
     c.position = vec(in.position());
-    c.orientation = Eigen::Quaterniond(turn * mp.principal_axes).normalized();  // body (principal) -> space
+    c.orientation = Eigen::Quaterniond(turn * body.principal_axes).normalized();  // body (principal) -> space
     c.velocity = vec(in.velocity());
     c.angular_velocity = vec(in.angular_velocity());
-    const api::ClumpShape& s = spec.clump_shapes(shape->second);
-    for (const api::Sphere& sphere : s.spheres()) {
+    for (const MemberSphere& sphere : body.spheres) {
       ParticleInit p;
-      const Vec3 arm = turn * (vec(sphere.center()) - mp.centroid);
+      const Vec3 arm = turn * (sphere.centre - body.centroid);
       p.position = c.position + arm;
       p.velocity = c.velocity + c.angular_velocity.cross(arm);
       p.angular_velocity = c.angular_velocity;
-      p.radius = sphere.radius();
+      p.radius = sphere.radius;
       p.material = material;
       p.clump = static_cast<int>(scene.clumps.size());
       scene.particles.push_back(p);
     }
-    c.count = s.spheres_size();
+    c.count = static_cast<int>(body.spheres.size());
     scene.clumps.push_back(c);
   }
 }
@@ -621,7 +702,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   for (int k = 0; k < spec.packings_size(); ++k)
     add_packing(spec.packings(k), at("packings", k), base_dir, check, scene,
                 particle_material(spec.packings(k).material(), at("packings", k) + ".material"));
-  add_clumps(spec, check, scene, particle_material);
+  add_clumps(spec, base_dir, check, scene, particle_material);
   for (int k = 0; k < spec.ballast_stones_size(); ++k)
     add_stones(spec.ballast_stones(k), at("ballastStones", k), spec.has_bonds(), check, scene,
                particle_material(spec.ballast_stones(k).material(), at("ballastStones", k) + ".material"));

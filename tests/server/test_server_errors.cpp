@@ -24,6 +24,8 @@ TEST_F(ServerErrors, BadSpecsAreRefusedWithTheFieldAndTheReason) {
   expect_refused(replaced(good, "\"radius\": 0.015", "\"radius\": -0.015"), "application/json", 400, "lattices[0].radius");
   expect_refused(replaced(good, "\"walls\": [",
                           R"("walls": [{"name": "ground", "material": "steel", "mesh": {"file": "terrain.dat"}},)"), "application/json", 400, "walls[0].mesh.file: the server reads no files");
+  expect_refused(replaced(good, "\"walls\": [", R"("clumpShapes": [{"name": "stone", "file": "stone.txt"}], "walls": [)"),
+                 "application/json", 400, "clumpShapes[0].file: the server reads no files");
   expect_refused(good, "text/plain", 415, "application/json or application/x-protobuf");
   // nothing was queued
   EXPECT_EQ(nlohmann::json::parse(client_->get("/api/jobs").body)["jobs"].size(), 0u);

@@ -164,7 +164,9 @@ TEST_F(ServerFrames, FramesOfClumpsCarryTheirPartsPositionsAndOrientations) {
   client::FrameStream stream(*client_, "/api/jobs/" + std::to_string(id) + "/frames");
   release();
   const std::vector<api::Frame> frames = read_all(stream);
-  ASSERT_EQ(frames.size(), 5u);
+  // a viewer that falls behind skips frames (on a loaded machine this client can): the last one comes
+  ASSERT_GE(frames.size(), 2u);
+  EXPECT_EQ(frames.back().step(), 2000);
   for (const api::Frame& f : frames) {
     EXPECT_EQ(f.particle_count(), 5u);
     EXPECT_EQ(array_of<std::int32_t>(f.fragments()), (std::vector<std::int32_t>{0, 1, 1, 2, 2}));

@@ -1,9 +1,10 @@
-#include "spec/mesh_files.hpp"
+#include "spec/referenced_files.hpp"
 
 #include <filesystem>
 #include <functional>
 
 #include "mesh/mesh_io.hpp"
+#include "spec/clump_template.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::spec {
@@ -18,24 +19,29 @@ void for_each_mesh(api::JobSpec& spec, const std::function<void(api::Mesh&, cons
       visit(*spec.mutable_packings(k)->mutable_inside(), "packings[" + std::to_string(k) + "].inside");
 }
 
+std::filesystem::path resolve(const std::string& name, const std::string& base_dir) {
+  return base_dir.empty() || std::filesystem::path(name).is_absolute() ? std::filesystem::path(name)
+                                                                       : std::filesystem::path(base_dir) / name;
+}
+
 }  // namespace
 
-std::vector<std::string> mesh_file_references(const api::JobSpec& spec) {
+std::vector<std::string> file_references(const api::JobSpec& spec) {
   std::vector<std::string> paths;
   api::JobSpec copy = spec;  // for_each_mesh visits mutable meshes; this only reads
   for_each_mesh(copy, [&](api::Mesh& mesh, const std::string& path) {
     if (!mesh.file().empty()) paths.push_back(path + ".file");
   });
+  for (int k = 0; k < spec.clump_shapes_size(); ++k)
+    if (!spec.clump_shapes(k).file().empty()) paths.push_back("clumpShapes[" + std::to_string(k) + "].file");
   return paths;
 }
 
-void inline_mesh_files(api::JobSpec& spec, const std::string& base_dir) {
+void inline_files(api::JobSpec& spec, const std::string& base_dir) {
   std::vector<std::string> problems;
   for_each_mesh(spec, [&](api::Mesh& mesh, const std::string& path) {
     if (mesh.file().empty()) return;
-    const std::filesystem::path file = base_dir.empty() || std::filesystem::path(mesh.file()).is_absolute()
-                                           ? std::filesystem::path(mesh.file())
-                                           : std::filesystem::path(base_dir) / mesh.file();
+    const std::filesystem::path file = resolve(mesh.file(), base_dir);
     TriangleMesh read;
     try {
       if (mesh.format() == api::Mesh::STL) read = read_stl(file.string());
@@ -60,6 +66,22 @@ void inline_mesh_files(api::JobSpec& spec, const std::string& base_dir) {
       out->set_k(t[2] + 1);
     }
   });
+  for (int k = 0; k < spec.clump_shapes_size(); ++k) {
+    api::ClumpShape& shape = *spec.mutable_clump_shapes(k);
+    if (shape.file().empty() || shape.spheres_size() > 0) continue;  // both given: the loader says so
+    try {
+      for (const MemberSphere& m : read_clump_template(resolve(shape.file(), base_dir).string())) {
+        api::Sphere* out = shape.add_spheres();
+        out->mutable_center()->set_x(m.centre.x());
+        out->mutable_center()->set_y(m.centre.y());
+        out->mutable_center()->set_z(m.centre.z());
+        out->set_radius(m.radius);
+      }
+      shape.clear_file();
+    } catch (const std::runtime_error& e) {
+      problems.push_back("clumpShapes[" + std::to_string(k) + "].file: " + e.what());
+    }
+  }
   if (!problems.empty()) throw SpecError(problems);
 }
 
