@@ -110,6 +110,7 @@ int run_command(const std::vector<std::string>& args) {
     Simulation sim(std::move(scene));
     const bool append = !a.restart.empty();
     if (append) StateIO::read_file(sim, a.restart);
+    const std::int64_t first_step = sim.step_count();  // a continued run starts at its saved step
     std::filesystem::create_directories(a.out);
     std::printf("%s: %zu particles, %zu walls, %lld steps; %s\n", a.spec.c_str(), sim.particles().size(),
                 sim.scene().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
@@ -128,10 +129,12 @@ int run_command(const std::vector<std::string>& args) {
                    outcome.error.c_str(), a.out.c_str());
       return 1;
     }
-    const double rate = static_cast<double>(sim.particles().size()) * static_cast<double>(outcome.steps) /
+    // the steps this run took, which loop_seconds timed (outcome.steps is the step it ended at)
+    const std::int64_t steps_run = outcome.steps - first_step;
+    const double rate = static_cast<double>(sim.particles().size()) * static_cast<double>(steps_run) /
                         std::max(outcome.loop_seconds, 1e-9);
     std::printf("done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d\n",
-                static_cast<long long>(outcome.steps), sim.particles().size(), outcome.loop_seconds, rate,
+                static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate,
                 sim.neighbor_builds());
     return 0;
   } catch (const spec::SpecError& e) {
