@@ -156,6 +156,28 @@ TEST(Clumps, TheMassCentreCountsEachClumpOnce) {
   std::filesystem::remove_all(dir);
 }
 
+// The automatic time step sees a clump's member as the body it moves: the contact time scales with
+// the square root of the body's effective mass at the member, 1 / (1/M + d^2 / I_across) for the
+// two-sphere clump (members d = 6 mm from the centroid on its long axis), not the member's own mass.
+TEST(Clumps, TheTimeStepUsesTheBodysEffectiveMassAtAMember) {
+  const Scene clumped = spec::to_scene(spec::parse_json(clump_spec(0.5, Vec3::UnitZ(),
+                                                                   R"({"shape": "pair", "material": "rock", "position": {"z": 0.05},
+                                                                       "rotationAxis": {"y": 1}, "rotationDegrees": 35})",
+                                                                   kG, 0.01)));
+  Scene single = clumped;
+  single.clumps.clear();
+  single.particles.resize(1);
+  single.particles[0].clump = -1;
+  const double t_clump = Simulation(clumped).time_step().contact_time, t_sphere = Simulation(single).time_step().contact_time;
+  const ClumpInit& c = clumped.clumps[0];
+  const double d = 0.006, m_sphere = 2650 * 4.0 / 3.0 * std::numbers::pi * kR * kR * kR;
+  const double m_eff = 1 / (1 / c.mass + d * d / c.moments[1]);  // moments ascending: [0] about the axis
+  ASSERT_NEAR(c.moments[1], c.moments[2], 1e-12 * c.moments[2]);
+  report("clump contact time / member sphere's", t_clump / t_sphere, std::sqrt(m_eff / m_sphere));
+  EXPECT_NEAR(t_clump / t_sphere, std::sqrt(m_eff / m_sphere), 1e-9);
+  EXPECT_GT(m_eff, m_sphere);
+}
+
 TEST(Clumps, ARunContinuedFromItsSavedStateIsTheUninterruptedRunBitForBit) {
   const std::string spec = clump_spec(0.5, Vec3::UnitZ(),
                                       R"({"shape": "pair", "material": "rock", "position": {"z": 0.03}, "angularVelocity": {"y": 4}},
