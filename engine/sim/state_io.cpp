@@ -9,7 +9,7 @@
 namespace dem {
 namespace {
 
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '1'};
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '2'};  // 2: walls' load clocks
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
@@ -101,7 +101,11 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   SimState& s = sim.state_;
   Reader r(in);
   char magic[sizeof kMagic];
-  if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+  if (!in.read(magic, sizeof magic)) throw std::runtime_error("not a saved state of this engine (too short)");
+  if (std::memcmp(magic, kMagic, sizeof kMagic - 1) == 0 && magic[7] != kMagic[7])
+    throw std::runtime_error(std::string("a saved state of another version of this engine (format ") + magic[7] +
+                             ", this one reads " + kMagic[7] + "): run the job again from its start");
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0)
     throw std::runtime_error("not a saved state of this engine (wrong first bytes)");
   std::uint64_t particles = 0, walls = 0, bonds = 0;
   double dt = 0;
@@ -149,9 +153,17 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(s.walls, "the walls");
   std::vector<WallPose> mesh_poses(s.meshes.size());
   for (WallPose& pose : mesh_poses) r.get(pose, "the walls");
-  for (WallDriver& d : sim.drivers_) r.get(d, "the walls");
-  for (std::size_t m = 0; m < s.meshes.size(); ++m)  // a fixed mesh keeps its vertices as read from the spec
-    if (sim.drivers_[s.meshes[m].boundary].moves()) s.meshes[m].move_to(mesh_poses[m]);
+  std::vector<WallDriver> saved_drivers(sim.drivers_.size());
+  for (WallDriver& d : saved_drivers) r.get(d, "the walls");
+  for (std::size_t m = 0; m < s.meshes.size(); ++m)  // a mesh that never moved keeps its vertices as read from the spec
+    if (saved_drivers[s.meshes[m].boundary].moves()) s.meshes[m].move_to(mesh_poses[m]);
+  for (std::size_t k = 0; k < saved_drivers.size(); ++k) {
+    try {
+      sim.drivers_[k].continue_from(saved_drivers[k], sim.time());
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error("walls[" + std::to_string(k) + "] (" + sim.scene_.walls[k].name + "): " + e.what());
+    }
+  }
   r.get(sim.pose_at_build_, "the walls");
   r.get(sim.boundary_loads_, "the walls");
   r.get(sim.growth_at_build_, "the walls");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 namespace dem {
 
@@ -53,7 +54,7 @@ void WallDriver::end_step(double t_new, double dt, const Vec3& reaction) {
   // The particles push the wall with `reaction`; the wall pushes them with its opposite.
   applied_force_ = -reaction.dot(d);
   if (load_->kind == LoadControl::Kind::Cyclic) {
-    const double force = load_->force_at(t_new) - applied_force_;
+    const double force = load_->force_at(t_new - load_start_) - applied_force_;
     accel_ = force / load_->mass + gravity_along_;
     speed_ += 0.5 * dt * accel_;  // second half kick
   } else {
@@ -65,6 +66,47 @@ void WallDriver::end_step(double t_new, double dt, const Vec3& reaction) {
 
 double WallDriver::load_displacement() const { return load_ ? pose_.displacement.dot(load_->direction) : 0.0; }
 
-double WallDriver::prescribed_force(double t) const { return load_ ? load_->force_at(t) : 0.0; }
+double WallDriver::prescribed_force(double t) const { return load_ ? load_->force_at(t - load_start_) : 0.0; }
+
+namespace {
+
+bool same_motion(const std::optional<PrescribedMotion>& a, const std::optional<PrescribedMotion>& b) {
+  if (!a || !b) return !a && !b;
+  return a->velocity == b->velocity && a->amplitude == b->amplitude && a->frequency == b->frequency &&
+         a->phase == b->phase && a->angular_velocity == b->angular_velocity && a->center == b->center;
+}
+
+bool same_load(const std::optional<LoadControl>& a, const std::optional<LoadControl>& b) {
+  if (!a || !b) return !a && !b;
+  return a->kind == b->kind && a->direction == b->direction && a->mass == b->mass && a->f_min == b->f_min &&
+         a->f_max == b->f_max && a->frequency == b->frequency && a->cycles == b->cycles && a->target == b->target &&
+         a->gain == b->gain && a->max_speed == b->max_speed;
+}
+
+}  // namespace
+
+void WallDriver::continue_from(const WallDriver& saved, double now) {
+  if (!same_motion(motion_, saved.motion_))
+    throw std::runtime_error("its prescribed motion differs from the saved run's: a continued run may change a wall's "
+                             "load, not its motion (a motion is a function of the time since the start)");
+  if (same_load(load_, saved.load_)) {
+    const double gravity_along = gravity_along_;  // this spec's gravity
+    *this = saved;
+    gravity_along_ = gravity_along;
+    return;
+  }
+  pose_ = saved.pose_;
+  pose_.angular_velocity = Vec3::Zero();
+  if (!load_) {  // dropped: the wall stays where it is
+    pose_.velocity = Vec3::Zero();
+    return;
+  }
+  const bool same_direction = saved.load_ && saved.load_->direction == load_->direction;
+  speed_ = saved.pose_.velocity.dot(load_->direction);
+  accel_ = same_direction ? saved.accel_ : 0.0;
+  applied_force_ = same_direction ? saved.applied_force_ : 0.0;
+  pose_.velocity = speed_ * load_->direction;
+  load_start_ = now;
+}
 
 }  // namespace dem

@@ -44,6 +44,14 @@ class WallDriver {
   // The force the load prescribes at time t (the servo's target), N.
   double prescribed_force(double t) const;
 
+  // A continued run: this driver (from the continued run's spec) takes over from `saved` (the
+  // saved run's) at time `now`. The wall stays where the saved run left it. An unchanged load goes
+  // on as if never interrupted; a load added or changed starts now (a cyclic load's clock at zero
+  // now), keeping the wall's speed along its direction; a dropped load leaves the wall at rest
+  // where it is: a bed settled, then loaded (BallastDEM's two stages). Prescribed motions are
+  // functions of the time since the start, so they cannot change: throws std::runtime_error.
+  void continue_from(const WallDriver& saved, double now);
+
  private:
   std::optional<PrescribedMotion> motion_;
   std::optional<LoadControl> load_;
@@ -52,6 +60,7 @@ class WallDriver {
   double speed_ = 0;          // along the load direction
   double accel_ = 0;
   double applied_force_ = 0;
+  double load_start_ = 0;     // the time the load began (its cyclic clock's zero)
 };
 
 }  // namespace dem

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
+#include "sim/state_io.hpp"
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
@@ -90,6 +92,70 @@ TEST(ServoPlate, HoldsItsTargetForce) {
   }
   report("servo plate: largest |force - target| / target over the last 50 ms", worst / load.target, 0.0);
   EXPECT_LT(worst, 0.01 * load.target);
+}
+
+LoadControl cyclic_load() {
+  LoadControl load;
+  load.kind = LoadControl::Kind::Cyclic;
+  load.direction = {0, 0, -1};
+  load.mass = kPlateMass;
+  load.f_min = 100;
+  load.f_max = 1000;
+  load.frequency = 5;
+  load.cycles = 3;
+  return load;
+}
+
+// BallastDEM's two stages: the bed settles under a plate that only rests on it, the state is saved,
+// and a run continued from it with a spec that loads the plate follows the load's cycle from the
+// continuation on (its clock starts there).
+TEST(LoadedPlate, AContinuedRunTakesTheLoadItsSpecAdds) {
+  const LoadControl load = cyclic_load();
+  Scene resting = loaded_bed(load, 0);
+  resting.walls.back().load.reset();
+  Simulation first(resting);
+  while (first.time() < 0.05) first.step();
+  std::stringstream saved;
+  StateIO::write(first, saved);
+  Simulation second(loaded_bed(load, 0));
+  StateIO::read(second, saved);
+  const double t0 = second.time();
+  ASSERT_NEAR(t0, first.time(), 1e-15);
+  const int plate = static_cast<int>(second.scene().walls.size()) - 1;
+  double worst = 0;
+  while (second.time() < t0 + 0.6) {
+    second.step();
+    const double t = second.time() - t0;
+    ASSERT_EQ(second.wall_driver(plate).prescribed_force(second.time()), load.force_at(t));
+    if (t < 0.4) continue;  // two cycles settle the bed under the load
+    worst = std::max(worst, std::abs(second.wall_driver(plate).applied_force() - (load.force_at(t) + kPlateMass * kG)));
+  }
+  report("continued run, load added: largest |applied - prescribed| / F_max", worst / load.f_max, 0.0);
+  EXPECT_LT(worst, 0.01 * load.f_max);
+}
+
+// A prescribed motion is a function of the time since the start: a continued run cannot change it,
+// and says which wall.
+TEST(LoadedPlate, AContinuedRunRefusesAChangedMotion) {
+  Scene moving = loaded_bed(cyclic_load(), 0.002);
+  moving.walls.back().load.reset();
+  moving.walls.back().motion = PrescribedMotion{};
+  moving.walls.back().motion->velocity = {0, 0, -0.01};
+  Simulation first(moving);
+  for (int k = 0; k < 10; ++k) first.step();
+  std::stringstream saved;
+  StateIO::write(first, saved);
+  Scene still = moving;
+  still.walls.back().motion->velocity = {0, 0, -0.02};
+  Simulation second(still);
+  try {
+    StateIO::read(second, saved);
+    FAIL() << "expected the changed motion to be refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("walls[5] (sleeper): its prescribed motion differs from the saved run's"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
