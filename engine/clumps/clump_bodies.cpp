@@ -5,10 +5,15 @@
 namespace dem {
 namespace {
 
+// Below this many bodies (or members) a loop runs on one thread: the threads' start costs more.
+constexpr int kParallelMinBodies = 256;
+
 // Each body's angular velocity, found once for all its members.
 std::vector<Vec3> spins(const ClumpBodies& bodies) {
+  const int nb = static_cast<int>(bodies.size());
   std::vector<Vec3> w(bodies.size());
-  for (std::size_t b = 0; b < bodies.size(); ++b) w[b] = angular_velocity(bodies.rotation[b], bodies.moments[b]);
+#pragma omp parallel for schedule(static) if (nb >= kParallelMinBodies)
+  for (int b = 0; b < nb; ++b) w[b] = angular_velocity(bodies.rotation[b], bodies.moments[b]);
   return w;
 }
 
@@ -16,6 +21,7 @@ std::vector<Vec3> spins(const ClumpBodies& bodies) {
 void move_members(const ClumpBodies& bodies, Particles& p, bool place) {
   const std::vector<Vec3> w = spins(bodies);
   const int n = static_cast<int>(p.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMinBodies)
   for (int i = 0; i < n; ++i) {
     const int b = p.body[i];
     if (b < 0) continue;
@@ -62,7 +68,9 @@ void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p) {
 }
 
 double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt) {
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
+  const int nb = static_cast<int>(bodies.size());
+#pragma omp parallel for schedule(static) if (nb >= kParallelMinBodies)
+  for (int b = 0; b < nb; ++b) {
     bodies.v[b] += (0.5 * dt / bodies.mass[b]) * bodies.force[b];
     bodies.x[b] += dt * bodies.v[b];
     bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
@@ -70,30 +78,43 @@ double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& 
   }
   move_members(bodies, p, true);
   double moved2 = 0;
-  for (std::size_t i = 0; i < p.size(); ++i)
+  const int n = static_cast<int>(p.size());
+#pragma omp parallel for schedule(static) reduction(max : moved2) if (n >= kParallelMinBodies)
+  for (int i = 0; i < n; ++i)
     if (p.body[i] >= 0) moved2 = std::max(moved2, (p.x[i] - x_at_build[i]).squaredNorm());
   return moved2;
 }
 
 void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt) {
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    bodies.force[b] = bodies.mass[b] * gravity;
-    bodies.torque[b].setZero();
+  // Each body's members in particle order (a counting sort: the order changes with every re-sort),
+  // so that each body sums its members in that order: the same sums on any number of threads.
+  const int n = static_cast<int>(p.size()), nb = static_cast<int>(bodies.size());
+  std::vector<int> start(bodies.size() + 1, 0), members;
+  for (int i = 0; i < n; ++i)
+    if (p.body[i] >= 0) ++start[p.body[i] + 1];
+  for (int b = 0; b < nb; ++b) start[b + 1] += start[b];
+  members.resize(start[nb]);
+  {
+    std::vector<int> next(start.begin(), start.end() - 1);
+    for (int i = 0; i < n; ++i)
+      if (p.body[i] >= 0) members[next[p.body[i]]++] = i;
   }
-  // in particle order: the same sums on any number of threads
-  const int n = static_cast<int>(p.size());
-  for (int i = 0; i < n; ++i) {
-    const int b = p.body[i];
-    if (b < 0) continue;
-    const Vec3 contact = p.f[i] - p.mass[i] * gravity;
-    bodies.force[b] += contact;
-    bodies.torque[b] += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
+#pragma omp parallel for schedule(static) if (nb >= kParallelMinBodies)
+  for (int b = 0; b < nb; ++b) {
+    Vec3 force = bodies.mass[b] * gravity, torque = Vec3::Zero();
+    for (int k = start[b]; k < start[b + 1]; ++k) {
+      const int i = members[k];
+      const Vec3 contact = p.f[i] - p.mass[i] * gravity;
+      force += contact;
+      torque += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
+    }
+    bodies.force[b] = force;
+    bodies.torque[b] = torque;
+    if (dt == 0) continue;
+    bodies.v[b] += (0.5 * dt / bodies.mass[b]) * force;
+    bodies.rotation[b].angular_momentum += 0.5 * dt * torque;
   }
   if (dt == 0) return;
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    bodies.v[b] += (0.5 * dt / bodies.mass[b]) * bodies.force[b];
-    bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
-  }
   move_members(bodies, p, false);  // the velocities and spins the kick changed
 }
 
