@@ -145,89 +145,119 @@ class ForceKernelImpl final : public ForceKernel {
 
     LawParams<T> params{};
     int params_of = -1;  // material pair whose coefficients fill every lane of params, -1 if mixed
+    // The stream goes in chunks of kGroups groups, each in two passes. The first finds every group's
+    // distance, overlap and normal: its square roots and divisions are independent from group to
+    // group and overlap in the pipeline, where inside one pass they held up everything after them.
+    // It also asks for the cache lines of j that the second pass reads and writes: j is often the
+    // sphere of the next layer, not yet in L1, and the second pass needs it at its very end.
+    constexpr int kGroups = 16;
+    using Mask = decltype(T{} < T{});
+    struct Geometry {
+      int k[W], i[W], j[W], to[W];  // pair, i, j, where j's share goes
+      int used;
+      Mask touching;
+      V3<T> n;
+      T delta, ri, rj;
+    } geometry[kGroups];
     const int k_end = nl.row_start[end];
-    for (int k0 = nl.row_start[begin]; k0 < k_end; k0 += W) {
-      const int used = std::min(W, k_end - k0);
-      int kv[W], iv[W], jv[W];
-      for (int l = 0; l < W; ++l) {
-        kv[l] = k0 + std::min(l, used - 1);
-        iv[l] = owner[kv[l]];
-        jv[l] = partner[kv[l]];
-      }
-      const V3<T> xi = gather<T>(x, iv), xj = gather<T>(x, jv);
-      const T ri = gather<T>(radius, iv), rj = gather<T>(radius, jv);
-      const V3<T> d = xi - xj;
-      const T dist = lane_sqrt(squared_norm(d));
-      const T rs = ri + rj;
-      const auto touching = dist < rs;
-      if (!any_lane(touching)) {
-        for (int l = 0; l < used; ++l) part(kv[l]);
-        continue;
-      }
-
-      int pair_of[W];
-      bool same = true;
-      for (int l = 0; l < W; ++l) {
-        pair_of[l] = material[iv[l]] * materials + material[jv[l]];
-        same = same && pair_of[l] == params_of;
-      }
-      if (!same) {
-        bool uniform = true;
+    for (int chunk = nl.row_start[begin]; chunk < k_end; chunk += kGroups * W) {
+      const int groups = std::min(kGroups, (k_end - chunk + W - 1) / W);
+      for (int g = 0; g < groups; ++g) {
+        Geometry& geo = geometry[g];
+        const int k0 = chunk + g * W;
+        geo.used = std::min(W, k_end - k0);
         for (int l = 0; l < W; ++l) {
-          params.set(l, table(material[iv[l]], material[jv[l]]));
-          uniform = uniform && pair_of[l] == pair_of[0];
+          geo.k[l] = k0 + std::min(l, geo.used - 1);
+          geo.i[l] = owner[geo.k[l]];
+          geo.j[l] = partner[geo.k[l]];
+          geo.to[l] = target[geo.k[l]];
+          __builtin_prefetch(&sums[geo.to[l]], 1);
+          __builtin_prefetch(&v[geo.j[l]]);
+          __builtin_prefetch(&w[geo.j[l]]);
+          __builtin_prefetch(&kick[geo.j[l]]);
         }
-        params_of = uniform ? pair_of[0] : -1;
+        const V3<T> d = gather<T>(x, geo.i) - gather<T>(x, geo.j);
+        geo.ri = gather<T>(radius, geo.i);
+        geo.rj = gather<T>(radius, geo.j);
+        const T dist = lane_sqrt(squared_norm(d));
+        const T rs = geo.ri + geo.rj;
+        geo.touching = dist < rs;
+        if (!any_lane(geo.touching)) continue;
+        geo.n = d * (1.0 / dist);
+        geo.delta = rs - dist;
       }
-
-      const V3<T> wi = gather<T>(w, iv), wj = gather<T>(w, jv);
-      ContactInput<T> c;
-      c.n = d * (1.0 / dist);
-      c.delta = rs - dist;
-      c.v_rel = gather<T>(v, iv) - gather<T>(v, jv) - cross(ri * wi + rj * wj, c.n);
-      const T vn = dot(c.v_rel, c.n);
-      // full-step prediction: v(n+1) ~ v(n+1/2) + (the first half kick again)
-      c.vn_now = vn + dot(gather<T>(kick, iv) - gather<T>(kick, jv), c.n);
-      c.onset = boundary_share(c.delta, vn, dt);
-      c.w_rel = wi - wj;
-      c.sqrt_m_eff = gather<T>(sqrt_m_eff, kv);
-      c.r_eff = Law::kNeedsEffectiveRadius ? gather<T>(r_eff, kv) : T{};
-      c.i_roll = Law::kRolling ? gather<T>(i_roll, kv) : T{};
-      c.dt = dt;
-      V3<T> spring = gather<T>(shear, kv);
-      V3<T> roll_spring = Law::kRollingSpring ? gather<T>(roll, kv) : V3<T>::zero();
-      const ContactOutput<T> r = Law::evaluate(params, c, spring, roll_spring);
-      const V3<T> lever = cross(c.n, r.shear_force);
-      V3<T> torque_i = -(ri * lever), torque_j = -(rj * lever);
-      if constexpr (Law::kRolling) {
-        torque_i = torque_i + r.roll_moment;
-        torque_j = torque_j - r.roll_moment;
-      }
-      T ft2{};
-      if constexpr (kRecord) ft2 = squared_norm(r.shear_force);
-      Lanes4 force_of[W], torque_i_of[W], torque_j_of[W];
-      lane_quads(r.force, force_of);
-      lane_quads(torque_i, torque_i_of);
-      lane_quads(torque_j, torque_j_of);
-
-      for (int l = 0; l < used; ++l) {
-        const int k = kv[l];
-        if (!lane_on(touching, l)) {
-          part(k);
+      for (int g = 0; g < groups; ++g) {
+        const Geometry& geo = geometry[g];
+        const int *kv = geo.k, *iv = geo.i, *jv = geo.j;
+        if (!any_lane(geo.touching)) {
+          for (int l = 0; l < geo.used; ++l) part(kv[l]);
           continue;
         }
-        BodySums& on_i = sums[iv[l]];
-        BodySums& on_j = sums[target[k]];
-        on_i.f = on_i.f + force_of[l];
-        on_i.t = on_i.t + torque_i_of[l];
-        on_j.f = on_j.f - force_of[l];
-        on_j.t = on_j.t + torque_j_of[l];
-        shear[k] = spring.get(l);
-        if constexpr (Law::kRollingSpring) roll[k] = roll_spring.get(l);
-        if constexpr (kRecord) {
-          out_fn[k] = lane(r.fn, l);
-          out_ft2[k] = lane(ft2, l);
-          out_touching[k] = 1;
+        int pair_of[W];
+        bool same = true;
+        for (int l = 0; l < W; ++l) {
+          pair_of[l] = material[iv[l]] * materials + material[jv[l]];
+          same = same && pair_of[l] == params_of;
+        }
+        if (!same) {
+          bool uniform = true;
+          for (int l = 0; l < W; ++l) {
+            params.set(l, table(material[iv[l]], material[jv[l]]));
+            uniform = uniform && pair_of[l] == pair_of[0];
+          }
+          params_of = uniform ? pair_of[0] : -1;
+        }
+
+        const V3<T> wi = gather<T>(w, iv), wj = gather<T>(w, jv);
+        ContactInput<T> c;
+        const T ri = geo.ri, rj = geo.rj;
+        c.n = geo.n;
+        c.delta = geo.delta;
+        c.v_rel = gather<T>(v, iv) - gather<T>(v, jv) - cross(ri * wi + rj * wj, c.n);
+        const T vn = dot(c.v_rel, c.n);
+        // full-step prediction: v(n+1) ~ v(n+1/2) + (the first half kick again)
+        c.vn_now = vn + dot(gather<T>(kick, iv) - gather<T>(kick, jv), c.n);
+        c.onset = boundary_share(c.delta, vn, dt);
+        c.w_rel = wi - wj;
+        c.sqrt_m_eff = gather<T>(sqrt_m_eff, kv);
+        c.r_eff = Law::kNeedsEffectiveRadius ? gather<T>(r_eff, kv) : T{};
+        c.i_roll = Law::kRolling ? gather<T>(i_roll, kv) : T{};
+        c.dt = dt;
+        V3<T> spring = gather<T>(shear, kv);
+        V3<T> roll_spring = Law::kRollingSpring ? gather<T>(roll, kv) : V3<T>::zero();
+        const ContactOutput<T> r = Law::evaluate(params, c, spring, roll_spring);
+        const V3<T> lever = cross(c.n, r.shear_force);
+        V3<T> torque_i = -(ri * lever), torque_j = -(rj * lever);
+        if constexpr (Law::kRolling) {
+          torque_i = torque_i + r.roll_moment;
+          torque_j = torque_j - r.roll_moment;
+        }
+        T ft2{};
+        if constexpr (kRecord) ft2 = squared_norm(r.shear_force);
+        Lanes4 force_of[W], torque_i_of[W], torque_j_of[W];
+        lane_quads(r.force, force_of);
+        lane_quads(torque_i, torque_i_of);
+        lane_quads(torque_j, torque_j_of);
+
+        for (int l = 0; l < geo.used; ++l) {
+          const int k = kv[l];
+          if (!lane_on(geo.touching, l)) {
+            part(k);
+            continue;
+          }
+          BodySums& on_i = sums[iv[l]];
+          BodySums& on_j = sums[geo.to[l]];
+          on_i.f = on_i.f + force_of[l];
+          on_i.t = on_i.t + torque_i_of[l];
+          on_j.f = on_j.f - force_of[l];
+          on_j.t = on_j.t + torque_j_of[l];
+          shear[k] = spring.get(l);
+          if constexpr (Law::kRollingSpring) roll[k] = roll_spring.get(l);
+          if constexpr (kRecord) {
+            out_fn[k] = lane(r.fn, l);
+            out_ft2[k] = lane(ft2, l);
+            out_touching[k] = 1;
+          }
         }
       }
     }
