@@ -95,7 +95,8 @@ struct SimState {
   NeighborList neighbors;
   PairResults pairs;
   BlockPlan blocks;
-  std::vector<Vec3> f_next;     // bond forces of this step (the pairs' are in blocks.sums, the last step's total in particles.f)
+  // bond forces of this step (the pairs' are summed in blocks.sums, the last step's total is particles.f)
+  std::vector<Vec3> f_next;
   std::vector<Vec3> half_kick;  // velocity change of this step's first half kick, dt/2 f/m
   std::vector<Wall> walls;         // planes and plates
   WallContacts wall_contacts;
