@@ -81,7 +81,9 @@ struct LawParams {
 template <class T>
 DEM_HOT T boundary_share(T delta, T vn, T dt) {
   const T travel = lane_abs(vn) * dt;
-  return select(delta < travel, 0.5 + delta / travel, splat<T>(1.0));
+  const auto boundary = delta < travel;
+  if (!any_lane(boundary)) return splat<T>(1.0);  // nearly always: skip the division
+  return select(boundary, 0.5 + delta / travel, splat<T>(1.0));
 }
 
 template <class T>
@@ -143,10 +145,13 @@ struct FrictionalTangent {
     const V3<T> elastic = -nr.kt * shear;
     const T elastic2 = squared_norm(elastic);
     const auto sliding = elastic2 > limit2;
-    const T slide_scale = limit / lane_sqrt(elastic2);  // only kept where sliding (elastic2 > 0)
     V3<T> fs = elastic - nr.ct * v_t;
     const T fs2 = squared_norm(fs);
-    fs = select(fs2 > limit2, fs * (limit / lane_sqrt(fs2)), fs);
+    const auto capped = fs2 > limit2;
+    // Most contacts stick below the limit: the square roots and divisions only when a lane needs them.
+    if (!any_lane(sliding) && !any_lane(capped)) return fs;
+    const T slide_scale = limit / lane_sqrt(elastic2);  // only kept where sliding (elastic2 > 0)
+    fs = select(capped, fs * (limit / lane_sqrt(fs2)), fs);
     shear = select(sliding, shear * slide_scale, shear);
     return select(sliding, slide_scale * elastic, fs);
   }

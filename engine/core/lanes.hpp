@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <type_traits>
 
 #include "core/vec.hpp"
@@ -30,6 +31,14 @@ struct LanesOf<4> {
 template <int W>
 using Lanes = typename LanesOf<W>::type;
 static_assert(sizeof(Lanes4) == 4 * sizeof(double));
+typedef double Lanes2 __attribute__((vector_size(16)));
+
+// Two consecutive doubles as one 16-byte load (no alignment needed).
+DEM_LANES_INLINE Lanes2 load_pair(const double* p) {
+  Lanes2 r;
+  std::memcpy(&r, p, sizeof r);
+  return r;
+}
 
 template <class T>
 constexpr int lane_count() {
@@ -133,6 +142,7 @@ struct V3 {
 };
 
 DEM_LANES_INLINE V3<double> to_v3(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+DEM_LANES_INLINE Vec3 as_vec3(const Lanes4& q) { return {q[0], q[1], q[2]}; }  // (x, y, z, pad)
 
 template <class T>
 DEM_LANES_INLINE V3<T> broadcast(const Vec3& v) {
@@ -145,13 +155,35 @@ DEM_LANES_INLINE T gather(const double* values, const int* index) {
   if constexpr (std::is_same_v<T, double>) return values[index[0]];
   else return T{values[index[0]], values[index[1]], values[index[2]], values[index[3]]};
 }
+// Vectors: x and y of each lane as one 16-byte load, two of them joined and interleaved (4 shuffles
+// for x and y of four lanes instead of 8 single loads and their inserts); z as four single loads.
 template <class T>
 DEM_LANES_INLINE V3<T> gather(const Vec3* values, const int* index) {
   if constexpr (std::is_same_v<T, double>) {
     return to_v3(values[index[0]]);
   } else {
-    const Vec3 &a = values[index[0]], &b = values[index[1]], &c = values[index[2]], &d = values[index[3]];
-    return {T{a.x(), b.x(), c.x(), d.x()}, T{a.y(), b.y(), c.y(), d.y()}, T{a.z(), b.z(), c.z(), d.z()}};
+    const double *a = values[index[0]].data(), *b = values[index[1]].data(), *c = values[index[2]].data(),
+                 *d = values[index[3]].data();
+    const T ac = __builtin_shufflevector(load_pair(a), load_pair(c), 0, 1, 2, 3);  // ax ay cx cy
+    const T bd = __builtin_shufflevector(load_pair(b), load_pair(d), 0, 1, 2, 3);  // bx by dx dy
+    return {__builtin_shufflevector(ac, bd, 0, 4, 2, 6), __builtin_shufflevector(ac, bd, 1, 5, 3, 7),
+            T{a[2], b[2], c[2], d[2]}};
+  }
+}
+
+// Each lane's vector as four doubles (x, y, z, 0), the form of the padded sums (sim/state.hpp).
+template <class T>
+DEM_LANES_INLINE void lane_quads(const V3<T>& v, Lanes4 (&out)[lane_count<T>()]) {
+  if constexpr (std::is_same_v<T, double>) {
+    out[0] = Lanes4{v.x, v.y, v.z, 0.0};
+  } else {  // a 4x4 transpose of (x, y, z, 0)
+    const T zero{};
+    const T xy02 = __builtin_shufflevector(v.x, v.y, 0, 4, 2, 6), xy13 = __builtin_shufflevector(v.x, v.y, 1, 5, 3, 7);
+    const T z02 = __builtin_shufflevector(v.z, zero, 0, 4, 2, 6), z13 = __builtin_shufflevector(v.z, zero, 1, 5, 3, 7);
+    out[0] = __builtin_shufflevector(xy02, z02, 0, 1, 4, 5);
+    out[1] = __builtin_shufflevector(xy13, z13, 0, 1, 4, 5);
+    out[2] = __builtin_shufflevector(xy02, z02, 2, 3, 6, 7);
+    out[3] = __builtin_shufflevector(xy13, z13, 2, 3, 6, 7);
   }
 }
 

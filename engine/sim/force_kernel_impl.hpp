@@ -18,8 +18,13 @@ class ForceKernelImpl final : public ForceKernel {
   void compute_and_kick(SimState& s) override {
     if (s.record_contacts) evaluate_pairs<true>(s);
     else evaluate_pairs<false>(s);
-    if (!s.bonds.empty()) s.bonds.step(s.particles, s.dt, s.time, s.f_next, s.particles.t);
-    gather_and_kick(s);
+    const bool bonded = !s.bonds.empty();
+    if (bonded) {  // bonds add to f_next and particles.t; the kick adds those to the pairs' sums
+      std::fill(s.f_next.begin(), s.f_next.end(), Vec3::Zero());
+      std::fill(s.particles.t.begin(), s.particles.t.end(), Vec3::Zero());
+      s.bonds.step(s.particles, s.dt, s.time, s.f_next, s.particles.t);
+    }
+    gather_and_kick(s, bonded);
   }
 
   bool has_rolling_spring() const override { return Law::kRollingSpring; }
@@ -78,10 +83,6 @@ class ForceKernelImpl final : public ForceKernel {
 #pragma omp parallel for schedule(dynamic, 1) if (blocks > 1)
     for (int b = 0; b < blocks; ++b) {
       const int begin = b * size, end = std::min(n, begin + size);
-      for (int i = begin; i < end; ++i) {
-        s.f_next[i].setZero();
-        s.particles.t[i].setZero();
-      }
 #if DEM_HAS_AVX2_LANES
       if (lanes == 4) {
         pairs_of_block_avx2<kRecord>(s, begin, end);
@@ -101,16 +102,16 @@ class ForceKernelImpl final : public ForceKernel {
   }
 #endif
 
-  // The rows begin..end, each W pairs at a time (a row's last group padded by repeating its last
-  // pair, whose extra lanes are then left out). Body i is the same in every lane. Its force and
-  // torque are summed in four running sums, the m-th pair of the row going to sum m mod 4, which are
-  // added at the end of the row as ((s0 + s1) + (s2 + s3)); j's shares are written lane by lane in
-  // pair order after all reads of the group. Every sum is thus made in the same order for W = 1
-  // and W = 4, and the results are bit-identical.
+  // The pairs of rows begin..end taken as one stream, W consecutive pairs at a time whatever rows
+  // they belong to: a row of the half list holds ~6 pairs, and filling the lanes row by row left a
+  // quarter of them idle. Each lane has its own i and j; the block's last group repeats its last pair
+  // in the spare lanes, whose results are dropped. The shares are then added lane by lane in pair
+  // order to the padded sums of the block plan (i's, then j's or j's deferred slot), so every sum is
+  // made in pair order for W = 1 and W = 4 alike: the results are bit-identical.
   template <int W, bool kRecord>
   DEM_HOT static void pairs_of_block(SimState& s, int begin, int end) {
     using T = Lanes<W>;
-    // Raw restrict pointers: the loop writes forces and springs, and without them the compiler must
+    // Raw restrict pointers: the loop writes sums and springs, and without them the compiler must
     // assume every write may change the positions, radii or the vectors themselves and reload them.
     const Particles& p = s.particles;
     NeighborList& nl = s.neighbors;
@@ -120,18 +121,15 @@ class ForceKernelImpl final : public ForceKernel {
     const Vec3* __restrict kick = s.half_kick.data();
     const double* __restrict radius = p.radius.data();
     const int* __restrict material = p.material.data();
-    const int* __restrict row_start = nl.row_start.data();
     const int* __restrict partner = nl.partner.data();
+    const int* __restrict owner = s.blocks.owner.data();
+    const int* __restrict target = s.blocks.target.data();
     const double* __restrict sqrt_m_eff = nl.sqrt_m_eff.data();
     const double* __restrict r_eff = nl.r_eff.data();
     const double* __restrict i_roll = nl.i_roll.data();
     Vec3* __restrict shear = nl.shear.data();
     Vec3* __restrict roll = nl.roll.data();
-    Vec3* __restrict f_next = s.f_next.data();
-    Vec3* __restrict torque = s.particles.t.data();
-    const int* __restrict slot = s.blocks.slot.data();
-    Vec3* __restrict deferred_force = s.blocks.deferred_force.data();
-    Vec3* __restrict deferred_torque = s.blocks.deferred_torque.data();
+    BodySums* __restrict sums = s.blocks.sums.data();
     double* __restrict out_fn = s.pairs.fn.data();
     double* __restrict out_ft2 = s.pairs.ft_squared.data();
     std::uint8_t* __restrict out_touching = s.pairs.touching.data();
@@ -139,70 +137,86 @@ class ForceKernelImpl final : public ForceKernel {
     const int materials = table.material_count();
     const T dt = splat<T>(s.dt);
 
-    auto part = [&](int k) {  // a listed pair that does not touch: its history and its share end
+    auto part = [&](int k) {  // a listed pair that does not touch: its history ends
       if (!shear[k].isZero(0)) shear[k].setZero();
       if constexpr (Law::kRollingSpring) roll[k].setZero();
-      if (slot[k] >= 0) {
-        deferred_force[slot[k]].setZero();
-        deferred_torque[slot[k]].setZero();
-      }
       if constexpr (kRecord) out_touching[k] = 0;
     };
 
     LawParams<T> params{};
     int params_of = -1;  // material pair whose coefficients fill every lane of params, -1 if mixed
-    for (int i = begin; i < end; ++i) {
-      const int row_begin = row_start[i], row_end = row_start[i + 1];
-      if (row_begin == row_end) continue;
-      const V3<T> xi = broadcast<T>(x[i]), vi = broadcast<T>(v[i]), wi = broadcast<T>(w[i]),
-                  kick_i = broadcast<T>(kick[i]);
-      const T ri = splat<T>(radius[i]);
-      const int mi = material[i];
-      constexpr int kSums = 4 / W;  // running sums of each kind: 4 lanes of one, or 4 of W = 1
-      V3<T> sum_f[kSums], sum_t[kSums];
-      for (int m = 0; m < kSums; ++m) sum_f[m] = sum_t[m] = V3<T>::zero();
-      for (int k0 = row_begin; k0 < row_end; k0 += W) {
-        const int used = std::min(W, row_end - k0);
-        const int m = ((k0 - row_begin) / W) % kSums;
-        int kv[W], jv[W];
+    // The stream goes in chunks of kGroups groups, each in two passes. The first finds every group's
+    // distance, overlap and normal: its square roots and divisions are independent from group to
+    // group and overlap in the pipeline, where inside one pass they held up everything after them.
+    // It also asks for the cache lines of j that the second pass reads and writes: j is often the
+    // sphere of the next layer, not yet in L1, and the second pass needs it at its very end.
+    constexpr int kGroups = 16;
+    using Mask = decltype(T{} < T{});
+    struct Geometry {
+      int k[W], i[W], j[W], to[W];  // pair, i, j, where j's share goes
+      int used;
+      Mask touching;
+      V3<T> n;
+      T delta, ri, rj;
+    } geometry[kGroups];
+    const int k_end = nl.row_start[end];
+    for (int chunk = nl.row_start[begin]; chunk < k_end; chunk += kGroups * W) {
+      const int groups = std::min(kGroups, (k_end - chunk + W - 1) / W);
+      for (int g = 0; g < groups; ++g) {
+        Geometry& geo = geometry[g];
+        const int k0 = chunk + g * W;
+        geo.used = std::min(W, k_end - k0);
         for (int l = 0; l < W; ++l) {
-          kv[l] = k0 + std::min(l, used - 1);
-          jv[l] = partner[kv[l]];
+          geo.k[l] = k0 + std::min(l, geo.used - 1);
+          geo.i[l] = owner[geo.k[l]];
+          geo.j[l] = partner[geo.k[l]];
+          geo.to[l] = target[geo.k[l]];
+          __builtin_prefetch(&sums[geo.to[l]], 1);
+          __builtin_prefetch(&v[geo.j[l]]);
+          __builtin_prefetch(&w[geo.j[l]]);
+          __builtin_prefetch(&kick[geo.j[l]]);
         }
-        const V3<T> xj = gather<T>(x, jv);
-        const T rj = gather<T>(radius, jv);
-        const V3<T> d = xi - xj;
+        const V3<T> d = gather<T>(x, geo.i) - gather<T>(x, geo.j);
+        geo.ri = gather<T>(radius, geo.i);
+        geo.rj = gather<T>(radius, geo.j);
         const T dist = lane_sqrt(squared_norm(d));
-        const T rs = ri + rj;
-        const auto touching = dist < rs;
-        if (!any_lane(touching)) {
-          for (int l = 0; l < used; ++l) part(kv[l]);
+        const T rs = geo.ri + geo.rj;
+        geo.touching = dist < rs;
+        if (!any_lane(geo.touching)) continue;
+        geo.n = d * (1.0 / dist);
+        geo.delta = rs - dist;
+      }
+      for (int g = 0; g < groups; ++g) {
+        const Geometry& geo = geometry[g];
+        const int *kv = geo.k, *iv = geo.i, *jv = geo.j;
+        if (!any_lane(geo.touching)) {
+          for (int l = 0; l < geo.used; ++l) part(kv[l]);
           continue;
         }
-
         int pair_of[W];
         bool same = true;
         for (int l = 0; l < W; ++l) {
-          pair_of[l] = mi * materials + material[jv[l]];
+          pair_of[l] = material[iv[l]] * materials + material[jv[l]];
           same = same && pair_of[l] == params_of;
         }
         if (!same) {
           bool uniform = true;
           for (int l = 0; l < W; ++l) {
-            params.set(l, table(mi, material[jv[l]]));
+            params.set(l, table(material[iv[l]], material[jv[l]]));
             uniform = uniform && pair_of[l] == pair_of[0];
           }
           params_of = uniform ? pair_of[0] : -1;
         }
 
-        const V3<T> wj = gather<T>(w, jv);
+        const V3<T> wi = gather<T>(w, iv), wj = gather<T>(w, jv);
         ContactInput<T> c;
-        c.n = d * (1.0 / dist);
-        c.delta = rs - dist;
-        c.v_rel = vi - gather<T>(v, jv) - cross(ri * wi + rj * wj, c.n);
+        const T ri = geo.ri, rj = geo.rj;
+        c.n = geo.n;
+        c.delta = geo.delta;
+        c.v_rel = gather<T>(v, iv) - gather<T>(v, jv) - cross(ri * wi + rj * wj, c.n);
         const T vn = dot(c.v_rel, c.n);
         // full-step prediction: v(n+1) ~ v(n+1/2) + (the first half kick again)
-        c.vn_now = vn + dot(kick_i - gather<T>(kick, jv), c.n);
+        c.vn_now = vn + dot(gather<T>(kick, iv) - gather<T>(kick, jv), c.n);
         c.onset = boundary_share(c.delta, vn, dt);
         c.w_rel = wi - wj;
         c.sqrt_m_eff = gather<T>(sqrt_m_eff, kv);
@@ -220,24 +234,23 @@ class ForceKernelImpl final : public ForceKernel {
         }
         T ft2{};
         if constexpr (kRecord) ft2 = squared_norm(r.shear_force);
-        const auto counted = touching & lanes_below<T>(used);
-        sum_f[m] = sum_f[m] + select(counted, r.force, V3<T>::zero());
-        sum_t[m] = sum_t[m] + select(counted, torque_i, V3<T>::zero());
+        Lanes4 force_of[W], torque_i_of[W], torque_j_of[W];
+        lane_quads(r.force, force_of);
+        lane_quads(torque_i, torque_i_of);
+        lane_quads(torque_j, torque_j_of);
 
-        for (int l = 0; l < used; ++l) {
-          const int k = kv[l], j = jv[l];
-          if (!lane_on(touching, l)) {
+        for (int l = 0; l < geo.used; ++l) {
+          const int k = kv[l];
+          if (!lane_on(geo.touching, l)) {
             part(k);
             continue;
           }
-          const Vec3 force = r.force.get(l);
-          if (slot[k] < 0) {
-            f_next[j] -= force;
-            torque[j] += torque_j.get(l);
-          } else {
-            deferred_force[slot[k]] = -force;
-            deferred_torque[slot[k]] = torque_j.get(l);
-          }
+          BodySums& on_i = sums[iv[l]];
+          BodySums& on_j = sums[geo.to[l]];
+          on_i.f = on_i.f + force_of[l];
+          on_i.t = on_i.t + torque_i_of[l];
+          on_j.f = on_j.f - force_of[l];
+          on_j.t = on_j.t + torque_j_of[l];
           shear[k] = spring.get(l);
           if constexpr (Law::kRollingSpring) roll[k] = roll_spring.get(l);
           if constexpr (kRecord) {
@@ -247,23 +260,11 @@ class ForceKernelImpl final : public ForceKernel {
           }
         }
       }
-      f_next[i] += four_sums(sum_f);
-      torque[i] += four_sums(sum_t);
     }
   }
 
-  // ((s0 + s1) + (s2 + s3)) of the four running sums, held as 4 lanes of one or 4 scalars.
-  template <class T, int kSums>
-  DEM_HOT static Vec3 four_sums(const V3<T> (&sums)[kSums]) {
-    Vec3 s[4];
-    for (int l = 0; l < 4; ++l) {
-      if constexpr (kSums == 1) s[l] = sums[0].get(l);
-      else s[l] = sums[l].get(0);
-    }
-    return (s[0] + s[1]) + (s[2] + s[3]);
-  }
-
-  static void gather_and_kick(SimState& s) {
+  // bonded: bond forces and torques wait in f_next and particles.t.
+  static void gather_and_kick(SimState& s, bool bonded) {
     Particles& p = s.particles;
     const BlockPlan& plan = s.blocks;
     const int n = static_cast<int>(p.size());
@@ -273,8 +274,8 @@ class ForceKernelImpl final : public ForceKernel {
     // Raw pointers: through the std::vectors the compiler reloaded their data pointers after every
     // store and called Eigen's assignment loops out of line.
     const Vec3* __restrict f_next = s.f_next.data();
-    const Vec3* __restrict deferred_force = plan.deferred_force.data();
-    const Vec3* __restrict deferred_torque = plan.deferred_torque.data();
+    BodySums* __restrict sums = s.blocks.sums.data();  // the particles', then the deferred slots
+    BodySums* __restrict deferred = sums + n;
     const int* __restrict deferred_start = plan.deferred_start.data();
     const double* __restrict mass = p.mass.data();
     const double* __restrict inv_mass = p.inv_mass.data();
@@ -285,10 +286,16 @@ class ForceKernelImpl final : public ForceKernel {
     Vec3* __restrict w = p.w.data();
 #pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
     for (int i = 0; i < n; ++i) {
-      Vec3 f = f_next[i], t = torque[i];
+      Vec3 f = as_vec3(sums[i].f), t = as_vec3(sums[i].t);
+      sums[i] = BodySums{};  // zero for the next step's pair loop (while the line is in cache)
+      if (bonded) {
+        f = f + f_next[i];
+        t = t + torque[i];
+      }
       for (int a = deferred_start[i]; a < deferred_start[i + 1]; ++a) {
-        f = f + deferred_force[a];
-        t = t + deferred_torque[a];
+        f = f + as_vec3(deferred[a].f);
+        t = t + as_vec3(deferred[a].t);
+        deferred[a] = BodySums{};  // zero for the next step's pair loop
       }
       if constexpr (kWalls) {
         if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) add_wall_forces(s, i, f, t);

@@ -307,13 +307,16 @@ void Simulation::plan_blocks() {
     for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
       if (crosses(i, nl.partner[k])) ++b.deferred_start[nl.partner[k] + 1];
   for (int i = 0; i < n; ++i) b.deferred_start[i + 1] += b.deferred_start[i];
-  b.slot.assign(nl.pair_count(), -1);
+  b.owner.resize(nl.pair_count());
+  b.target.resize(nl.pair_count());
   std::vector<int> fill(b.deferred_start.begin(), b.deferred_start.end() - 1);
   for (int i = 0; i < n; ++i)
-    for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
-      if (crosses(i, nl.partner[k])) b.slot[k] = fill[nl.partner[k]]++;
-  b.deferred_force.assign(b.deferred_start[n], Vec3::Zero());
-  b.deferred_torque.assign(b.deferred_start[n], Vec3::Zero());
+    for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+      const int j = nl.partner[k];
+      b.owner[k] = i;
+      b.target[k] = crosses(i, j) ? n + fill[j]++ : j;
+    }
+  b.sums.assign(n + b.deferred_start[n], BodySums{});
 }
 
 void Simulation::build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old) {

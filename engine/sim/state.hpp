@@ -7,6 +7,7 @@
 #include "clumps/clump_bodies.hpp"
 #include "bonds/bond_set.hpp"
 #include "contact/pair_params.hpp"
+#include "core/lanes.hpp"
 #include "core/particles.hpp"
 #include "neighbor/neighbor_list.hpp"
 #include "mesh/mesh_wall.hpp"
@@ -68,16 +69,25 @@ struct PairResults {
   std::vector<std::uint8_t> touching;
 };
 
+// Force and torque summed on one body (or one deferred share) during the pair loop, each padded to
+// four doubles (the fourth stays zero): the four-lane loop adds a lane's share with one 32-byte load,
+// add and store each, and the pair fits one cache line.
+struct alignas(64) BodySums {
+  Lanes4 f{}, t{};
+};
+
 // The force loop works on fixed blocks of consecutive (spatially sorted) particles. A pair whose
 // partner j lies in the same block as i is added to both bodies at once; a pair that crosses to a
 // later block leaves j's share here, to be added by j's block after all blocks are done. The blocks
 // do not depend on the number of threads, so neither does any sum: results are bit-identical.
 struct BlockPlan {
   int block_size = 4096;
-  std::vector<int> deferred_start;    // per particle p: its slots as j of crossing pairs (size n + 1)
-  std::vector<int> slot;              // per pair: its slot, or -1 when both bodies share a block
-  std::vector<Vec3> deferred_force;   // per slot: force on j (slots of p in ascending pair order)
-  std::vector<Vec3> deferred_torque;  // per slot: torque on j
+  std::vector<int> deferred_start;  // per particle p: its slots as j of crossing pairs (size n + 1)
+  std::vector<int> owner;           // per pair: its i (the row it belongs to)
+  std::vector<int> target;          // per pair: where j's share goes in sums, j or n + its slot
+  // n particles, then the deferred slots (of each p in ascending pair order). All are zero whenever
+  // the pair loop starts: the kick that adds them clears them.
+  std::vector<BodySums> sums;
 };
 
 struct SimState {
@@ -85,7 +95,8 @@ struct SimState {
   NeighborList neighbors;
   PairResults pairs;
   BlockPlan blocks;
-  std::vector<Vec3> f_next;     // forces being summed this step (the last step's stay in particles.f)
+  // bond forces of this step (the pairs' are summed in blocks.sums, the last step's total is particles.f)
+  std::vector<Vec3> f_next;
   std::vector<Vec3> half_kick;  // velocity change of this step's first half kick, dt/2 f/m
   std::vector<Wall> walls;         // planes and plates
   WallContacts wall_contacts;

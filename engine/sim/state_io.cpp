@@ -9,7 +9,7 @@
 namespace dem {
 namespace {
 
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '2'};  // 2: walls' load clocks
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '2'};  // 2: walls' load clocks, no block plan
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
@@ -77,7 +77,7 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   put(out, nl.sqrt_m_eff); put(out, nl.r_eff); put(out, nl.i_roll);
   put(out, s.pairs.fn); put(out, s.pairs.ft_squared); put(out, s.pairs.touching);
   const BlockPlan& b = s.blocks;
-  put(out, b.block_size); put(out, b.deferred_start); put(out, b.slot); put(out, b.deferred_force); put(out, b.deferred_torque);
+  put(out, b.block_size);  // the rest of the plan follows from the neighbour list (read: plan_blocks)
   const WallContacts& wc = s.wall_contacts;
   put(out, wc.row_start); put(out, wc.wall); put(out, wc.shear); put(out, wc.roll); put(out, wc.constants);
   put(out, wc.fn); put(out, wc.ft); put(out, wc.touching); put(out, wc.force); put(out, wc.point);
@@ -140,8 +140,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(nl.i_roll, "the neighbour list");
   r.get(s.pairs.fn, "the contacts"); r.get(s.pairs.ft_squared, "the contacts"); r.get(s.pairs.touching, "the contacts");
   BlockPlan& b = s.blocks;
-  r.get(b.block_size, "the block plan"); r.get(b.deferred_start, "the block plan"); r.get(b.slot, "the block plan");
-  r.get(b.deferred_force, "the block plan"); r.get(b.deferred_torque, "the block plan");
+  r.get(b.block_size, "the block plan");
+  sim.plan_blocks();
   WallContacts& wc = s.wall_contacts;
   r.get(wc.row_start, "the wall contacts"); r.get(wc.wall, "the wall contacts"); r.get(wc.shear, "the wall contacts");
   r.get(wc.roll, "the wall contacts"); r.get(wc.constants, "the wall contacts"); r.get(wc.fn, "the wall contacts");
