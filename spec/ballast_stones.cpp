@@ -91,6 +91,7 @@ FilledStone fill_stone(const StoneShape& shape, double mass, double density, dou
 }  // namespace
 
 std::vector<double> sample_stone_masses(const StoneRequest& r, std::mt19937_64& rng) {
+  if (r.log_sigma == 0) return std::vector<double>(r.count, std::exp(r.log_mean));  // one mass (checked in bounds)
   std::normal_distribution<double> log_mass(r.log_mean, r.log_sigma);
   std::vector<double> masses;
   while (static_cast<int>(masses.size()) < r.count) {
@@ -122,7 +123,8 @@ void add_ballast_stones(const StoneRequest& r, Scene& scene) {
                                  std::to_string(r.bonded_sphere_radius) + " m: make bonded.sphereRadius smaller");
     }
     const double scale = breakable ? filled.scale : std::cbrt(masses[s] / (r.density * shape.volume));
-    const double reach = scale * shape.reach;
+    // a filled stone's spheres have their centres inside the shape: they reach one radius further
+    const double reach = scale * shape.reach + (breakable ? r.bonded_sphere_radius : 0.0);
     // random sequential addition of the bounding spheres, each wholly inside the box
     Vec3 at;
     bool fits = false;

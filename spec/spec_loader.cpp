@@ -316,7 +316,7 @@ ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const s
   const double scale = in.scale() == 0 ? 1.0 : in.scale();
   check.positive(path + ".scale", scale);
   const double accuracy = in.accuracy() == 0 ? 1e-4 : in.accuracy();
-  check.in_range(path + ".accuracy", accuracy, 1e-6, 0.1, false, false);
+  check.in_range(path + ".accuracy", accuracy, 1e-5, 0.1, false, false);  // finer is past the subdivision's 2^11 cells
   for (MemberSphere& m : spheres) {
     m.centre *= scale;
     m.radius *= scale;
@@ -331,7 +331,7 @@ ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const s
     body.usable = body.given_mass > 0;
     return body;
   }
-  if (!(accuracy >= 1e-6 && accuracy <= 0.1)) return body;
+  if (!(accuracy >= 1e-5 && accuracy <= 0.1)) return body;
   const MassProperties mp = union_mass_properties(spheres, accuracy);
   body.volume = mp.volume;
   body.centroid = mp.centroid;
@@ -411,6 +411,7 @@ void add_stones(const api::BallastStones& in, const std::string& path, bool has_
   r.hi = vec(in.max());
   r.seed = in.seed() == 0 ? 1 : in.seed();
   check.in_range(path + ".count", r.count, 1, 1e6, false, false);
+  if (!std::isfinite(r.log_mean)) check.fail(path + ".massLogMean", "must be a finite number");
   check.non_negative(path + ".massLogSigma", r.log_sigma);
   check.positive(path + ".massMin", r.mass_min);
   if (!(r.mass_max > r.mass_min)) check.fail(path + ".massMax", "must be above massMin (got " + num(r.mass_max) + ")");
@@ -422,6 +423,10 @@ void add_stones(const api::BallastStones& in, const std::string& path, bool has_
   const auto cdf = [&](double m) { return 0.5 * std::erfc(-(std::log(m) - r.log_mean) / (r.log_sigma * std::sqrt(2.0))); };
   if (r.mass_min > 0 && r.mass_max > r.mass_min && r.log_sigma > 0 && cdf(r.mass_max) - cdf(r.mass_min) < 1e-3)
     check.fail(path + ".massMin", "and massMax hold less than 0.1% of the lognormal distribution: check massLogMean");
+  const double only_mass = std::exp(r.log_mean);  // massLogSigma 0: every stone has this mass
+  if (r.log_sigma == 0 && std::isfinite(r.log_mean) && (only_mass < r.mass_min || only_mass > r.mass_max))
+    check.fail(path + ".massLogMean", "with massLogSigma 0 every stone weighs exp(massLogMean) = " + num(only_mass) +
+                                          " kg, outside [massMin, massMax]");
   if (in.has_bonded()) {
     r.bonded_sphere_radius = in.bonded().sphere_radius();
     check.positive(path + ".bonded.sphereRadius", r.bonded_sphere_radius);
@@ -437,6 +442,12 @@ void add_stones(const api::BallastStones& in, const std::string& path, bool has_
     if (largest > 1e6) {
       check.fail(path + ".bonded.sphereRadius", num(r.bonded_sphere_radius) + " m would put up to " + num(largest) +
                                                     " spheres in one stone (at most 1 million): make it larger");
+      return;
+    }
+    if (largest * r.count > 5e7) {  // as the lattices' limit
+      check.fail(path + ".bonded.sphereRadius", num(r.bonded_sphere_radius) + " m would put up to " +
+                                                    num(largest * r.count) + " spheres in " + std::to_string(r.count) +
+                                                    " stones of up to massMax (at most 50 million): make it larger");
       return;
     }
   }

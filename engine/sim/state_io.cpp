@@ -9,7 +9,7 @@
 namespace dem {
 namespace {
 
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '2'};  // 2: walls' load clocks, no block plan
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '3'};  // 3: walls' load clocks, no block plan
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
@@ -155,8 +155,12 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   for (WallPose& pose : mesh_poses) r.get(pose, "the walls");
   std::vector<WallDriver> saved_drivers(sim.drivers_.size());
   for (WallDriver& d : saved_drivers) r.get(d, "the walls");
-  for (std::size_t m = 0; m < s.meshes.size(); ++m)  // a mesh that never moved keeps its vertices as read from the spec
-    if (saved_drivers[s.meshes[m].boundary].moves()) s.meshes[m].move_to(mesh_poses[m]);
+  for (std::size_t m = 0; m < s.meshes.size(); ++m) {  // a mesh that never moved keeps its vertices as read from the spec
+    const WallPose& pose = mesh_poses[m];
+    const bool moved = saved_drivers[s.meshes[m].boundary].moves() || !pose.displacement.isZero(0) ||
+                       !pose.rotation.isIdentity(0);  // a load dropped earlier leaves it still, but elsewhere
+    if (moved) s.meshes[m].move_to(pose);
+  }
   for (std::size_t k = 0; k < saved_drivers.size(); ++k) {
     try {
       sim.drivers_[k].continue_from(saved_drivers[k], sim.time());

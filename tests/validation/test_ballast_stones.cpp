@@ -114,5 +114,28 @@ TEST(BallastStones, ABoxTooSmallSaysHowManyFitted) {
   }
 }
 
+// A distribution the sampler can never hit is refused before generation (it would redraw forever).
+TEST(BallastStones, AnEmptyOrUndefinedMassDistributionIsRefused) {
+  auto problems = [](const std::string& from, const std::string& to) {
+    std::string json = stones_spec(10, 1, 1.0);
+    json.replace(json.find(from), from.size(), to);
+    try {
+      spec::to_scene(spec::parse_json(json));
+    } catch (const spec::SpecError& e) {
+      std::string all;
+      for (const auto& p : e.problems()) all += p + "\n";
+      return all;
+    }
+    return std::string("no error");
+  };
+  std::string all = problems(R"("massLogSigma": 0.6)", R"("massLogSigma": 0)");  // exp(-3) = 0.0498 kg: fine
+  EXPECT_EQ(all, "no error");
+  all = problems(R"("massLogMean": -3.0, "massLogSigma": 0.6)", R"("massLogMean": 0, "massLogSigma": 0)");
+  EXPECT_NE(all.find("ballastStones[0].massLogMean: with massLogSigma 0 every stone weighs exp(massLogMean) = 1 kg, outside"),
+            std::string::npos) << all;
+  all = problems(R"("massLogMean": -3.0)", R"("massLogMean": "NaN")");
+  EXPECT_NE(all.find("ballastStones[0].massLogMean: must be a finite number"), std::string::npos) << all;
+}
+
 }  // namespace
 }  // namespace dem::test

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <variant>
 
 #include "sim/state_io.hpp"
 #include "support/report.hpp"
@@ -150,6 +151,44 @@ TEST(LoadedPlate, AContinuedRunRefusesAChangedMotion) {
               std::string::npos)
         << e.what();
   }
+}
+
+// A mesh plate pressed down by a servo, then continued with its load dropped, stays where it was
+// left, and so it does when that continued run is itself continued.
+TEST(LoadedPlate, AMeshWhoseLoadWasDroppedStaysWhereItWasLeft) {
+  LoadControl servo;
+  servo.kind = LoadControl::Kind::Servo;
+  servo.direction = {0, 0, -1};
+  servo.target = 500;
+  servo.gain = 1e-3;
+  servo.max_speed = 0.05;
+  auto scene = [&](bool loaded) {
+    Scene s = loaded_bed(servo, 0.002);
+    const PlateShape plate = std::get<PlateShape>(s.walls.back().shape);
+    MeshShape mesh;
+    mesh.vertices.assign(plate.corners.begin(), plate.corners.end());
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    mesh.source = "square";
+    s.walls.back().shape = mesh;
+    if (!loaded) s.walls.back().load.reset();
+    return s;
+  };
+  auto height = [](const Simulation& sim) { return sim.meshes().back().vertices[0].z(); };
+  Simulation pressed(scene(true));
+  while (pressed.time() < 0.05) pressed.step();
+  const double left_at = height(pressed);
+  ASSERT_LT(left_at, std::get<MeshShape>(scene(true).walls.back().shape).vertices[0].z() - 1e-4) << "the servo moved it";
+  std::stringstream first;
+  StateIO::write(pressed, first);
+  Simulation dropped(scene(false));
+  StateIO::read(dropped, first);
+  for (int k = 0; k < 100; ++k) dropped.step();
+  EXPECT_EQ(height(dropped), left_at);
+  std::stringstream second;
+  StateIO::write(dropped, second);
+  Simulation again(scene(false));
+  StateIO::read(again, second);
+  EXPECT_EQ(height(again), left_at);
 }
 
 }  // namespace
