@@ -161,15 +161,22 @@ void StateIO::read(Simulation& sim, std::istream& in) {
                        !pose.rotation.isIdentity(0);  // a load dropped earlier leaves it still, but elsewhere
     if (moved) s.meshes[m].move_to(pose);
   }
+  std::vector<int> loads_starting;
   for (std::size_t k = 0; k < saved_drivers.size(); ++k) {
     try {
-      sim.drivers_[k].continue_from(saved_drivers[k], sim.time());
+      if (sim.drivers_[k].continue_from(saved_drivers[k], sim.time())) loads_starting.push_back(static_cast<int>(k));
     } catch (const std::runtime_error& e) {
       throw std::runtime_error("walls[" + std::to_string(k) + "] (" + sim.scene_.walls[k].name + "): " + e.what());
     }
   }
   r.get(sim.pose_at_build_, "the walls");
   r.get(sim.boundary_loads_, "the walls");
+  for (int k : loads_starting) {  // a load that starts now feels the particles' push from the start, as at t = 0
+    WallDriver& d = sim.drivers_[k];
+    d.end_step(sim.time(), 0, sim.boundary_loads_[k].force);
+    if (sim.plane_index_[k] >= 0) s.walls[sim.plane_index_[k]].move_to(d.pose());
+    else s.meshes[sim.mesh_index_[k]].move_to(d.pose());
+  }
   r.get(sim.growth_at_build_, "the walls");
   r.get(sim.growth_scale_, "the walls");
   std::vector<Bond> saved_bonds;

@@ -85,7 +85,7 @@ bool same_load(const std::optional<LoadControl>& a, const std::optional<LoadCont
 
 }  // namespace
 
-void WallDriver::continue_from(const WallDriver& saved, double now) {
+bool WallDriver::continue_from(const WallDriver& saved, double now) {
   if (!same_motion(motion_, saved.motion_))
     throw std::runtime_error("its prescribed motion differs from the saved run's: a continued run may change a wall's "
                              "load, not its motion (a motion is a function of the time since the start)");
@@ -93,13 +93,13 @@ void WallDriver::continue_from(const WallDriver& saved, double now) {
     const double gravity_along = gravity_along_;  // this spec's gravity
     *this = saved;
     gravity_along_ = gravity_along;
-    return;
+    return false;
   }
   pose_ = saved.pose_;
   pose_.angular_velocity = Vec3::Zero();
   if (!load_) {  // dropped: the wall stays where it is
     pose_.velocity = Vec3::Zero();
-    return;
+    return false;
   }
   const bool same_direction = saved.load_ && saved.load_->direction == load_->direction;
   speed_ = saved.pose_.velocity.dot(load_->direction);
@@ -107,6 +107,7 @@ void WallDriver::continue_from(const WallDriver& saved, double now) {
   applied_force_ = same_direction ? saved.applied_force_ : 0.0;
   pose_.velocity = speed_ * load_->direction;
   load_start_ = now;
+  return true;
 }
 
 }  // namespace dem

@@ -50,7 +50,9 @@ class WallDriver {
   // now), keeping the wall's speed along its direction; a dropped load leaves the wall at rest
   // where it is: a bed settled, then loaded (BallastDEM's two stages). Prescribed motions are
   // functions of the time since the start, so they cannot change: throws std::runtime_error.
-  void continue_from(const WallDriver& saved, double now);
+  // Returns true when a load starts now: the caller then gives it the particles' reaction with
+  // end_step(now, 0, reaction), as a fresh run does at t = 0.
+  bool continue_from(const WallDriver& saved, double now);
 
  private:
   std::optional<PrescribedMotion> motion_;

@@ -106,17 +106,21 @@ TEST(ServoPlate, HoldsItsTargetForce) {
 // continuation on (its clock starts there).
 TEST(LoadedPlate, AContinuedRunTakesTheLoadItsSpecAdds) {
   const LoadControl load = cyclic_load();
-  Scene resting = loaded_bed(load, 0);
+  Scene resting = loaded_bed(load, -2e-6);  // pressed 2 um into the top layer: the bed pushes back
   resting.walls.back().load.reset();
   Simulation first(resting);
   while (first.time() < 0.05) first.step();
   std::stringstream saved;
   StateIO::write(first, saved);
-  Simulation second(loaded_bed(load, 0));
+  Simulation second(loaded_bed(load, -2e-6));
   StateIO::read(second, saved);
   const double t0 = second.time();
   ASSERT_NEAR(t0, first.time(), 1e-15);
   const int plate = static_cast<int>(second.scene().walls.size()) - 1;
+  // the new load feels the bed's push from its first step, as a fresh run's does at t = 0
+  std::printf("the bed pushes the plate with %.4g N at the continuation\n", second.wall_driver(plate).applied_force());
+  EXPECT_GT(second.wall_driver(plate).applied_force(), 0);
+  EXPECT_EQ(second.wall_driver(plate).applied_force(), second.boundary_loads()[plate].force.z());
   double worst = 0;
   while (second.time() < t0 + 0.6) {
     second.step();
