@@ -14,10 +14,13 @@ test('submit the demo case, follow it live, replay it', async ({ page, request }
                     { message: '#case-select offers the demo case' }).toBe(true);
   const demo = await select.evaluate((s) => [...s.options].find((o) => o.value === 'demo' || /demo/i.test(o.value + o.text)).value);
   await select.selectOption(demo);
+  // the demo's own name: the first case (ballast, also granite) loads at start and may arrive late
   await expect.poll(() => page.locator('#case-spec').inputValue(), { message: '#case-spec holds the demo spec' })
-    .toContain('granite');
+    .toContain('spheres poured into a box');
   await page.locator('#case-duration').fill(String(DURATION));
   await page.locator('#case-duration').dispatchEvent('change');
+  await expect.poll(() => page.locator('#case-spec').inputValue().then((t) => JSON.parse(t).time.duration),
+                    { message: '#case-spec takes the duration typed' }).toBe(DURATION);
   await keepPage(page, testInfo, 'case-form');
 
   await page.locator('#submit-case').click();
