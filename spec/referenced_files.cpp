@@ -19,12 +19,12 @@ void for_each_mesh(api::JobSpec& spec, const std::function<void(api::Mesh&, cons
       visit(*spec.mutable_packings(k)->mutable_inside(), "packings[" + std::to_string(k) + "].inside");
 }
 
-std::filesystem::path resolve(const std::string& name, const std::string& base_dir) {
+}  // namespace
+
+std::filesystem::path resolve_file(const std::string& name, const std::string& base_dir) {
   return base_dir.empty() || std::filesystem::path(name).is_absolute() ? std::filesystem::path(name)
                                                                        : std::filesystem::path(base_dir) / name;
 }
-
-}  // namespace
 
 std::vector<std::string> file_references(const api::JobSpec& spec) {
   std::vector<std::string> paths;
@@ -41,7 +41,7 @@ void inline_files(api::JobSpec& spec, const std::string& base_dir) {
   std::vector<std::string> problems;
   for_each_mesh(spec, [&](api::Mesh& mesh, const std::string& path) {
     if (mesh.file().empty()) return;
-    const std::filesystem::path file = resolve(mesh.file(), base_dir);
+    const std::filesystem::path file = resolve_file(mesh.file(), base_dir);
     TriangleMesh read;
     try {
       if (mesh.format() == api::Mesh::STL) read = read_stl(file.string());
@@ -70,7 +70,7 @@ void inline_files(api::JobSpec& spec, const std::string& base_dir) {
     api::ClumpShape& shape = *spec.mutable_clump_shapes(k);
     if (shape.file().empty() || shape.spheres_size() > 0) continue;  // both given: the loader says so
     try {
-      for (const MemberSphere& m : read_clump_template(resolve(shape.file(), base_dir).string())) {
+      for (const MemberSphere& m : read_clump_template(resolve_file(shape.file(), base_dir).string())) {
         api::Sphere* out = shape.add_spheres();
         out->mutable_center()->set_x(m.centre.x());
         out->mutable_center()->set_y(m.centre.y());

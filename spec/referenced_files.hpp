@@ -3,12 +3,17 @@
 // before sending it.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "dem.pb.h"
 
 namespace dem::spec {
+
+// Where a file named by a spec is: relative names are read from `base_dir` (the spec's folder),
+// absolute ones, or any with no base_dir, as given.
+std::filesystem::path resolve_file(const std::string& name, const std::string& base_dir);
 
 // JSON paths of every file the spec names ("walls[0].mesh.file", "packings[1].inside.file",
 // "clumpShapes[2].file").

@@ -22,6 +22,7 @@
 #include "spec/clump_template.hpp"
 #include "spec/inside_mesh.hpp"
 #include "spec/packing.hpp"
+#include "spec/referenced_files.hpp"
 
 namespace dem::spec {
 namespace {
@@ -89,10 +90,7 @@ void load_mesh(const api::Mesh& in, const std::string& path, const std::string& 
   }
   try {
     if (!in.file().empty()) {
-      const std::filesystem::path file = base_dir.empty() || std::filesystem::path(in.file()).is_absolute()
-                                             ? std::filesystem::path(in.file())
-                                             : std::filesystem::path(base_dir) / in.file();
-      source = file.string();
+      source = resolve_file(in.file(), base_dir).string();
       if (in.format() == api::Mesh::STL) mesh = read_stl(source);
       else if (in.format() == api::Mesh::LEGACY) mesh = read_legacy_mesh(source);
       else mesh = read_mesh(source);
@@ -299,9 +297,7 @@ ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const s
   std::vector<MemberSphere> spheres;
   if (!in.file().empty()) {
     try {
-      spheres = read_clump_template(base_dir.empty() || std::filesystem::path(in.file()).is_absolute()
-                                        ? in.file()
-                                        : (std::filesystem::path(base_dir) / in.file()).string());
+      spheres = read_clump_template(resolve_file(in.file(), base_dir).string());
     } catch (const std::runtime_error& e) {
       check.fail(path + ".file", e.what());
     }
@@ -316,7 +312,9 @@ ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const s
   const double scale = in.scale() == 0 ? 1.0 : in.scale();
   check.positive(path + ".scale", scale);
   const double accuracy = in.accuracy() == 0 ? 1e-4 : in.accuracy();
-  check.in_range(path + ".accuracy", accuracy, 1e-5, 0.1, false, false);  // finer is past the subdivision's 2^11 cells
+  constexpr double kFinest = 1e-5, kCoarsest = 0.1;  // finer is past the subdivision's 2^11 cells
+  const bool accuracy_ok = accuracy >= kFinest && accuracy <= kCoarsest;
+  check.in_range(path + ".accuracy", accuracy, kFinest, kCoarsest, false, false);
   for (MemberSphere& m : spheres) {
     m.centre *= scale;
     m.radius *= scale;
@@ -331,7 +329,7 @@ ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const s
     body.usable = body.given_mass > 0;
     return body;
   }
-  if (!(accuracy >= 1e-5 && accuracy <= 0.1)) return body;
+  if (!accuracy_ok) return body;
   const MassProperties mp = union_mass_properties(spheres, accuracy);
   body.volume = mp.volume;
   body.centroid = mp.centroid;
