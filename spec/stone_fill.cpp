@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <cstdlib>
 
 namespace dem::spec {
 
@@ -14,7 +14,13 @@ std::vector<Vec3> fill_with_spheres(const std::vector<MemberSphere>& shape, doub
   double reach = 0;
   for (const MemberSphere& s : shape) reach = std::max(reach, s.centre.cwiseAbs().maxCoeff() + s.radius);
   const int n = static_cast<int>(std::ceil(reach / half));
-  std::map<std::array<int, 3>, int> site;  // lattice index -> position in `inside`
+  // lattice index -> position in `inside` (-1: outside the shape), over the cube [-n, n]^3
+  const int side = 2 * n + 1;
+  std::vector<int> site(static_cast<std::size_t>(side) * side * side, -1);
+  auto cell = [&](int i, int j, int k) -> int* {
+    if (std::abs(i) > n || std::abs(j) > n || std::abs(k) > n) return nullptr;
+    return &site[(static_cast<std::size_t>(i + n) * side + (j + n)) * side + (k + n)];
+  };
   std::vector<std::array<int, 3>> inside;
   for (int i = -n; i <= n; ++i)
     for (int j = -n; j <= n; ++j)
@@ -25,7 +31,7 @@ std::vector<Vec3> fill_with_spheres(const std::vector<MemberSphere>& shape, doub
           return (x - s.centre).squaredNorm() <= s.radius * s.radius;
         });
         if (!in_union) continue;
-        site[{i, j, k}] = static_cast<int>(inside.size());
+        *cell(i, j, k) = static_cast<int>(inside.size());
         inside.push_back({i, j, k});
       }
 
@@ -46,10 +52,10 @@ std::vector<Vec3> fill_with_spheres(const std::vector<MemberSphere>& shape, doub
       stack.pop_back();
       ++piece_size[label];
       for (const auto& d : kNeighbours) {
-        const auto found = site.find({at[0] + d[0], at[1] + d[1], at[2] + d[2]});
-        if (found == site.end() || piece[found->second] >= 0) continue;
-        piece[found->second] = label;
-        stack.push_back(found->second);
+        const int* found = cell(at[0] + d[0], at[1] + d[1], at[2] + d[2]);
+        if (found == nullptr || *found < 0 || piece[*found] >= 0) continue;
+        piece[*found] = label;
+        stack.push_back(*found);
       }
     }
   }
