@@ -11,6 +11,7 @@
 
 #include "spec/referenced_files.hpp"
 #include "spec/spec_loader.hpp"
+#include "support/spec_problems.hpp"
 
 namespace dem::test {
 namespace {
@@ -24,17 +25,6 @@ std::string spec_with_shape(const std::string& shape_fields) {
   "clumpShapes": [{"name": "stone", )" + shape_fields + R"(}],
   "clumps": [{"shape": "stone", "material": "rock", "position": {"z": 1}}],
   "time": {"steps": 10}})";
-}
-
-std::string problems_of(const std::string& json, const std::string& base_dir = "") {
-  try {
-    spec::to_scene(spec::parse_json(json), base_dir);
-  } catch (const spec::SpecError& e) {
-    std::string all;
-    for (const auto& p : e.problems()) all += p + "\n";
-    return all;
-  }
-  return "";
 }
 
 class ClumpShapes : public ::testing::Test {
@@ -82,15 +72,15 @@ TEST_F(ClumpShapes, BadTemplatesAreRefusedWithTheFieldTheFileAndTheLine) {
   write("bad.txt", "0 0 0 1\n1 0 zero 1\n");
   write("negative.txt", "0 0 0 -1\n");
   write("empty.txt", "# nothing\n");
-  std::string all = problems_of(spec_with_shape(R"("file": "bad.txt")"), dir_.string());
+  std::string all = spec_problems(spec_with_shape(R"("file": "bad.txt")"), dir_.string());
   EXPECT_NE(all.find("clumpShapes[0].file: " + (dir_ / "bad.txt").string() + " line 2: expected four numbers"), std::string::npos) << all;
-  all = problems_of(spec_with_shape(R"("file": "negative.txt")"), dir_.string());
+  all = spec_problems(spec_with_shape(R"("file": "negative.txt")"), dir_.string());
   EXPECT_NE(all.find("line 1: the radius must be positive"), std::string::npos) << all;
-  all = problems_of(spec_with_shape(R"("file": "empty.txt")"), dir_.string());
+  all = spec_problems(spec_with_shape(R"("file": "empty.txt")"), dir_.string());
   EXPECT_NE(all.find("has no spheres"), std::string::npos) << all;
-  all = problems_of(spec_with_shape(R"("file": "missing.txt")"), dir_.string());
+  all = spec_problems(spec_with_shape(R"("file": "missing.txt")"), dir_.string());
   EXPECT_NE(all.find("clumpShapes[0].file: cannot open clump template"), std::string::npos) << all;
-  all = problems_of(spec_with_shape(R"("file": "bad.txt", "spheres": [{"radius": 1}])"), dir_.string());
+  all = spec_problems(spec_with_shape(R"("file": "bad.txt", "spheres": [{"radius": 1}])"), dir_.string());
   EXPECT_NE(all.find("clumpShapes[0]: give spheres or a template file, not both"), std::string::npos) << all;
   api::JobSpec spec = spec::parse_json(spec_with_shape(R"("file": "missing.txt")"));
   try {
@@ -99,7 +89,7 @@ TEST_F(ClumpShapes, BadTemplatesAreRefusedWithTheFieldTheFileAndTheLine) {
   } catch (const spec::SpecError& e) {
     EXPECT_NE(e.problems().at(0).find("clumpShapes[0].file: cannot open"), std::string::npos) << e.problems().at(0);
   }
-  all = problems_of(spec_with_shape(R"("spheres": [{"radius": 1}], "scale": -2, "accuracy": 0.5)"));
+  all = spec_problems(spec_with_shape(R"("spheres": [{"radius": 1}], "scale": -2, "accuracy": 0.5)"));
   EXPECT_NE(all.find("clumpShapes[0].scale: must be a positive number"), std::string::npos) << all;
   EXPECT_NE(all.find("clumpShapes[0].accuracy: must be in [1e-05, 0.1]"), std::string::npos) << all;
 }
@@ -145,10 +135,10 @@ TEST(ClumpShapeGiven, GivenMassPropertiesAreUsedAsGiven) {
   EXPECT_NEAR(scene.particles[0].position.x(), 0.1 - 0.02, 1e-12);
   EXPECT_NEAR(scene.particles[1].position.x(), -0.1 - 0.02, 1e-12);
 
-  std::string all = problems_of(spec_with_shape(
+  std::string all = spec_problems(spec_with_shape(
       R"("spheres": [{"radius": 1}], "given": {"mass": 1, "inertia": {"xx": 1, "yy": 1, "zz": 3}})"));
   EXPECT_NE(all.find("clumpShapes[0].given.inertia: is not a body's: the largest principal moment 3 exceeds the sum"), std::string::npos) << all;
-  all = problems_of(spec_with_shape(
+  all = spec_problems(spec_with_shape(
       R"("spheres": [{"radius": 1}], "given": {"mass": 0, "inertia": {"xx": 1, "yy": 1, "zz": 1, "xy": 2}})"));
   EXPECT_NE(all.find("clumpShapes[0].given.mass: must be a positive number"), std::string::npos) << all;
   EXPECT_NE(all.find("clumpShapes[0].given.inertia: is not positive definite"), std::string::npos) << all;

@@ -14,6 +14,7 @@
 #include "spec/spec_loader.hpp"
 #include "support/report.hpp"
 #include "support/scenes.hpp"
+#include "support/spec_problems.hpp"
 
 namespace dem::test {
 namespace {
@@ -125,25 +126,14 @@ TEST(BreakableStones, TheBondedStonesWeighTheMassesDrawn) {
   EXPECT_NEAR(mean, want_mean, 0.005 * want_mean);
 }
 
-std::string problems_of(const std::string& json) {
-  try {
-    spec::to_scene(spec::parse_json(json));
-  } catch (const spec::SpecError& e) {
-    std::string all;
-    for (const auto& p : e.problems()) all += p + "\n";
-    return all;
-  }
-  return "";
-}
-
 TEST(BreakableStones, BadBreakableStonesAreRefusedWithTheirPaths) {
-  std::string all = problems_of(stone_spec(1, 0.05, 0, "", 1e-3));
+  std::string all = spec_problems(stone_spec(1, 0.05, 0, "", 1e-3));
   EXPECT_NE(all.find("ballastStones[0].bonded: breakable stones need the spec's \"bonds\" block"), std::string::npos) << all;
-  all = problems_of(stone_spec(1, 0.05, 1e6, "", 1e-3, -0.003));
+  all = spec_problems(stone_spec(1, 0.05, 1e6, "", 1e-3, -0.003));
   EXPECT_NE(all.find("ballastStones[0].bonded.sphereRadius: must be a positive number"), std::string::npos) << all;
-  all = problems_of(stone_spec(1, 0.05, 1e6, "", 1e-3, 0.0001));
+  all = spec_problems(stone_spec(1, 0.05, 1e6, "", 1e-3, 0.0001));
   EXPECT_NE(all.find("ballastStones[0].bonded.sphereRadius: 0.0001 m would put up to"), std::string::npos) << all;
-  all = problems_of(stone_spec(1, 0.05, 1e6, "", 1e-3, 0.05));
+  all = spec_problems(stone_spec(1, 0.05, 1e6, "", 1e-3, 0.05));
   EXPECT_NE(all.find("ballastStones[0]: a stone of"), std::string::npos) << all;
   EXPECT_NE(all.find("holds fewer than 2 bonded spheres"), std::string::npos) << all;
 }

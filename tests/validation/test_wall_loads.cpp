@@ -82,14 +82,20 @@ TEST(LoadedPlate, FollowsItsForceCycle) {
               0.01 * load.f_max);
 }
 
-// A servo plate starting 2 mm above the bed closes the gap and holds 500 N within 1%.
-TEST(ServoPlate, HoldsItsTargetForce) {
+// A servo holding 500 N, at most 5 cm/s.
+LoadControl servo_load() {
   LoadControl load;
   load.kind = LoadControl::Kind::Servo;
   load.direction = {0, 0, -1};
   load.target = 500;
   load.gain = 1e-3;
   load.max_speed = 0.05;
+  return load;
+}
+
+// A servo plate starting 2 mm above the bed closes the gap and holds 500 N within 1%.
+TEST(ServoPlate, HoldsItsTargetForce) {
+  const LoadControl load = servo_load();
   Simulation sim(loaded_bed(load, 0.002));
   const int plate = static_cast<int>(sim.scene().walls.size()) - 1;
   double worst = 0;
@@ -160,12 +166,7 @@ TEST(LoadedPlate, AContinuedRunRefusesAChangedMotion) {
 // A mesh plate pressed down by a servo, then continued with its load dropped, stays where it was
 // left, and so it does when that continued run is itself continued.
 TEST(LoadedPlate, AMeshWhoseLoadWasDroppedStaysWhereItWasLeft) {
-  LoadControl servo;
-  servo.kind = LoadControl::Kind::Servo;
-  servo.direction = {0, 0, -1};
-  servo.target = 500;
-  servo.gain = 1e-3;
-  servo.max_speed = 0.05;
+  const LoadControl servo = servo_load();
   auto scene = [&](bool loaded) {
     Scene s = loaded_bed(servo, 0.002);
     const PlateShape plate = std::get<PlateShape>(s.walls.back().shape);
