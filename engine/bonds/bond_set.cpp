@@ -14,7 +14,7 @@ BondSet::BondSet(const BondSettings& settings, const Particles& p, const Neighbo
   for (int i = 0; i < n; ++i) {
     for (int k = pairs.row_start[i]; k < pairs.row_start[i + 1]; ++k) {
       const int j = pairs.partner[k];
-      if (!stone.empty() && stone[p.id[i]] != stone[p.id[j]]) continue;  // two stones touching: not one body
+      if (stone[p.id[i]] != stone[p.id[j]]) continue;  // two stones touching: not one body
       const double r_min = std::min(p.radius[i], p.radius[j]);
       const double gap = (p.x[i] - p.x[j]).norm() - p.radius[i] - p.radius[j];
       if (gap > settings.gap_tolerance * r_min) continue;

@@ -20,8 +20,8 @@ class BondSet {
   BondSet() = default;
   // Glues every listed pair whose gap is within the tolerance (settings.region, zones, spread)
   // and whose particles are of one stone: stone[id] (by particle id; -1 for loose particles, which
-  // glue to each other). An empty `stone` puts every particle in one.
-  BondSet(const BondSettings& settings, const Particles& p, const NeighborList& pairs, const std::vector<int>& stone = {});
+  // glue to each other).
+  BondSet(const BondSettings& settings, const Particles& p, const NeighborList& pairs, const std::vector<int>& stone);
 
   bool empty() const { return bonds_.empty(); }
   void restore(std::vector<Bond> saved) { bonds_ = std::move(saved); }  // a saved state's bonds

@@ -115,8 +115,7 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
   build_neighbors();
   if (scene_.bonds) {
     std::vector<int> stone;  // breakable stones glue only inside themselves
-    if (std::any_of(scene_.particles.begin(), scene_.particles.end(), [](const ParticleInit& p) { return p.stone >= 0; }))
-      for (const ParticleInit& p : scene_.particles) stone.push_back(p.stone);
+    for (const ParticleInit& p : scene_.particles) stone.push_back(p.stone);
     state_.bonds = BondSet(*scene_.bonds, state_.particles, state_.neighbors, stone);
   }
   // Forces at t = 0 for the first half kick: a zero step leaves history and velocities unchanged.
