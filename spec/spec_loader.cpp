@@ -16,6 +16,8 @@
 #include <sstream>
 
 #include "clumps/mass_properties.hpp"
+#include "contact/model_catalog.hpp"
+#include "contact/models.hpp"
 #include "mesh/mesh_io.hpp"
 #include "spec/lattice.hpp"
 #include "spec/ballast_stones.hpp"
@@ -486,6 +488,76 @@ void check_plate(const std::array<Vec3, 4>& c, const std::string& path, Checker&
   }
 }
 
+// The models the spec's contact block names (contact/models.hpp), with their parameters: each
+// parameter field given must belong to one of the chosen models and lie in its range.
+struct ContactChoice {
+  ContactSettings settings;
+  const ModelInfo* normal = nullptr;  // nullptr: an unknown name (already reported)
+};
+
+ContactChoice contact_models_of(const api::ContactModel& in, Checker& check) {
+  const ModelCatalog& catalog = contact_models();
+  ContactChoice out;
+  // An unset enum (its *_UNSPECIFIED value) is the default model.
+  const std::string normal = in.normal() == api::ContactModel::NORMAL_UNSPECIFIED
+                                 ? std::string(LinearNormal::kName)
+                                 : api::ContactModel::Normal_Name(in.normal());
+  const std::string rolling = in.rolling() == api::ContactModel::ROLLING_UNSPECIFIED
+                                  ? std::string(NoRolling::kName)
+                                  : api::ContactModel::Rolling_Name(in.rolling());
+  out.normal = ModelCatalog::find(catalog.normal, normal);
+  const ModelInfo* rolling_model = ModelCatalog::find(catalog.rolling, rolling);
+  if (!out.normal) check.fail("contact.normal", "no normal model \"" + normal + "\" in this build");
+  if (!rolling_model) check.fail("contact.rolling", "no rolling model \"" + rolling + "\" in this build");
+  out.settings.normal = normal;
+  out.settings.rolling = rolling;
+  out.settings.no_tensile_force = in.no_tensile_force();
+
+  std::vector<const ModelInfo*> chosen{out.normal, rolling_model};
+  for (const ModelInfo& m : catalog.tangential) chosen.push_back(&m);
+  const google::protobuf::Descriptor* descriptor = in.GetDescriptor();
+  const google::protobuf::Reflection* reflection = in.GetReflection();
+  for (int f = 0; f < descriptor->field_count(); ++f) {
+    const google::protobuf::FieldDescriptor* field = descriptor->field(f);
+    if (field->type() != google::protobuf::FieldDescriptor::TYPE_DOUBLE || !reflection->HasField(in, field)) continue;
+    const std::string path = "contact." + field->json_name();
+    const double value = reflection->GetDouble(in, field);
+    const ModelParameter* parameter = nullptr;
+    for (const ModelInfo* m : chosen)
+      for (const ModelParameter& p : m ? m->parameters : std::span<const ModelParameter>{})
+        if (p.field == field->name()) parameter = &p;
+    if (!parameter) {
+      std::string owners;
+      for (const auto* kind : {&catalog.normal, &catalog.rolling})
+        for (const ModelInfo& m : *kind)
+          for (const ModelParameter& p : m.parameters)
+            if (p.field == field->name()) owners += (owners.empty() ? "" : " or ") + std::string(m.name);
+      check.fail(path, "is not used by the chosen models (normal " + normal + ", rolling " + rolling + ")" +
+                           (owners.empty() ? std::string() : "; it is a parameter of " + owners));
+      continue;
+    }
+    if (!std::isfinite(value) || value < parameter->min || value > parameter->max) {
+      check.fail(path, "must be in [" + num(parameter->min) + ", " + num(parameter->max) + "] (got " + num(value) +
+                           "): " + std::string(parameter->meaning));
+      continue;
+    }
+    out.settings.parameters.set(parameter->field, value);
+  }
+  return out;
+}
+
+void check_required_properties(const ModelInfo& model, const Material& m, const std::string& path, Checker& check) {
+  for (MaterialProperty property : model.required) {
+    const std::string field = path + "." + std::string(material_property_name(property));
+    switch (property) {
+      case MaterialProperty::Density: check.positive(field, m.density); break;
+      case MaterialProperty::YoungsModulus: check.positive(field, m.youngs_modulus); break;
+      case MaterialProperty::PoissonRatio: break;  // checked for every material
+      case MaterialProperty::NormalStiffness: check.positive(field, m.normal_stiffness); break;
+    }
+  }
+}
+
 }  // namespace
 
 SpecError::SpecError(std::vector<std::string> problems)
@@ -563,28 +635,9 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   Scene scene;
   scene.name = spec.name();
 
-  // contact model
-  const auto& c = spec.contact();
-  scene.contact.normal = c.normal() == api::ContactModel::HERTZ ? NormalModel::Hertz : NormalModel::Linear;
-  switch (c.rolling()) {
-    case api::ContactModel::CDT: scene.contact.rolling = RollingModel::Cdt; break;
-    case api::ContactModel::EPSD: scene.contact.rolling = RollingModel::Epsd; break;
-    default: scene.contact.rolling = RollingModel::None;
-  }
-  scene.contact.no_tensile_force = c.no_tensile_force();
-  if (c.has_tangential_stiffness_ratio()) {
-    check.non_negative("contact.tangentialStiffnessRatio", c.tangential_stiffness_ratio());
-    scene.contact.tangential_stiffness_ratio = c.tangential_stiffness_ratio();
-  }
-  if (c.has_tangential_damping_ratio()) {
-    check.non_negative("contact.tangentialDampingRatio", c.tangential_damping_ratio());
-    scene.contact.tangential_damping_ratio = c.tangential_damping_ratio();
-  }
-  if (c.has_rolling_damping_ratio()) {
-    check.non_negative("contact.rollingDampingRatio", c.rolling_damping_ratio());
-    scene.contact.rolling_damping_ratio = c.rolling_damping_ratio();
-  }
-  const bool hertz = scene.contact.normal == NormalModel::Hertz;
+  // contact models, and the material properties and parameters they ask for
+  const ContactChoice contact = contact_models_of(spec.contact(), check);
+  scene.contact = contact.settings;
 
   // materials
   std::map<std::string, int> material_index;
@@ -603,10 +656,10 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     else if (!material_index.emplace(in.name(), m).second)
       check.fail(path + ".name", "duplicate material name \"" + in.name() + "\"");
     if (!out.rigid) {
+      // every particle needs a density (its mass); a Poisson ratio, where given, must be one
       check.positive(path + ".density", out.density);
       check.in_range(path + ".poissonRatio", out.poisson_ratio, -1, 0.5, true, true);
-      if (hertz) check.positive(path + ".youngsModulus", out.youngs_modulus);
-      else check.positive(path + ".normalStiffness", out.normal_stiffness);
+      if (contact.normal) check_required_properties(*contact.normal, out, path, check);
     }
     scene.materials.push_back(out);
   }
@@ -630,7 +683,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     check.in_range(path + ".restitution", in.restitution(), 0, 1, true, false);
     check.non_negative(path + ".friction", in.friction());
     check.non_negative(path + ".rollingFriction", in.rolling_friction());
-    if (in.rolling_friction() > 0 && scene.contact.rolling == RollingModel::None)
+    if (in.rolling_friction() > 0 && scene.contact.rolling == NoRolling::kName)
       check.fail(path + ".rollingFriction", "is " + num(in.rolling_friction()) +
                                                 " but contact.rolling is NONE: choose CDT or EPSD, or set it to 0");
     if (a < 0 || b < 0) continue;

@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
+#include <mutex>
 #include <numbers>
+#include <tuple>
+#include <utility>
 
 namespace dem {
 namespace {
@@ -47,6 +51,22 @@ double invert_decreasing(const std::function<double(double)>& e_of, double e, do
   return 0.5 * (lo + hi);
 }
 
+// The inversions integrate an ODE some hundred times: each (law, e, clamp) is solved once per process.
+double remembered(int law, double e, bool no_tensile, const std::function<double()>& solve) {
+  static std::mutex mutex;
+  static std::map<std::tuple<int, double, bool>, double> solved;
+  const auto key = std::make_tuple(law, e, no_tensile);
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto it = solved.find(key);
+    if (it != solved.end()) return it->second;
+  }
+  const double value = solve();
+  const std::lock_guard<std::mutex> lock(mutex);
+  solved.emplace(key, value);
+  return value;
+}
+
 }  // namespace
 
 double linear_restitution(double zeta, bool no_tensile_force) {
@@ -66,12 +86,14 @@ double linear_damping_ratio(double e, bool no_tensile_force) {
     const double l = std::log(e);
     return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
   }
-  return invert_decreasing([](double z) { return linear_restitution(z, true); }, e, 1.0);
+  return remembered(0, e, true, [e] { return invert_decreasing([](double z) { return linear_restitution(z, true); }, e, 1.0); });
 }
 
 double hertz_damping_number(double e, bool no_tensile_force) {
-  return invert_decreasing([no_tensile_force](double eta) { return hertz_restitution(eta, no_tensile_force); },
-                           e, 2.0);
+  return remembered(1, e, no_tensile_force, [e, no_tensile_force] {
+    return invert_decreasing([no_tensile_force](double eta) { return hertz_restitution(eta, no_tensile_force); }, e,
+                             2.0);
+  });
 }
 
 }  // namespace dem

@@ -9,12 +9,10 @@
 #include <variant>
 #include <vector>
 
+#include "core/model_parameters.hpp"
 #include "core/vec.hpp"
 
 namespace dem {
-
-enum class NormalModel { Linear, Hertz };
-enum class RollingModel { None, Cdt, Epsd };
 
 struct Material {
   std::string name;
@@ -31,13 +29,12 @@ struct Interaction {
   double rolling_friction = 0;
 };
 
+// The contact models by their schema names (contact/models.hpp lists them) and their parameters.
 struct ContactSettings {
-  NormalModel normal = NormalModel::Linear;
-  RollingModel rolling = RollingModel::None;
+  std::string normal = "LINEAR";
+  std::string rolling = "NONE";  // used only where a pair has rolling friction
   bool no_tensile_force = false;
-  double tangential_stiffness_ratio = 0.5;  // the seeds' rns
-  double tangential_damping_ratio = 0.0;    // the seeds' rzs
-  double rolling_damping_ratio = 0.3;       // eta_r of Ai et al. (2011)
+  ModelParameters parameters;    // by field name; a model's default where absent
 };
 
 struct ParticleInit {

@@ -1,4 +1,4 @@
-// The force loop, written once and instantiated per contact law (sim/kernel_select.cpp picks one).
+// The force loop, written once and instantiated per contact law (sim/kernel_select.hpp picks one).
 #pragma once
 
 #include <memory>
@@ -24,6 +24,14 @@ class ForceKernel {
   // Overlaps and stored elastic energy of the current contacts, for the stability guard.
   virtual ContactSummary summarize(const SimState& state) const = 0;
   virtual bool has_rolling_spring() const = 0;
+
+  // What the time step needs of the normal model (sim/time_step.cpp), for materials a and b: the
+  // contact time of a pair of reduced mass m_eff and radius r_eff meeting at `speed` (used only
+  // when contact_time_needs_speed()), and a material's own time limit for its smallest sphere
+  // (Hertz: the Rayleigh time; infinite for a law without one).
+  virtual double contact_time(int a, int b, double m_eff, double r_eff, double speed) const = 0;
+  virtual bool contact_time_needs_speed() const = 0;
+  virtual double wave_time(const Material& m, double r_min) const = 0;
 };
 
 // Sphere pairs are evaluated four at a time with AVX2 where the CPU has it (x86-64), else one at a
@@ -36,7 +44,5 @@ class ForceKernel {
 #endif
 int pair_lanes();
 void set_pair_lanes(int lanes);
-
-std::unique_ptr<ForceKernel> select_kernel(const Scene& scene, bool has_walls);
 
 }  // namespace dem

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "contact/contact_law.hpp"
+#include "contact/pair_table.hpp"
 #include "sim/force_kernel.hpp"
 
 namespace dem {
@@ -15,19 +16,30 @@ namespace dem {
 template <class Law, bool kWalls>
 class ForceKernelImpl final : public ForceKernel {
  public:
+  using Pair = typename Law::Pair;
+  using Normal = typename Law::NormalModel;
+
+  explicit ForceKernelImpl(const Scene& scene) : table_(scene, &Law::mix) {}
+
   void compute_and_kick(SimState& s) override {
-    if (s.record_contacts) evaluate_pairs<true>(s);
-    else evaluate_pairs<false>(s);
+    if (s.record_contacts) evaluate_pairs<true>(s, table_);
+    else evaluate_pairs<false>(s, table_);
     const bool bonded = !s.bonds.empty();
     if (bonded) {  // bonds add to f_next and particles.t; the kick adds those to the pairs' sums
       std::fill(s.f_next.begin(), s.f_next.end(), Vec3::Zero());
       std::fill(s.particles.t.begin(), s.particles.t.end(), Vec3::Zero());
       s.bonds.step(s.particles, s.dt, s.time, s.f_next, s.particles.t);
     }
-    gather_and_kick(s, bonded);
+    gather_and_kick(s, table_, bonded);
   }
 
   bool has_rolling_spring() const override { return Law::kRollingSpring; }
+
+  double contact_time(int a, int b, double m_eff, double r_eff, double speed) const override {
+    return Normal::contact_time(table_(a, b).normal, m_eff, r_eff, speed);
+  }
+  bool contact_time_needs_speed() const override { return Normal::kContactTimeNeedsSpeed; }
+  double wave_time(const Material& m, double r_min) const override { return Normal::wave_time(m, r_min); }
 
   ContactSummary summarize(const SimState& s) const override {
     const Particles& p = s.particles;
@@ -48,8 +60,7 @@ class ForceKernelImpl final : public ForceKernel {
         const double dist = (p.x[i] - p.x[j]).norm();
         if (dist >= rs) continue;
         note(i, rs - dist, std::min(p.radius[i], p.radius[j]),
-             Law::NormalLaw::elastic_energy(s.table(p.material[i], p.material[j]), rs - dist,
-                                            s.neighbors.r_eff[k]));
+             Normal::elastic_energy(table_(p.material[i], p.material[j]).normal, rs - dist, s.neighbors.r_eff[k]));
       }
       if constexpr (kWalls) {
         for (int e = s.wall_contacts.row_start[i]; e < s.wall_contacts.row_start[i + 1]; ++e) {
@@ -57,15 +68,14 @@ class ForceKernelImpl final : public ForceKernel {
           Vec3 normal;
           double delta;
           if (!wall.contact(p.x[i], p.radius[i], normal, delta)) continue;
-          note(i, delta, p.radius[i],
-               Law::NormalLaw::elastic_energy(s.table(p.material[i], wall.material), delta, p.radius[i]));
+          note(i, delta, p.radius[i], Normal::elastic_energy(table_(p.material[i], wall.material).normal, delta, p.radius[i]));
         }
         const MeshContacts& mc = s.mesh_contacts;
         for (int k = 0, used = mc.count(i); k < used; ++k) {
           const MeshSlot& slot = mc.slot(i, k);
           note(i, slot.delta, p.radius[i],
-               Law::NormalLaw::elastic_energy(s.table(p.material[i], s.meshes[slot.mesh].material), slot.delta,
-                                              p.radius[i]));
+               Normal::elastic_energy(table_(p.material[i], s.meshes[slot.mesh].material).normal, slot.delta,
+                                      p.radius[i]));
         }
       }
     }
@@ -75,7 +85,7 @@ class ForceKernelImpl final : public ForceKernel {
  private:
   // kRecord: keep each pair's forces for observers (force chains, contact counts) this step.
   template <bool kRecord>
-  static void evaluate_pairs(SimState& s) {
+  static void evaluate_pairs(SimState& s, const PairTable<Pair>& table) {
     const int n = static_cast<int>(s.particles.size());
     const int size = s.blocks.block_size;
     const int blocks = (n + size - 1) / size;
@@ -85,11 +95,11 @@ class ForceKernelImpl final : public ForceKernel {
       const int begin = b * size, end = std::min(n, begin + size);
 #if DEM_HAS_AVX2_LANES
       if (lanes == 4) {
-        pairs_of_block_avx2<kRecord>(s, begin, end);
+        pairs_of_block_avx2<kRecord>(s, table, begin, end);
         continue;
       }
 #endif
-      pairs_of_block<1, kRecord>(s, begin, end);
+      pairs_of_block<1, kRecord>(s, table, begin, end);
     }
   }
 
@@ -97,8 +107,9 @@ class ForceKernelImpl final : public ForceKernel {
   // The same loop four contacts at a time. Only this function is compiled for AVX2 (the OpenMP
   // region stays outside it), and it runs only where the CPU has AVX2 (pair_lanes()).
   template <bool kRecord>
-  [[gnu::target("avx2"), gnu::noinline]] static void pairs_of_block_avx2(SimState& s, int begin, int end) {
-    pairs_of_block<4, kRecord>(s, begin, end);
+  [[gnu::target("avx2"), gnu::noinline]] static void pairs_of_block_avx2(SimState& s, const PairTable<Pair>& table,
+                                                                          int begin, int end) {
+    pairs_of_block<4, kRecord>(s, table, begin, end);
   }
 #endif
 
@@ -109,7 +120,7 @@ class ForceKernelImpl final : public ForceKernel {
   // order to the padded sums of the block plan (i's, then j's or j's deferred slot), so every sum is
   // made in pair order for W = 1 and W = 4 alike: the results are bit-identical.
   template <int W, bool kRecord>
-  DEM_HOT static void pairs_of_block(SimState& s, int begin, int end) {
+  DEM_HOT static void pairs_of_block(SimState& s, const PairTable<Pair>& table, int begin, int end) {
     using T = Lanes<W>;
     // Raw restrict pointers: the loop writes sums and springs, and without them the compiler must
     // assume every write may change the positions, radii or the vectors themselves and reload them.
@@ -133,7 +144,6 @@ class ForceKernelImpl final : public ForceKernel {
     double* __restrict out_fn = s.pairs.fn.data();
     double* __restrict out_ft2 = s.pairs.ft_squared.data();
     std::uint8_t* __restrict out_touching = s.pairs.touching.data();
-    const PairTable& table = s.table;
     const int materials = table.material_count();
     const T dt = splat<T>(s.dt);
 
@@ -143,7 +153,7 @@ class ForceKernelImpl final : public ForceKernel {
       if constexpr (kRecord) out_touching[k] = 0;
     };
 
-    LawParams<T> params{};
+    typename Law::template Lanes<T> params{};
     int params_of = -1;  // material pair whose coefficients fill every lane of params, -1 if mixed
     // The stream goes in chunks of kGroups groups, each in two passes. The first finds every group's
     // distance, overlap and normal: its square roots and divisions are independent from group to
@@ -264,7 +274,7 @@ class ForceKernelImpl final : public ForceKernel {
   }
 
   // bonded: bond forces and torques wait in f_next and particles.t.
-  static void gather_and_kick(SimState& s, bool bonded) {
+  static void gather_and_kick(SimState& s, const PairTable<Pair>& table, bool bonded) {
     Particles& p = s.particles;
     const BlockPlan& plan = s.blocks;
     const int n = static_cast<int>(p.size());
@@ -298,8 +308,8 @@ class ForceKernelImpl final : public ForceKernel {
         deferred[a] = BodySums{};  // zero for the next step's pair loop
       }
       if constexpr (kWalls) {
-        if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) add_wall_forces(s, i, f, t);
-        if (!s.meshes.empty()) add_mesh_forces(s, i, f, t);
+        if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) add_wall_forces(s, table, i, f, t);
+        if (!s.meshes.empty()) add_mesh_forces(s, table, i, f, t);
       }
       f = f + mass[i] * g;
       if (!p.external.empty()) f = f + p.external[i];
@@ -319,7 +329,8 @@ class ForceKernelImpl final : public ForceKernel {
   // One sphere against a boundary (plane, plate or mesh) that moves with `pose`: the law with the
   // wall's velocity at the contact point; returns the force on the sphere and adds it and its
   // torque to f and t. shear and roll are the contact's springs, updated in place.
-  DEM_HOT static ContactOutput<double> wall_contact(const SimState& s, int i, const Vec3& normal, double delta,
+  DEM_HOT static ContactOutput<double> wall_contact(const SimState& s, const PairTable<Pair>& table, int i,
+                                                    const Vec3& normal, double delta,
                                                     const Vec3& point, const WallPose& pose, int wall_material,
                                                     const PairConstants& pc, Vec3& shear, Vec3& roll, Vec3& f,
                                                     Vec3& t) {
@@ -340,7 +351,7 @@ class ForceKernelImpl final : public ForceKernel {
     c.dt = s.dt;
     V3<double> spring = to_v3(shear), roll_spring = V3<double>::zero();
     if constexpr (Law::kRollingSpring) roll_spring = to_v3(roll);
-    const auto params = LawParams<double>::all(s.table(p.material[i], wall_material));
+    const auto params = Law::template Lanes<double>::all(table(p.material[i], wall_material));
     const ContactOutput<double> r = Law::evaluate(params, c, spring, roll_spring);
     shear = spring.get(0);
     if constexpr (Law::kRollingSpring) roll = roll_spring.get(0);
@@ -350,7 +361,7 @@ class ForceKernelImpl final : public ForceKernel {
     return r;
   }
 
-  static void add_wall_forces(SimState& s, int i, Vec3& f, Vec3& t) {
+  static void add_wall_forces(SimState& s, const PairTable<Pair>& table, int i, Vec3& f, Vec3& t) {
     const Particles& p = s.particles;
     WallContacts& wc = s.wall_contacts;
     const double ri = p.radius[i];
@@ -370,7 +381,7 @@ class ForceKernelImpl final : public ForceKernel {
       Vec3& roll = Law::kRollingSpring ? wc.roll[e] : unused_roll;
       const Vec3 point = p.x[i] - (ri - delta) * normal;
       const ContactOutput<double> r =
-          wall_contact(s, i, normal, delta, point, wall.pose, wall.material, wc.constants[e], wc.shear[e], roll, f, t);
+          wall_contact(s, table, i, normal, delta, point, wall.pose, wall.material, wc.constants[e], wc.shear[e], roll, f, t);
       wc.fn[e] = r.fn;
       if (s.record_contacts) wc.ft[e] = std::sqrt(squared_norm(r.shear_force));
       wc.force[e] = r.force.get(0);
@@ -382,7 +393,7 @@ class ForceKernelImpl final : public ForceKernel {
   // Mesh contacts: the touches of mesh_touches, each taking the history of the last step's slot
   // with the same mesh and the closest normal (at most 60 degrees away): the spring carries over
   // as the sphere crosses from triangle to triangle.
-  static void add_mesh_forces(SimState& s, int i, Vec3& f, Vec3& t) {
+  static void add_mesh_forces(SimState& s, const PairTable<Pair>& table, int i, Vec3& f, Vec3& t) {
     const Particles& p = s.particles;
     MeshContacts& mc = s.mesh_contacts;
     constexpr int kSlots = MeshContacts::kSlots;
@@ -432,7 +443,7 @@ class ForceKernelImpl final : public ForceKernel {
           slot.shear = before[best].shear;
           slot.roll = before[best].roll;
         }
-        const ContactOutput<double> r = wall_contact(s, i, touch.normal, touch.delta, touch.point, s.meshes[m].pose,
+        const ContactOutput<double> r = wall_contact(s, table, i, touch.normal, touch.delta, touch.point, s.meshes[m].pose,
                                                      s.meshes[m].material, pc, slot.shear, slot.roll, f, t);
         slot.normal = touch.normal;
         slot.force = r.force.get(0);
@@ -447,6 +458,8 @@ class ForceKernelImpl final : public ForceKernel {
     if (filled < kSlots && (filled > 0 || mc.used[i])) now[filled].mesh = -1;
     mc.used[i] = filled > 0;
   }
+
+  PairTable<Pair> table_;
 };
 
 }  // namespace dem

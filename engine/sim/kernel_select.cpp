@@ -1,11 +1,10 @@
-// Picks the force loop once from what the scene contains, so that a scene without walls, friction,
-// rolling resistance or tension clamping does not pay for them inside the loop.
+// The engine's kernel dispatch over its own normal models, and the choice of the pair loop's lanes.
+#include "sim/kernel_select.hpp"
+
 #include <atomic>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
-
-#include "sim/kernel_factory.hpp"
 
 namespace dem {
 namespace {
@@ -41,16 +40,7 @@ void set_pair_lanes(int lanes) {
 }
 
 std::unique_ptr<ForceKernel> select_kernel(const Scene& scene, bool has_walls) {
-  bool friction = false, rolling = false;
-  for (const Interaction& in : scene.interactions) {
-    friction = friction || in.friction > 0;
-    rolling = rolling || in.rolling_friction > 0;
-  }
-  const RollingModel model = rolling ? scene.contact.rolling : RollingModel::None;
-  const bool no_tensile = scene.contact.no_tensile_force;
-  if (scene.contact.normal == NormalModel::Linear)
-    return kernels::linear(no_tensile, friction, model, has_walls);
-  return kernels::hertz(no_tensile, friction, model, has_walls);
+  return select_kernel_from(NormalModels{}, scene, has_walls);
 }
 
 }  // namespace dem

@@ -61,12 +61,12 @@ double mean_diameter(const std::vector<double>& radius) {
 
 }  // namespace
 
-Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
+Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(scene)) {
 #ifdef _OPENMP
   if (scene_.numerics.threads > 0) omp_set_num_threads(scene_.numerics.threads);
 #endif
-  state_.table = PairTable(scene_);
-  time_step_ = choose_time_step(scene_, state_.table);
+  kernel_ = select(scene_, !scene_.walls.empty());
+  time_step_ = choose_time_step(scene_, *kernel_);
   state_.dt = time_step_.dt;
   total_steps_ = scene_.time.steps > 0 ? scene_.time.steps
                                        : static_cast<std::int64_t>(std::ceil(scene_.time.duration / state_.dt - 1e-9));
@@ -110,7 +110,6 @@ Simulation::Simulation(Scene scene) : scene_(std::move(scene)) {
   for (int k = 0; k < boundaries; ++k)
     if (plane_index_[k] >= 0) boundary_of_plane_[plane_index_[k]] = k;
   skin_ = scene_.numerics.skin_fraction * mean_diameter(state_.particles.radius);
-  kernel_ = select_kernel(scene_, boundaries > 0);
   move_walls(0, 0);
   build_neighbors();
   if (scene_.bonds) {

@@ -7,6 +7,7 @@
 
 #include "core/scene.hpp"
 #include "sim/force_kernel.hpp"
+#include "sim/kernel_select.hpp"
 #include "sim/state.hpp"
 #include "sim/time_step.hpp"
 
@@ -38,7 +39,8 @@ struct PairContact {
 class Simulation {
  public:
   // Builds the state from a checked scene; throws SceneError for what cannot run (e.g. dt too large).
-  explicit Simulation(Scene scene);
+  // `select` makes the force loop of the scene's contact models (the engine's own by default).
+  explicit Simulation(Scene scene, KernelSelector select = select_kernel);
 
   // One velocity-Verlet step: half kick, drift, (re)build neighbours if needed, forces, half kick.
   void step();

@@ -6,7 +6,6 @@
 
 #include "clumps/clump_bodies.hpp"
 #include "bonds/bond_set.hpp"
-#include "contact/pair_params.hpp"
 #include "core/lanes.hpp"
 #include "core/particles.hpp"
 #include "neighbor/neighbor_list.hpp"
@@ -106,7 +105,6 @@ struct SimState {
   ClumpBodies bodies;  // rigid clumps; their members are particles
   double time = 0;  // of the forces being computed
   double local_damping = 0;
-  PairTable table;
   Vec3 gravity = Vec3::Zero();
   double dt = 0;
   bool record_contacts = true;  // keep per-contact forces in `pairs` (observers need them)

@@ -21,25 +21,6 @@ struct Smallest {
   double radius = kInf;
 };
 
-// Linear: T = pi / sqrt(K_n/m* (1 - zeta^2)) (the seeds' eq. 7 with m* the reduced mass). Past
-// zeta = 0.5 (e < 0.2 with tension; the no-tension fit reaches zeta > 1) the dashpot, not the spring,
-// sets the time scale: T = pi / (omega sqrt(3/4) 2 zeta), which joins eq. 7 at zeta = 0.5.
-double linear_contact_time(const PairParams& p, double m_eff) {
-  if (p.kn <= 0) return kInf;
-  const double omega = std::sqrt(p.kn / m_eff);
-  if (p.zeta <= 0.5) return std::numbers::pi / (omega * std::sqrt(1 - p.zeta * p.zeta));
-  return std::numbers::pi / (omega * std::sqrt(0.75) * 2 * p.zeta);
-}
-
-// Hertz: t_c = 2.9432 alpha_max / V, alpha_max = (15 m* V^2 / (16 sqrt(R*) E*))^(2/5) (validation.md 1).
-// A damping number eta > 1 (e < 0.4 without tension) makes the dashpot the faster process: the time
-// scale shrinks by eta, as the linear one does by 2 zeta.
-double hertz_contact_time(const PairParams& p, double m_eff, double r_eff, double v) {
-  if (p.e_star <= 0) return kInf;
-  const double alpha = std::pow(15 * m_eff * v * v / (16 * std::sqrt(r_eff) * p.e_star), 0.4);
-  return 2.9432 * alpha / v / std::max(1.0, p.eta);
-}
-
 // A characteristic impact speed: twice the fastest initial particle, or a free fall from the top of
 // the particle cloud to the lowest body below it (a particle or a wall).
 double reference_speed(const Scene& scene) {
@@ -111,7 +92,7 @@ double contact_mass(const Scene& scene, const ParticleInit& p) {
 
 }  // namespace
 
-TimeStepReport choose_time_step(const Scene& scene, const PairTable& table) {
+TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel) {
   const int materials = static_cast<int>(scene.materials.size());
   std::vector<Smallest> smallest(materials);
   for (const ParticleInit& p : scene.particles) {
@@ -123,28 +104,21 @@ TimeStepReport choose_time_step(const Scene& scene, const PairTable& table) {
   for (const WallInit& w : scene.walls) wall_materials.insert(w.material);
 
   TimeStepReport r;
-  const bool hertz = scene.contact.normal == NormalModel::Hertz;
-  if (hertz) r.reference_speed = reference_speed(scene);
+  if (kernel.contact_time_needs_speed()) r.reference_speed = reference_speed(scene);
   double t_min = kInf, rayleigh_min = kInf;
   for (int a = 0; a < materials; ++a) {
     if (smallest[a].mass == kInf) continue;
-    auto consider = [&](const PairParams& p, double m_eff, double r_eff) {
-      t_min = std::min(t_min, hertz ? hertz_contact_time(p, m_eff, r_eff, r.reference_speed)
-                                    : linear_contact_time(p, m_eff));
+    auto consider = [&](int b, double m_eff, double r_eff) {
+      t_min = std::min(t_min, kernel.contact_time(a, b, m_eff, r_eff, r.reference_speed));
     };
     for (int b = 0; b < materials; ++b) {
       if (smallest[b].mass == kInf) continue;
       const Smallest& sa = smallest[a];
       const Smallest& sb = smallest[b];
-      consider(table(a, b), sa.mass * sb.mass / (sa.mass + sb.mass), sa.radius * sb.radius / (sa.radius + sb.radius));
+      consider(b, sa.mass * sb.mass / (sa.mass + sb.mass), sa.radius * sb.radius / (sa.radius + sb.radius));
     }
-    for (int w : wall_materials) consider(table(a, w), smallest[a].mass, smallest[a].radius);
-    if (hertz) {
-      const Material& m = scene.materials[a];
-      const double shear_modulus = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
-      rayleigh_min = std::min(rayleigh_min, std::numbers::pi * smallest[a].radius * std::sqrt(m.density / shear_modulus) /
-                                                (0.1631 * m.poisson_ratio + 0.8766));
-    }
+    for (int w : wall_materials) consider(w, smallest[a].mass, smallest[a].radius);
+    rayleigh_min = std::min(rayleigh_min, kernel.wave_time(scene.materials[a], smallest[a].radius));
   }
   if (scene.bonds) {
     // A bond between two of the smallest spheres is the stiffest per unit mass: its four springs
@@ -165,11 +139,11 @@ TimeStepReport choose_time_step(const Scene& scene, const PairTable& table) {
   if (t_min == kInf) t_min = 1.0;  // nothing can touch: any step resolves the free flight
   r.contact_time = t_min;
   if (r.bond_time > 0) t_min = std::min(t_min, r.bond_time);  // the step resolves bonds and contacts
-  r.rayleigh_time = hertz ? rayleigh_min : 0;
+  r.rayleigh_time = rayleigh_min < kInf ? rayleigh_min : 0;
   // Fewer than 10 steps per contact does not resolve it; past ~t_c/3 velocity Verlet is unstable.
-  r.stable_limit = hertz ? std::min(t_min / 10, rayleigh_min) : t_min / 10;
-  const double automatic = hertz ? std::min(scene.time.dt_fraction * t_min, 0.2 * rayleigh_min)
-                                 : scene.time.dt_fraction * t_min;
+  // A law with a wave time (Hertz: Rayleigh) is held to it too (infinite otherwise).
+  r.stable_limit = std::min(t_min / 10, rayleigh_min);
+  const double automatic = std::min(scene.time.dt_fraction * t_min, 0.2 * rayleigh_min);
   if (scene.time.dt > 0) {
     r.automatic = false;
     r.dt = scene.time.dt;

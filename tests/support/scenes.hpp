@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/scene.hpp"
+#include "contact/models.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem::test {
@@ -15,7 +16,7 @@ inline double sphere_mass(double density, double radius) {
 }
 
 // A scene with one particle material "p" (index 0) and one rigid wall material "wall" (index 1).
-inline Scene base_scene(NormalModel model, double density, double youngs, double poisson, double restitution,
+inline Scene base_scene(std::string_view model, double density, double youngs, double poisson, double restitution,
                         double friction, double kn = 0) {
   Scene s;
   s.materials.push_back({"p", density, youngs, poisson, kn, false});
@@ -28,7 +29,7 @@ inline Scene base_scene(NormalModel model, double density, double youngs, double
   return s;
 }
 
-inline void set_rolling(Scene& s, RollingModel model, double mu_r) {
+inline void set_rolling(Scene& s, std::string_view model, double mu_r) {
   s.contact.rolling = model;
   for (Interaction& in : s.interactions) in.rolling_friction = mu_r;
 }

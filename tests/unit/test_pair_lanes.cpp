@@ -13,10 +13,10 @@ namespace dem::test {
 namespace {
 
 struct LawCase {
-  NormalModel normal;
+  std::string_view normal;
   bool no_tensile;
   double friction;
-  RollingModel rolling;
+  std::string_view rolling;
 };
 
 // A loose heap of two materials and two sizes thrown at a floor: contacts open, close and slide.
@@ -27,7 +27,7 @@ Scene heap(const LawCase& law) {
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b)
       s.interactions.push_back({0.3 + 0.1 * ((a + b) % 3), law.friction * (1 + 0.2 * (a + b)), 0});
-  if (law.rolling != RollingModel::None) set_rolling(s, law.rolling, 0.1);
+  if (law.rolling != NoRolling::kName) set_rolling(s, law.rolling, 0.1);
   s.contact.no_tensile_force = law.no_tensile;
   s.gravity = {0, 0, -9.81};
   std::mt19937 rng(7);
@@ -60,9 +60,9 @@ Bits run_with_lanes(const LawCase& law, int lanes) {
 
 std::string law_name(const ::testing::TestParamInfo<LawCase>& info) {
   const LawCase& c = info.param;
-  const char* rolling[] = {"NoRolling", "Cdt", "Epsd"};
-  return std::string(c.normal == NormalModel::Linear ? "Linear" : "Hertz") + (c.no_tensile ? "NoTension" : "") +
-         (c.friction > 0 ? "Friction" : "Frictionless") + rolling[static_cast<int>(c.rolling)];
+  const std::string rolling = c.rolling == NoRolling::kName ? "NoRolling" : c.rolling == CdtRolling::kName ? "Cdt" : "Epsd";
+  return std::string(c.normal == LinearNormal::kName ? "Linear" : "Hertz") + (c.no_tensile ? "NoTension" : "") +
+         (c.friction > 0 ? "Friction" : "Frictionless") + rolling;
 }
 
 class PairLanes : public ::testing::TestWithParam<LawCase> {};
@@ -90,12 +90,12 @@ TEST_P(PairLanes, FourLanesGiveTheBitsOfOne) {
 
 INSTANTIATE_TEST_SUITE_P(
     Laws, PairLanes,
-    ::testing::Values(LawCase{NormalModel::Linear, false, 0.5, RollingModel::None},
-                      LawCase{NormalModel::Linear, true, 0.0, RollingModel::None},
-                      LawCase{NormalModel::Linear, false, 0.3, RollingModel::Cdt},
-                      LawCase{NormalModel::Hertz, true, 0.5, RollingModel::Epsd},
-                      LawCase{NormalModel::Hertz, false, 0.2, RollingModel::Cdt},
-                      LawCase{NormalModel::Hertz, false, 0.0, RollingModel::None}),
+    ::testing::Values(LawCase{LinearNormal::kName, false, 0.5, NoRolling::kName},
+                      LawCase{LinearNormal::kName, true, 0.0, NoRolling::kName},
+                      LawCase{LinearNormal::kName, false, 0.3, CdtRolling::kName},
+                      LawCase{HertzNormal::kName, true, 0.5, EpsdRolling::kName},
+                      LawCase{HertzNormal::kName, false, 0.2, CdtRolling::kName},
+                      LawCase{HertzNormal::kName, false, 0.0, NoRolling::kName}),
     law_name);
 
 // A jostled cubic pack of 5,832 spheres: more than one particle block (4,096), so pairs that cross
@@ -107,7 +107,7 @@ TEST(PairLanesAcrossBlocks, FourLanesGiveTheBitsOfOne) {
     GTEST_SKIP() << "this CPU has no AVX2: only the one-lane loop runs here";
   }
   auto run = [](int lanes) {
-    Scene s = base_scene(NormalModel::Linear, 2500, 1e7, 0.25, 0.5, 0.5, 2e4);
+    Scene s = base_scene(LinearNormal::kName, 2500, 1e7, 0.25, 0.5, 0.5, 2e4);
     s.gravity = {0, 0, -9.81};
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-1, 1);

@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "contact/models.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::spec {
@@ -123,8 +124,8 @@ TEST(SpecLoader, GoodSpecBuildsTheSceneItDescribes) {
   EXPECT_EQ(plane->normal, Vec3(0, 0, 1));  // given as (0, 0, 2): made unit
 
   EXPECT_EQ(s.gravity, Vec3(0, 0, -9.81));
-  EXPECT_EQ(s.contact.normal, NormalModel::Linear);
-  EXPECT_EQ(s.contact.rolling, RollingModel::None);
+  EXPECT_EQ(s.contact.normal, LinearNormal::kName);
+  EXPECT_EQ(s.contact.rolling, NoRolling::kName);
   EXPECT_EQ(s.time.steps, 100);
   EXPECT_EQ(s.time.duration, 0.0);
   EXPECT_FALSE(s.domain.has_value());
@@ -132,11 +133,13 @@ TEST(SpecLoader, GoodSpecBuildsTheSceneItDescribes) {
 
 TEST(SpecLoader, OmittedFieldsTakeTheDocumentedDefaults) {
   const Scene s = to_scene(parse_json(kGoodSpec));
-  // contact (dem.proto ContactModel; the seeds' rns = 0.5, rzs = 0; Ai et al. eta_r = 0.3)
+  // contact (dem.proto ContactModel; the manuals' rns = 0.5, rzs = 0; Ai et al. eta_r = 0.3): the
+  // models' own defaults, for parameters the spec does not give
   EXPECT_FALSE(s.contact.no_tensile_force);
-  EXPECT_EQ(s.contact.tangential_stiffness_ratio, 0.5);
-  EXPECT_EQ(s.contact.tangential_damping_ratio, 0.0);
-  EXPECT_EQ(s.contact.rolling_damping_ratio, 0.3);
+  EXPECT_TRUE(s.contact.parameters.given().empty());
+  EXPECT_EQ(s.contact.parameters.value(LinearNormal::kStiffnessRatio), 0.5);
+  EXPECT_EQ(s.contact.parameters.value(LinearNormal::kDampingRatio), 0.0);
+  EXPECT_EQ(s.contact.parameters.value(EpsdRolling::kDampingRatio), 0.3);
   // time: automatic step at 1/50 of the contact time
   EXPECT_EQ(s.time.dt, 0.0);
   EXPECT_EQ(s.time.dt_fraction, 1.0 / 50.0);
@@ -298,8 +301,38 @@ TEST(SpecLoader, RollingFrictionWithARollingModelIsAccepted) {
   std::string json = good_with(R"("friction": 0.3})", R"("friction": 0.3, "rollingFriction": 0.05})");
   json = replaced(json, R"("rolling": "NONE")", R"("rolling": "EPSD")");
   const Scene s = to_scene(parse_json(json));
-  EXPECT_EQ(s.contact.rolling, RollingModel::Epsd);
+  EXPECT_EQ(s.contact.rolling, EpsdRolling::kName);
   EXPECT_EQ(s.interaction(0, 0).rolling_friction, 0.05);
+}
+
+// Contact parameters belong to models (contact/models.hpp): the chosen models read theirs, a
+// parameter of a model not chosen is refused naming its owner, and each is checked to its range.
+TEST(SpecLoader, ContactParametersReachTheirModel) {
+  const std::string json = replaced(kGoodSpec, R"("rolling": "NONE")",
+                                    R"("rolling": "EPSD", "tangentialStiffnessRatio": 0.3, "rollingDampingRatio": 0.1)");
+  const Scene s = to_scene(parse_json(json));
+  EXPECT_EQ(s.contact.parameters.value(LinearNormal::kStiffnessRatio), 0.3);
+  EXPECT_EQ(s.contact.parameters.value(EpsdRolling::kDampingRatio), 0.1);
+  EXPECT_EQ(s.contact.parameters.value(LinearNormal::kDampingRatio), 0.0);  // not given: the model's default
+}
+
+TEST(SpecLoader, AParameterOfAModelNotChosenIsRefused) {
+  std::string json = replaced(kGoodSpec, R"("normal": "LINEAR")", R"("normal": "HERTZ", "tangentialDampingRatio": 0.5)");
+  json = replaced(json, R"("density": 2500)", R"("density": 2500, "youngsModulus": 1e9)");
+  const auto problems = problems_of(json);
+  EXPECT_TRUE(has_problem(problems, "contact.tangentialDampingRatio:",
+                          "is not used by the chosen models (normal HERTZ, rolling NONE); it is a parameter of LINEAR"));
+}
+
+TEST(SpecLoader, AContactParameterOutOfRangeIsRefused) {
+  const auto problems = problems_of(replaced(kGoodSpec, R"("rolling": "NONE")", R"("rolling": "NONE", "tangentialStiffnessRatio": -1)"));
+  EXPECT_TRUE(has_problem(problems, "contact.tangentialStiffnessRatio:", "must be in [0, inf] (got -1)"));
+}
+
+// The normal model says which material properties it needs.
+TEST(SpecLoader, TheNormalModelNamesTheMaterialPropertiesItNeeds) {
+  const auto problems = problems_of(replaced(kGoodSpec, R"("normal": "LINEAR")", R"("normal": "HERTZ")"));
+  EXPECT_TRUE(has_problem(problems, "materials[0].youngsModulus:", "must be a positive number (got 0)"));
 }
 
 TEST(SpecLoader, BothDurationAndSteps) {

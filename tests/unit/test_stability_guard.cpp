@@ -14,7 +14,7 @@ namespace {
 
 // Two spheres pressed together by 1% of the radius, at rest, elastic, no gravity.
 Scene pressed_pair() {
-  Scene s = base_scene(NormalModel::Linear, 2500, 0, 0.25, 1.0, 0.0, 1e4);
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0.25, 1.0, 0.0, 1e4);
   s.particles.push_back(sphere({-0.0099, 0, 0}, 0.01));
   s.particles.push_back(sphere({0.0099, 0, 0}, 0.01));
   s.time.steps = 2000;

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <string>
 
-#include "contact/pair_params.hpp"
+#include "sim/kernel_select.hpp"
 #include "core/errors.hpp"
 #include "sim/time_step.hpp"
 
@@ -29,7 +29,7 @@ Scene linear_pair_scene() {
   m.normal_stiffness = 1e5;
   s.materials = {m};
   s.interactions = {Interaction{0.5, 0.3, 0}};
-  s.contact.normal = NormalModel::Linear;
+  s.contact.normal = LinearNormal::kName;
   for (double x : {0.0, 0.03}) {
     ParticleInit p;
     p.position = Vec3(x, 0, 0);
@@ -47,7 +47,7 @@ double linear_contact_time(double e, double k, double m_eff) {
   return kPi / std::sqrt(k / m_eff * (1 - zeta * zeta));
 }
 
-TimeStepReport choose(const Scene& s) { return choose_time_step(s, PairTable(s)); }
+TimeStepReport choose(const Scene& s) { return choose_time_step(s, *select_kernel(s, !s.walls.empty())); }
 
 // The message of the SceneError a scene's time step raises, or "" if it is accepted.
 std::string rejection(const Scene& s) {
@@ -157,7 +157,7 @@ Scene glass_pair_scene() {
   glass.poisson_ratio = 0.2;
   s.materials = {glass};
   s.interactions = {Interaction{1.0, 0, 0}};
-  s.contact.normal = NormalModel::Hertz;
+  s.contact.normal = HertzNormal::kName;
   for (double side : {-1.0, 1.0}) {
     ParticleInit p;
     p.position = Vec3(side * 0.0105, 0, 0);

@@ -45,7 +45,7 @@ TEST(WallDriver, SpinTurnsAboutTheCentre) {
 }
 
 TEST(MovingWalls, PlatesAndMeshesFollowTheirMotionInASimulation) {
-  Scene s = base_scene(NormalModel::Linear, 2500, 1e7, 0.25, 0.5, 0.3, 1e4);
+  Scene s = base_scene(LinearNormal::kName, 2500, 1e7, 0.25, 0.5, 0.3, 1e4);
   s.particles.push_back(sphere({5, 5, 5}, 0.01));  // far away: only the walls move
   PrescribedMotion slide;
   slide.velocity = {0.2, 0, 0};
@@ -75,7 +75,7 @@ class Belt : public ::testing::TestWithParam<bool> {};
 TEST_P(Belt, SphereReachesTwoSeventhsOfTheBeltSpeed) {
   const bool as_mesh = GetParam();
   const double r = 0.01, belt = 0.5;
-  Scene s = base_scene(NormalModel::Linear, 2500, 1e8, 0.25, 0.5, 0.4, 1e5);
+  Scene s = base_scene(LinearNormal::kName, 2500, 1e8, 0.25, 0.5, 0.4, 1e5);
   s.gravity = {0, 0, -9.81};
   PrescribedMotion motion;
   motion.velocity = {belt, 0, 0};

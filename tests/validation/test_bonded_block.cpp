@@ -23,7 +23,7 @@ struct Outcome {
 };
 
 Outcome throw_block(double strength) {
-  Scene s = base_scene(NormalModel::Linear, 2600, 1e8, 0.25, 0.5, 0.5, 1e5);
+  Scene s = base_scene(LinearNormal::kName, 2600, 1e8, 0.25, 0.5, 0.5, 1e5);
   for (int k = 0; k < kSide; ++k)
     for (int j = 0; j < kSide; ++j)
       for (int i = 0; i < kSide; ++i)

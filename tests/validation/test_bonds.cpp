@@ -142,7 +142,7 @@ INSTANTIATE_TEST_SUITE_P(EitherParticleFirst, TwoParticleBond, ::testing::Values
 // Two bonded spheres in a simulation, one held: the free one oscillates along the bond at
 // omega = sqrt(kn A / m) (the contact spring adds nothing at zero overlap and in tension).
 TEST(BondedPair, OscillatesAtTheBondFrequency) {
-  Scene s = base_scene(NormalModel::Linear, 2500, 1e8, 0.25, 0.5, 0.0, 1e4);
+  Scene s = base_scene(LinearNormal::kName, 2500, 1e8, 0.25, 0.5, 0.0, 1e4);
   s.particles.push_back(sphere({0, 0, 0}, kRa));
   s.particles.back().fixed = true;
   s.particles.push_back(sphere({kRa + kRb, 0, 0}, kRb, {0.001, 0, 0}));
@@ -174,7 +174,7 @@ TEST(BondedPair, OscillatesAtTheBondFrequency) {
 // stand 0.04% of a radius apart, bonded across the gap but never touching, so only the bonds act.
 TEST(BondedLattice, KeepsItsEnergyOver1e5Steps) {
   const double r = 0.005;
-  Scene s = base_scene(NormalModel::Linear, 2600, 1e8, 0.25, 1.0, 0.0, 1e5);
+  Scene s = base_scene(LinearNormal::kName, 2600, 1e8, 0.25, 1.0, 0.0, 1e5);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int k = 0; k < 3; ++k)
@@ -208,7 +208,7 @@ TEST(BondedLattice, KeepsItsEnergyOver1e5Steps) {
 double cantilever_deflection(double dt_scale, double* want_out) {
   constexpr int kBonds = 10;
   const double r = 0.005, l = 2 * r * 1.0001, eb = 1e8, ratio = 0.5, load = 0.01;
-  Scene s = base_scene(NormalModel::Linear, 2500, 1e8, 0.25, 0.5, 0.0, 1e4);
+  Scene s = base_scene(LinearNormal::kName, 2500, 1e8, 0.25, 0.5, 0.0, 1e4);
   for (int k = 0; k <= kBonds; ++k) s.particles.push_back(sphere({k * l, 0, 0}, r));
   s.particles.front().fixed = true;
   s.particles.back().force = {0, 0, -load};

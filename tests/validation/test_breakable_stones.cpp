@@ -79,7 +79,7 @@ TEST(BreakableStones, EachStoneIsOnePieceOfBondedSpheresWeighingItsMass) {
 
 // Spheres of two stones that touch are not glued: bonds follow the stone, not the contact.
 TEST(BreakableStones, BondsNeverJoinTwoStones) {
-  Scene s = base_scene(NormalModel::Linear, kDensity, 1e9, 0.25, 0.3, 0.5, 1e6);
+  Scene s = base_scene(LinearNormal::kName, kDensity, 1e9, 0.25, 0.3, 0.5, 1e6);
   for (int k = 0; k < 4; ++k) {
     s.particles.push_back(sphere({2 * kSphere * k, 0, 0}, kSphere));
     s.particles.back().stone = k < 2 ? 0 : 1;

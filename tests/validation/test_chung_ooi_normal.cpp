@@ -21,7 +21,7 @@ class ElasticImpact : public ::testing::TestWithParam<HertzCase> {};
 
 TEST_P(ElasticImpact, MatchesHertzTheoryWithinOnePercent) {
   const HertzCase c = GetParam();
-  Scene s = base_scene(NormalModel::Hertz, c.density, c.youngs, c.poisson, 1.0, 0.0);
+  Scene s = base_scene(HertzNormal::kName, c.density, c.youngs, c.poisson, 1.0, 0.0);
   if (c.on_plane) {
     // test 2: sphere at 0.2 m/s onto a rigid plane
     s.particles.push_back(sphere({0, 0, c.radius * 1.001}, c.radius, {0, 0, -c.speed}));
@@ -50,7 +50,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return std::string(info.param.name); });
 
 struct RestitutionCase {
-  NormalModel model;
+  std::string_view model;
   bool no_tensile;
   double youngs, poisson, density;
 };
@@ -71,31 +71,31 @@ TEST_P(Restitution, MeasuredEqualsInputWithinOnePercent) {
     Simulation sim(s);
     record_impact(sim, 1000000);
     const double measured = sim.particles().v[0].z() / v;
-    report(std::string(c.model == NormalModel::Hertz ? "hertz" : "linear") + (c.no_tensile ? " no-tension" : "") +
+    report(std::string(c.model == HertzNormal::kName ? "hertz" : "linear") + (c.no_tensile ? " no-tension" : "") +
                " restitution", measured, e);
-    EXPECT_NEAR(measured, e, 0.01 * e) << "e=" << e << " model=" << (c.model == NormalModel::Hertz ? "hertz" : "linear")
+    EXPECT_NEAR(measured, e, 0.01 * e) << "e=" << e << " model=" << (c.model == HertzNormal::kName ? "hertz" : "linear")
                                        << " no_tensile=" << c.no_tensile;
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(
     ChungOoiTest3, Restitution,
-    ::testing::Values(RestitutionCase{NormalModel::Hertz, false, 3.8e11, 0.23, 4000},
-                      RestitutionCase{NormalModel::Hertz, true, 3.8e11, 0.23, 4000},
-                      RestitutionCase{NormalModel::Linear, false, 3.8e11, 0.23, 4000},
-                      RestitutionCase{NormalModel::Linear, true, 3.8e11, 0.23, 4000},
-                      RestitutionCase{NormalModel::Hertz, false, 1.0e11, 0.25, 7000},
-                      RestitutionCase{NormalModel::Hertz, true, 1.0e11, 0.25, 7000}),
+    ::testing::Values(RestitutionCase{HertzNormal::kName, false, 3.8e11, 0.23, 4000},
+                      RestitutionCase{HertzNormal::kName, true, 3.8e11, 0.23, 4000},
+                      RestitutionCase{LinearNormal::kName, false, 3.8e11, 0.23, 4000},
+                      RestitutionCase{LinearNormal::kName, true, 3.8e11, 0.23, 4000},
+                      RestitutionCase{HertzNormal::kName, false, 1.0e11, 0.25, 7000},
+                      RestitutionCase{HertzNormal::kName, true, 1.0e11, 0.25, 7000}),
     [](const auto& info) {
       const auto& c = info.param;
-      return std::string(c.model == NormalModel::Hertz ? "hertz" : "linear") + (c.no_tensile ? "_no_tension" : "") +
+      return std::string(c.model == HertzNormal::kName ? "hertz" : "linear") + (c.no_tensile ? "_no_tension" : "") +
              (c.density == 4000 ? "_al_oxide" : "_cast_iron");
     });
 
 // Test 3's reference contact time: Al oxide, e = 1, t_c = 6.104 us.
 TEST(ChungOoiTest3, AluminiumOxideElasticContactTime) {
   const double r = 0.0025, v = 3.9;
-  Scene s = base_scene(NormalModel::Hertz, 4000, 3.8e11, 0.23, 1.0, 0.0);
+  Scene s = base_scene(HertzNormal::kName, 4000, 3.8e11, 0.23, 1.0, 0.0);
   s.particles.push_back(sphere({0, 0, r * 1.0001}, r, {0, 0, -v}));
   s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
   Simulation sim(s);

@@ -63,7 +63,7 @@ struct ObliqueCase {
   double angle_deg, spin, rebound_deg;
 };
 
-class ObliqueImpact : public ::testing::TestWithParam<std::tuple<NormalModel, ObliqueCase>> {};
+class ObliqueImpact : public ::testing::TestWithParam<std::tuple<std::string_view, ObliqueCase>> {};
 
 TEST_P(ObliqueImpact, SpinAndReboundAngleWithinOnePercent) {
   const auto [model, c] = GetParam();
@@ -78,7 +78,7 @@ TEST_P(ObliqueImpact, SpinAndReboundAngleWithinOnePercent) {
   // contact point velocity after the impact: v + w x (-r n)
   const Vec3 vc = vel + w.cross(Vec3(0, 0, -r));
   const double rebound = std::atan2(vc.x(), vc.z()) / kDeg;
-  const std::string label = std::string(model == NormalModel::Hertz ? "hertz" : "linear") + " theta " +
+  const std::string label = std::string(model == HertzNormal::kName ? "hertz" : "linear") + " theta " +
                             std::to_string(static_cast<int>(c.angle_deg));
   report(label + " spin", w.norm(), c.spin);
   report(label + " rebound angle", rebound, c.rebound_deg);
@@ -90,11 +90,11 @@ TEST_P(ObliqueImpact, SpinAndReboundAngleWithinOnePercent) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ChungOoiTest4, ObliqueImpact,
-                         ::testing::Combine(::testing::Values(NormalModel::Hertz, NormalModel::Linear),
+                         ::testing::Combine(::testing::Values(HertzNormal::kName, LinearNormal::kName),
                                             ::testing::Values(ObliqueCase{40, 544.2, 11.62}, ObliqueCase{50, 456.7, 29.49},
                                                               ObliqueCase{85, 61.9, 84.81})),
                          [](const auto& info) {
-                           return std::string(std::get<0>(info.param) == NormalModel::Hertz ? "hertz" : "linear") +
+                           return std::string(std::get<0>(info.param) == HertzNormal::kName ? "hertz" : "linear") +
                                   "_" + std::to_string(static_cast<int>(std::get<1>(info.param).angle_deg)) + "deg";
                          });
 
@@ -107,14 +107,14 @@ INSTANTIATE_TEST_SUITE_P(ChungOoiTest4, ObliqueImpact,
 // makes F_n jump), worth ~2% of the friction impulse here, so the linear runs use C_s = C_n.
 constexpr double kR = 0.1, kVn = 0.2, kE = 0.5, kMu = 0.4;
 
-Scene alloy_scene(NormalModel model, double mu = kMu) {
+Scene alloy_scene(std::string_view model, double mu = kMu) {
   Scene s = base_scene(model, 2699, 7.0e10, 0.30, kE, mu, 1e7);
   s.contact.no_tensile_force = true;
-  s.contact.tangential_damping_ratio = 1.0;
+  s.contact.parameters.set(LinearNormal::kDampingRatio.field, 1.0);
   return s;
 }
 
-class TestsFiveToEight : public ::testing::TestWithParam<NormalModel> {};
+class TestsFiveToEight : public ::testing::TestWithParam<std::string_view> {};
 
 // Test 5: onto a plane with spin only (no tangential velocity): the spin drives the sliding.
 TEST_P(TestsFiveToEight, Test5PlaneWithSpin) {
@@ -160,8 +160,8 @@ TEST_P(TestsFiveToEight, Test8DifferentSizesWithTangentialVelocity) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(ChungOoi, TestsFiveToEight, ::testing::Values(NormalModel::Hertz, NormalModel::Linear),
-                         [](const auto& info) { return std::string(info.param == NormalModel::Hertz ? "hertz" : "linear"); });
+INSTANTIATE_TEST_SUITE_P(ChungOoi, TestsFiveToEight, ::testing::Values(HertzNormal::kName, LinearNormal::kName),
+                         [](const auto& info) { return std::string(info.param == HertzNormal::kName ? "hertz" : "linear"); });
 
 }  // namespace
 }  // namespace dem::test

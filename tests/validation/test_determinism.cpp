@@ -17,8 +17,8 @@ namespace dem::test {
 namespace {
 
 Scene falling_heap() {
-  Scene s = base_scene(NormalModel::Hertz, 2500, 1e7, 0.25, 0.4, 0.5);
-  set_rolling(s, RollingModel::Epsd, 0.05);
+  Scene s = base_scene(HertzNormal::kName, 2500, 1e7, 0.25, 0.4, 0.5);
+  set_rolling(s, EpsdRolling::kName, 0.05);
   s.gravity = {0, 0, -9.81};
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> jitter(-0.0005, 0.0005);

@@ -14,7 +14,7 @@ namespace {
 constexpr double kR = 0.01, kG = 9.81;
 
 struct InclineCase {
-  NormalModel model;
+  std::string_view model;
   double theta_deg, mu;
 };
 
@@ -38,7 +38,7 @@ TEST_P(Incline, AccelerationMatchesClosedFormWithinHalfAPermille) {
   const double a = (sim.particles().v[0].dot(downhill) - v1) / (sim.time() - t1);
   const bool slides = std::tan(th) > 3.5 * c.mu;
   const double want = slides ? kG * (std::sin(th) - c.mu * std::cos(th)) : 5.0 / 7.0 * kG * std::sin(th);
-  report(std::string(c.model == NormalModel::Hertz ? "hertz" : "linear") + (slides ? " sliding" : " rolling") +
+  report(std::string(c.model == HertzNormal::kName ? "hertz" : "linear") + (slides ? " sliding" : " rolling") +
              " acceleration",
          a, want);
   EXPECT_NEAR(a, want, 5e-4 * want) << (slides ? "sliding" : "rolling");
@@ -47,11 +47,11 @@ TEST_P(Incline, AccelerationMatchesClosedFormWithinHalfAPermille) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SphereOnIncline, Incline,
-                         ::testing::Values(InclineCase{NormalModel::Linear, 30, 0.1}, InclineCase{NormalModel::Linear, 20, 0.5},
-                                           InclineCase{NormalModel::Hertz, 30, 0.1}, InclineCase{NormalModel::Hertz, 20, 0.5}),
+                         ::testing::Values(InclineCase{LinearNormal::kName, 30, 0.1}, InclineCase{LinearNormal::kName, 20, 0.5},
+                                           InclineCase{HertzNormal::kName, 30, 0.1}, InclineCase{HertzNormal::kName, 20, 0.5}),
                          [](const auto& info) {
                            const auto& c = info.param;
-                           return std::string(c.model == NormalModel::Hertz ? "hertz" : "linear") +
+                           return std::string(c.model == HertzNormal::kName ? "hertz" : "linear") +
                                   (std::tan(c.theta_deg * std::numbers::pi / 180) > 3.5 * c.mu ? "_sliding" : "_rolling");
                          });
 

@@ -17,7 +17,7 @@ namespace {
 constexpr double kR = 0.01, kG = 9.81;
 
 struct MeshInclineCase {
-  NormalModel model;
+  std::string_view model;
   double theta_deg, mu;
   double lateral;  // offset of the path across the grid: 0 runs along grid lines, through vertices
 };
@@ -67,7 +67,7 @@ TEST_P(MeshIncline, MovesAsOnTheAnalyticPlaneWithNoKickAtEdges) {
   const double a_mesh = (on_mesh.particles().v[0].dot(downhill) - v1_mesh) / span;
   const bool slides = std::tan(th) > 3.5 * c.mu;
   const double want = slides ? kG * (std::sin(th) - c.mu * std::cos(th)) : 5.0 / 7.0 * kG * std::sin(th);
-  const std::string name = std::string(c.model == NormalModel::Hertz ? "hertz" : "linear") +
+  const std::string name = std::string(c.model == HertzNormal::kName ? "hertz" : "linear") +
                            (slides ? " sliding" : " rolling") + (c.lateral == 0 ? " along grid lines" : " across cells");
   report(name + " acceleration on the mesh", a_mesh, want);
   report(name + " normal velocity kick / speed", worst_kick, 0.0);
@@ -80,12 +80,12 @@ TEST_P(MeshIncline, MovesAsOnTheAnalyticPlaneWithNoKickAtEdges) {
 
 INSTANTIATE_TEST_SUITE_P(
     SphereOnTessellatedIncline, MeshIncline,
-    ::testing::Values(MeshInclineCase{NormalModel::Linear, 30, 0.1, 0.0}, MeshInclineCase{NormalModel::Linear, 30, 0.1, 0.0073},
-                      MeshInclineCase{NormalModel::Linear, 20, 0.5, 0.0}, MeshInclineCase{NormalModel::Hertz, 30, 0.1, 0.0073},
-                      MeshInclineCase{NormalModel::Hertz, 20, 0.5, 0.0}),
+    ::testing::Values(MeshInclineCase{LinearNormal::kName, 30, 0.1, 0.0}, MeshInclineCase{LinearNormal::kName, 30, 0.1, 0.0073},
+                      MeshInclineCase{LinearNormal::kName, 20, 0.5, 0.0}, MeshInclineCase{HertzNormal::kName, 30, 0.1, 0.0073},
+                      MeshInclineCase{HertzNormal::kName, 20, 0.5, 0.0}),
     [](const auto& info) {
       const auto& c = info.param;
-      return std::string(c.model == NormalModel::Hertz ? "hertz" : "linear") +
+      return std::string(c.model == HertzNormal::kName ? "hertz" : "linear") +
              (std::tan(c.theta_deg * std::numbers::pi / 180) > 3.5 * c.mu ? "_sliding" : "_rolling") +
              (c.lateral == 0 ? "_through_vertices" : "_across_cells");
     });
@@ -94,7 +94,7 @@ INSTANTIATE_TEST_SUITE_P(
 // (so that it meets the three faces of a corner at once, and again at the opposite corner): the
 // box as six analytic planes, or as six faces of 3 x 3 cells (108 triangles).
 Scene bouncing_box(bool as_mesh) {
-  Scene s = base_scene(NormalModel::Hertz, 2500, 1e8, 0.25, 0.8, 0.3);
+  Scene s = base_scene(HertzNormal::kName, 2500, 1e8, 0.25, 0.8, 0.3);
   const double side = 0.1;
   if (as_mesh) {
     s.walls.push_back(mesh_wall(box_mesh(Vec3::Zero(), Vec3::Constant(side), 3)));
@@ -133,8 +133,8 @@ TEST(MeshBox, SphereBouncesAsInABoxOfPlanesThroughCorners) {
 // where it stops on the analytic floor (validation.md section 3: distance 7 v0^2 / (10 mu_r g)).
 TEST(MeshFloor, RollingResistanceStopsTheSphereAsOnAPlane) {
   auto scene = [](bool as_mesh) {
-    Scene s = base_scene(NormalModel::Linear, 2500, 1e8, 0.25, 0.5, 0.5, 1e5);
-    set_rolling(s, RollingModel::Cdt, 0.1);
+    Scene s = base_scene(LinearNormal::kName, 2500, 1e8, 0.25, 0.5, 0.5, 1e5);
+    set_rolling(s, CdtRolling::kName, 0.1);
     s.gravity = {0, 0, -kG};
     if (as_mesh) s.walls.push_back(mesh_wall(grid_rectangle({-0.2, -0.2, 0}, {1.0, 0, 0}, {0, 0.4, 0}, 50, 20)));
     else s.walls.push_back(plane(Vec3::Zero(), Vec3::UnitZ()));

@@ -15,8 +15,8 @@ namespace {
 constexpr double kR = 0.01, kDensity = 2500, kKn = 1e5, kG = 9.81, kMuR = 0.1;
 
 // A sphere resting on the plane z = 0 under gravity g (its overlap already at the static value).
-Scene sphere_on_plane(RollingModel model, const Vec3& g, const Vec3& v0, const Vec3& w0) {
-  Scene s = base_scene(NormalModel::Linear, kDensity, 0, 0.25, 0.5, 0.5, kKn);
+Scene sphere_on_plane(std::string_view model, const Vec3& g, const Vec3& v0, const Vec3& w0) {
+  Scene s = base_scene(LinearNormal::kName, kDensity, 0, 0.25, 0.5, 0.5, kKn);
   set_rolling(s, model, kMuR);
   s.gravity = g;
   const double m = sphere_mass(kDensity, kR);
@@ -28,7 +28,7 @@ Scene sphere_on_plane(RollingModel model, const Vec3& g, const Vec3& v0, const V
   return s;
 }
 
-class RollingResistance : public ::testing::TestWithParam<RollingModel> {};
+class RollingResistance : public ::testing::TestWithParam<std::string_view> {};
 
 TEST_P(RollingResistance, RollingSphereStopsAtTheClosedFormDistanceAndTime) {
   const double v0 = 0.5;
@@ -38,7 +38,7 @@ TEST_P(RollingResistance, RollingSphereStopsAtTheClosedFormDistanceAndTime) {
   const double time = sim.time();
   const double want_distance = 7 * v0 * v0 / (10 * kMuR * kG);
   const double want_time = 7 * v0 / (5 * kMuR * kG);
-  const std::string model = GetParam() == RollingModel::Cdt ? "CDT" : "EPSD";
+  const std::string model = GetParam() == CdtRolling::kName ? "CDT" : "EPSD";
   report(model + " stopping distance", distance, want_distance);
   report(model + " stopping time", time, want_time);
   EXPECT_NEAR(distance, want_distance, 0.02 * want_distance);
@@ -52,7 +52,7 @@ TEST_P(RollingResistance, DecelerationIsFiveSeventhsMuRG) {
   const double v1 = sim.particles().v[0].x(), t1 = sim.time();
   step_until(sim, 10'000'000, [](const Simulation& s) { return s.time() >= 0.5; });
   const double a = (sim.particles().v[0].x() - v1) / (sim.time() - t1);
-  report(std::string(GetParam() == RollingModel::Cdt ? "CDT" : "EPSD") + " deceleration", -a, 5.0 / 7.0 * kMuR * kG);
+  report(std::string(GetParam() == CdtRolling::kName ? "CDT" : "EPSD") + " deceleration", -a, 5.0 / 7.0 * kMuR * kG);
   EXPECT_NEAR(-a, 5.0 / 7.0 * kMuR * kG, 0.02 * 5.0 / 7.0 * kMuR * kG);
 }
 
@@ -66,8 +66,8 @@ TEST_P(RollingResistance, StaysAtRestOnAnInclineBelowTheThreshold) {
   // creeps by a fraction of the per-step gain (Ai et al. 2011 recommend model C for static packings):
   // measured 1.1e-5 m in 1 s here; bounded at twice that.
   std::printf("[ measured ] %s at rest below the threshold: moved %.3g m in 1 s\n",
-              GetParam() == RollingModel::Cdt ? "CDT" : "EPSD", std::abs(sim.particles().x[0].x()));
-  const double allowed = GetParam() == RollingModel::Epsd ? 1e-3 * kR : 2e-3 * kR;
+              GetParam() == CdtRolling::kName ? "CDT" : "EPSD", std::abs(sim.particles().x[0].x()));
+  const double allowed = GetParam() == EpsdRolling::kName ? 1e-3 * kR : 2e-3 * kR;
   EXPECT_LT(std::abs(sim.particles().x[0].x()), allowed);
   EXPECT_LT(sim.particles().v[0].norm(), 1e-4);
 }
@@ -81,12 +81,12 @@ TEST_P(RollingResistance, RollsDownAnInclineAboveTheThreshold) {
   step_until(sim, 10'000'000, [](const Simulation& s) { return s.time() >= 0.4; });
   const double a = (sim.particles().v[0].x() - v1) / (sim.time() - t1);
   const double want = 5.0 / 7.0 * kG * (std::sin(theta) - kMuR * std::cos(theta));
-  report(std::string(GetParam() == RollingModel::Cdt ? "CDT" : "EPSD") + " incline above threshold", a, want);
+  report(std::string(GetParam() == CdtRolling::kName ? "CDT" : "EPSD") + " incline above threshold", a, want);
   EXPECT_NEAR(a, want, 0.02 * want);
 }
 
-INSTANTIATE_TEST_SUITE_P(AiEtAl2011, RollingResistance, ::testing::Values(RollingModel::Cdt, RollingModel::Epsd),
-                         [](const auto& info) { return std::string(info.param == RollingModel::Cdt ? "cdt" : "epsd"); });
+INSTANTIATE_TEST_SUITE_P(AiEtAl2011, RollingResistance, ::testing::Values(CdtRolling::kName, EpsdRolling::kName),
+                         [](const auto& info) { return std::string(info.param == CdtRolling::kName ? "cdt" : "epsd"); });
 
 }  // namespace
 }  // namespace dem::test

@@ -18,7 +18,7 @@ constexpr double kR = 0.005, kG = 9.81, kPlateMass = 1.0;
 // A 4 x 4 x 4 stack of touching spheres in a 4 cm box (settled from the start: the columns rest
 // on each other), under a plate lying on the top layer, pushed down by `load`.
 Scene loaded_bed(const LoadControl& load, double plate_gap) {
-  Scene s = base_scene(NormalModel::Linear, 2500, 1e8, 0.25, 0.3, 0.3, 1e5);
+  Scene s = base_scene(LinearNormal::kName, 2500, 1e8, 0.25, 0.3, 0.3, 1e5);
   s.gravity = {0, 0, -kG};
   for (int k = 0; k < 4; ++k)
     for (int j = 0; j < 4; ++j)

@@ -1,0 +1,65 @@
+// Hertz-Mindlin (the legacy TContact 2): F_n = 4/3 E* sqrt(R* d) d, tangential stiffness
+// k_t = 8 G* sqrt(R* d) (Mindlin & Deresiewicz 1953, no-slip limit), damping proportional to d^(1/4)
+// (Tsuji et al. 1992) with the damping number eta solved for the requested restitution exactly.
+#pragma once
+
+#include <array>
+#include <cmath>
+
+#include "contact/contact_input.hpp"
+#include "contact/model_traits.hpp"
+#include "core/scene.hpp"
+
+namespace dem {
+
+struct HertzNormal {
+  static constexpr std::string_view kName = "HERTZ";
+  static constexpr std::array kRequires{MaterialProperty::Density, MaterialProperty::YoungsModulus,
+                                        MaterialProperty::PoissonRatio};
+  static constexpr std::array<ModelParameter, 0> kParameters{};
+  static constexpr bool kNeedsEffectiveRadius = true;
+  static constexpr bool kContactTimeNeedsSpeed = true;
+
+  struct Pair {
+    double e_star = 0;    // 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2
+    double g_star = 0;    // 1/G* = 2(2-nu1)(1+nu1)/E1 + 2(2-nu2)(1+nu2)/E2
+    double eta = 0;       // damping number of the dimensionless Hertz impact (restitution_damping.hpp)
+    double hertz_cn = 0;  // eta sqrt(4/3 E*):  C_n = this * (R* d)^(1/4) * sqrt(m*)
+    double hertz_ct = 0;  // eta sqrt(16/3 G*): C_t = this * (R* d)^(1/4) * sqrt(m*)
+  };
+  static Pair mix(const Material& a, const Material& b, const Interaction& in, const ContactSettings& c);
+
+  template <class T>
+  struct Lanes {
+    T e_star, g_star, hertz_cn, hertz_ct;
+    DEM_HOT void set(int l, const Pair& p) {
+      set_lane(e_star, l, p.e_star);
+      set_lane(g_star, l, p.g_star);
+      set_lane(hertz_cn, l, p.hertz_cn);
+      set_lane(hertz_ct, l, p.hertz_ct);
+    }
+  };
+
+  template <class T>
+  DEM_HOT static NormalResponse<T> evaluate(const Lanes<T>& p, const ContactInput<T>& c) {
+    const T sqrt_rd = lane_sqrt(c.r_eff * c.delta);
+    const T f_elastic = (4.0 / 3.0) * p.e_star * sqrt_rd * c.delta;
+    // C_n = eta sqrt(m* 4/3 E* sqrt(R* d)); C_t = eta sqrt(2/3 k_t m*) (LIGGGHTS' gamma_t, beta -> eta)
+    const T scale = lane_sqrt(sqrt_rd) * c.sqrt_m_eff;
+    const T kt = 8.0 * p.g_star * sqrt_rd;
+    return {f_elastic - c.onset * p.hertz_cn * scale * c.vn_now, 2.0 * p.e_star * sqrt_rd, kt, p.hertz_ct * scale};
+  }
+
+  static double elastic_energy(const Pair& p, double delta, double r_eff) {
+    return (8.0 / 15.0) * p.e_star * std::sqrt(r_eff) * delta * delta * std::sqrt(delta);
+  }
+
+  // t_c = 2.9432 alpha_max / V, alpha_max = (15 m* V^2 / (16 sqrt(R*) E*))^(2/5) (docs/validation.md).
+  // A damping number eta > 1 (e < 0.4 without tension) makes the dashpot the faster process: the
+  // time scale shrinks by eta, as the linear one does by 2 zeta.
+  static double contact_time(const Pair& p, double m_eff, double r_eff, double speed);
+  // The Rayleigh time pi R sqrt(rho/G) / (0.1631 nu + 0.8766) of the smallest sphere.
+  static double wave_time(const Material& m, double r_min);
+};
+
+}  // namespace dem

@@ -1,0 +1,55 @@
+// Elastic-plastic spring-dashpot (Ai et al. 2011, model C, eqs. 11-16): k_r = 2.25 k_n mu_r^2 R*^2,
+// spring moment limited to mu_r R* F_n, viscous part C_r = 2 eta_r sqrt(I_r k_r) while not sliding.
+#pragma once
+
+#include <array>
+
+#include "contact/contact_input.hpp"
+#include "contact/model_traits.hpp"
+#include "core/scene.hpp"
+
+namespace dem {
+
+struct EpsdRolling {
+  static constexpr std::string_view kName = "EPSD";
+  static constexpr std::array<MaterialProperty, 0> kRequires{};
+  static constexpr ModelParameter kDampingRatio{"rolling_damping_ratio", 0.3, 0, kUnbounded,
+                                                "eta_r, the rolling dashpot's damping ratio"};
+  static constexpr std::array kParameters{kDampingRatio};
+  static constexpr bool kActive = true;
+  static constexpr bool kHasSpring = true;
+
+  struct Pair {
+    double mu_r = 0;
+    double damping = 0;
+  };
+  static Pair mix(const Material&, const Material&, const Interaction& in, const ContactSettings& c) {
+    return {in.rolling_friction, c.parameters.value(kDampingRatio)};
+  }
+  template <class T>
+  struct Lanes {
+    T mu_r, damping;
+    DEM_HOT void set(int l, const Pair& p) {
+      set_lane(mu_r, l, p.mu_r);
+      set_lane(damping, l, p.damping);
+    }
+  };
+
+  // mk: the contact's rolling spring, updated in place.
+  template <class T>
+  DEM_HOT static V3<T> evaluate(const Lanes<T>& p, const NormalResponse<T>& nr, T fn, const ContactInput<T>& c,
+                                V3<T>& mk) {
+    const V3<T> wr = in_plane(c.w_rel, c.n);
+    const T r_eff = c.r_eff;
+    const T kr = 2.25 * nr.kn_tangent * p.mu_r * p.mu_r * r_eff * r_eff;
+    mk = in_plane(mk, c.n) - (kr * c.dt) * wr;
+    const T limit = p.mu_r * r_eff * lane_max(fn, T{});
+    const T m2 = squared_norm(mk);
+    const auto mobilised = m2 >= limit * limit;  // fully mobilised: no damping (f = 0 of Ai et al.)
+    mk = select(mobilised & (m2 > T{}), mk * (limit / lane_sqrt(m2)), mk);
+    const T cr = 2.0 * p.damping * lane_sqrt(c.i_roll * kr);
+    return select(mobilised, mk, mk - cr * wr);
+  }
+};
+
+}  // namespace dem
