@@ -821,7 +821,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   if (spec.has_bonds()) {
     const auto& in = spec.bonds();
     BondSettings b;
-    b.parallel = in.model() == api::Bonds::PARALLEL;
+    b.model = api::Bonds::Model_Name(in.model());  // the enum's names are the bond models' (bonds/bond_models.hpp)
     b.radius_multiplier = in.radius_multiplier() == 0 ? 1.0 : in.radius_multiplier();
     check.positive("bonds.radiusMultiplier", b.radius_multiplier);
     check.positive("bonds.youngsModulus", in.youngs_modulus());

@@ -4,10 +4,17 @@
 #include <numeric>
 #include <random>
 
+#include "bonds/bond_models.hpp"
+
 namespace dem {
 
-BondSet::BondSet(const BondSettings& settings, const Particles& p, const NeighborList& pairs, const std::vector<int>& stone)
-    : moments_(settings.parallel) {
+namespace {
+
+BondEnd end_of(const Particles& p, int i) { return {p.x[i], p.q[i], p.radius[i]}; }
+
+}  // namespace
+
+BondSet::BondSet(const BondSettings& settings, const Particles& p, const NeighborList& pairs, const std::vector<int>& stone) {
   std::mt19937_64 rng(settings.seed);
   std::normal_distribution<double> spread(1.0, settings.strength_spread);
   const int n = static_cast<int>(p.size());
@@ -15,16 +22,11 @@ BondSet::BondSet(const BondSettings& settings, const Particles& p, const Neighbo
     for (int k = pairs.row_start[i]; k < pairs.row_start[i + 1]; ++k) {
       const int j = pairs.partner[k];
       if (stone[p.id[i]] != stone[p.id[j]]) continue;  // two stones touching: not one body
+      if (!p.body.empty() && (p.body[i] >= 0 || p.body[j] >= 0)) continue;  // a clump is rigid already
       const double r_min = std::min(p.radius[i], p.radius[j]);
       const double gap = (p.x[i] - p.x[j]).norm() - p.radius[i] - p.radius[j];
       if (gap > settings.gap_tolerance * r_min) continue;
       if (settings.region && !(settings.region->contains(p.x[i]) && settings.region->contains(p.x[j]))) continue;
-      Bond b;
-      b.i = i;
-      b.j = j;
-      b.geometry = BondGeometry::of(settings.radius_multiplier * r_min);
-      b.kn = settings.youngs_modulus / (p.radius[i] + p.radius[j]);
-      b.ks = settings.shear_stiffness_ratio * b.kn;
       double ratio = 1;
       const Vec3 centre = 0.5 * (p.x[i] + p.x[j]);
       for (const BondSettings::Zone& zone : settings.zones)
@@ -32,29 +34,19 @@ BondSet::BondSet(const BondSettings& settings, const Particles& p, const Neighbo
       // a spread strength is drawn once per bond, from the seed: the same bonds whatever the threads;
       // the normal distribution is cut at 5% of the mean (no bond is born broken)
       const double draw = settings.strength_spread > 0 ? std::max(0.05, spread(rng)) : 1.0;
-      b.tensile_strength = settings.tensile_strength * ratio * draw;
-      b.shear_strength = settings.shear_strength * ratio * draw;
-      b.moments = settings.parallel;
-      b.normal = (p.x[i] - p.x[j]).normalized();
+      Bond b = bond_between(settings, p.radius[i], p.radius[j], ratio * draw);
+      b.i = i;
+      b.j = j;
+      glue(b, end_of(p, i), end_of(p, j));
       bonds_.push_back(b);
     }
   }
 }
 
-void BondSet::step(const Particles& p, double dt, double time, std::vector<Vec3>& f, std::vector<Vec3>& t) {
+void BondSet::step(const Particles& p, double time, std::vector<Vec3>& f, std::vector<Vec3>& t) {
   for (Bond& b : bonds_) {
     if (b.state != BondBreak::Intact) continue;
-    const Vec3 d = p.x[b.i] - p.x[b.j];
-    const double dist = d.norm();
-    const Vec3 n = d / dist;
-    // the bond centre: the middle of the gap (or overlap) between the two surfaces
-    const double gap = dist - p.radius[b.i] - p.radius[b.j];
-    const Vec3 lever_i = -(p.radius[b.i] + 0.5 * gap) * n, lever_j = (p.radius[b.j] + 0.5 * gap) * n;
-    BondMotion m;
-    m.normal = n;
-    m.velocity = (p.v[b.i] + p.w[b.i].cross(lever_i)) - (p.v[b.j] + p.w[b.j].cross(lever_j));
-    m.spin = p.w[b.i] - p.w[b.j];
-    const BondLoad load = bond_step(b, m, lever_i, lever_j, dt, time);
+    const BondLoad load = bond_load(b, end_of(p, b.i), end_of(p, b.j), time);
     f[b.i] += load.force;
     f[b.j] -= load.force;
     t[b.i] += load.moment_i;
@@ -67,16 +59,9 @@ void BondSet::renumber(const std::vector<int>& new_to_old) {
   std::vector<int> old_to_new(new_to_old.size());
   for (std::size_t k = 0; k < new_to_old.size(); ++k) old_to_new[new_to_old[k]] = static_cast<int>(k);
   for (Bond& b : bonds_) {
-    int i = old_to_new[b.i], j = old_to_new[b.j];
-    if (i > j) {  // keep i < j: the bond's vectors are i's, so they change sign with the roles
-      std::swap(i, j);
-      b.shear_force = -b.shear_force;
-      b.twist = -b.twist;
-      b.bending = -b.bending;
-      b.normal = -b.normal;
-    }
-    b.i = i;
-    b.j = j;
+    b.i = old_to_new[b.i];
+    b.j = old_to_new[b.j];
+    if (b.i > b.j) swap_ends(b);  // keep i < j: the bond's state is i's
   }
   // bond order decides the order of the force sums: keep it a function of the particle order
   std::stable_sort(bonds_.begin(), bonds_.end(), [](const Bond& a, const Bond& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
@@ -84,12 +69,7 @@ void BondSet::renumber(const std::vector<int>& new_to_old) {
 
 double BondSet::elastic_energy() const {
   double e = 0;
-  for (const Bond& b : bonds_) {
-    if (b.state != BondBreak::Intact || b.kn <= 0) continue;
-    const BondGeometry& g = b.geometry;
-    e += b.normal_force * b.normal_force / (2 * b.kn * g.area) + b.shear_force.squaredNorm() / (2 * b.ks * g.area);
-    if (b.moments) e += b.twist.squaredNorm() / (2 * b.ks * g.polar) + b.bending.squaredNorm() / (2 * b.kn * g.inertia);
-  }
+  for (const Bond& b : bonds_) e += bond_energy(b);
   return e;
 }
 

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "bonds/parallel_bond.hpp"
+#include "bonds/bond_law.hpp"
 #include "core/particles.hpp"
 #include "core/scene.hpp"
 #include "neighbor/neighbor_list.hpp"
@@ -20,7 +20,7 @@ class BondSet {
   BondSet() = default;
   // Glues every listed pair whose gap is within the tolerance (settings.region, zones, spread)
   // and whose particles are of one stone: stone[id] (by particle id; -1 for loose particles, which
-  // glue to each other).
+  // glue to each other). Members of rigid clumps are never bonded. The particles need orientations.
   BondSet(const BondSettings& settings, const Particles& p, const NeighborList& pairs, const std::vector<int>& stone);
 
   bool empty() const { return bonds_.empty(); }
@@ -29,7 +29,7 @@ class BondSet {
 
   // One step: adds each intact bond's force and moments to f and t (in bond order, serially: the
   // same sums for any thread count). Breaks bonds past their strength.
-  void step(const Particles& p, double dt, double time, std::vector<Vec3>& f, std::vector<Vec3>& t);
+  void step(const Particles& p, double time, std::vector<Vec3>& f, std::vector<Vec3>& t);
 
   // After particles are re-sorted (new index k was old index new_to_old[k]).
   void renumber(const std::vector<int>& new_to_old);
@@ -44,7 +44,6 @@ class BondSet {
 
  private:
   std::vector<Bond> bonds_;
-  bool moments_ = true;
 };
 
 }  // namespace dem

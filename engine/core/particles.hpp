@@ -29,6 +29,9 @@ struct Particles {
   // the member's centre in the body frame. A member's x, v and w are set from its body each step.
   std::vector<int> body;
   std::vector<Vec3> body_offset;
+  // Orientation (body frame to space), integrated from the spin: only in scenes with bonds, which
+  // measure their particles' relative rotation (empty otherwise).
+  std::vector<Quat> q;
 
   std::size_t size() const { return x.size(); }
 
@@ -61,6 +64,7 @@ inline void Particles::permute(const std::vector<int>& new_to_old) {
     permute_array(body, new_to_old);
     permute_array(body_offset, new_to_old);
   }
+  if (!q.empty()) permute_array(q, new_to_old);
 }
 
 }  // namespace dem

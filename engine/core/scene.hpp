@@ -127,9 +127,9 @@ struct Box {
 
 // Bonds glued at the start between neighbours whose gap is at most gap_tolerance times the smaller
 // radius (both centres inside `region` when given): parallel bonds (Potyondy & Cundall 2004), or
-// contact bonds (forces only). The seeds' BOND_MODEL, RPBN/RPBS, BSTRENGTH and BRATIO.
+// contact bonds (forces only). The PDEM-EGD manual's BOND_MODEL, RPBN/RPBS, BSTRENGTH and BRATIO.
 struct BondSettings {
-  bool parallel = true;              // false: contact bonds
+  std::string model = "PARALLEL";    // a bond model of bonds/bond_models.hpp: PARALLEL or CONTACT
   double radius_multiplier = 1;      // lambda: Rb = lambda min(RA, RB)
   double youngs_modulus = 0;         // Eb, Pa: normal stiffness per area Eb / (RA + RB)
   double shear_stiffness_ratio = 1;  // ks / kn of the bond

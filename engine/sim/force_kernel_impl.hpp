@@ -28,7 +28,7 @@ class ForceKernelImpl final : public ForceKernel {
     if (bonded) {  // bonds add to f_next and particles.t; the kick adds those to the pairs' sums
       std::fill(s.f_next.begin(), s.f_next.end(), Vec3::Zero());
       std::fill(s.particles.t.begin(), s.particles.t.end(), Vec3::Zero());
-      s.bonds.step(s.particles, s.dt, s.time, s.f_next, s.particles.t);
+      s.bonds.step(s.particles, s.time, s.f_next, s.particles.t);
     }
     gather_and_kick(s, table_, bonded);
   }

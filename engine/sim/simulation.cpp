@@ -10,6 +10,7 @@
 #endif
 
 #include "core/errors.hpp"
+#include "core/rotation.hpp"
 
 namespace dem {
 namespace {
@@ -113,6 +114,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   move_walls(0, 0);
   build_neighbors();
   if (scene_.bonds) {
+    state_.particles.q.assign(state_.particles.size(), Quat::Identity());  // the bonds measure turns from here
     std::vector<int> stone;  // breakable stones glue only inside themselves
     for (const ParticleInit& p : scene_.particles) stone.push_back(p.stone);
     state_.bonds = BondSet(*scene_.bonds, state_.particles, state_.neighbors, stone);
@@ -244,15 +246,19 @@ double Simulation::half_kick_and_drift() {
   const Vec3* __restrict x0 = x_at_build_.data();
   const double* __restrict inv_mass = p.inv_mass.data();
   const double* __restrict inv_inertia = p.inv_inertia.data();
+  Quat* __restrict q = p.q.empty() ? nullptr : p.q.data();
 #pragma omp parallel for schedule(static) reduction(max : moved2) if (n >= kParallelMinParticles)
   for (int i = 0; i < n; ++i) {
     const Vec3 k = (half_dt * inv_mass[i]) * f[i];
     kick[i] = k;
     const Vec3 vi = v[i] + k;
     v[i] = vi;
-    w[i] = w[i] + (half_dt * inv_inertia[i]) * t[i];
+    const Vec3 wi = w[i] + (half_dt * inv_inertia[i]) * t[i];
+    w[i] = wi;
     const Vec3 xi = x[i] + dt * vi;
     x[i] = xi;
+    // the orientation turns with the half-step spin, as the position moves with the half-step velocity
+    if (q) q[i] = (rotation_by(dt * wi) * q[i]).normalized();
     moved2 = std::max(moved2, (xi - x0[i]).squaredNorm());
   }
   return moved2;

@@ -9,7 +9,7 @@
 namespace dem {
 namespace {
 
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '3'};  // 3: walls' load clocks, no block plan
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '4'};  // 4: orientations, bonds' bonded states
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
@@ -91,7 +91,7 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   put(out, sim.growth_at_build_);
   put(out, sim.growth_scale_);
   put(out, s.bonds.bonds());
-  put(out, p.body); put(out, p.body_offset);
+  put(out, p.body); put(out, p.body_offset); put(out, p.q);
   const ClumpBodies& cb = s.bodies;
   put(out, cb.x); put(out, cb.v); put(out, cb.rotation); put(out, cb.force); put(out, cb.torque);
   if (!out) throw std::runtime_error("cannot write the saved state");
@@ -182,7 +182,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   std::vector<Bond> saved_bonds;
   r.get(saved_bonds, "the bonds");
   s.bonds.restore(std::move(saved_bonds));
-  r.get(p.body, "the clumps"); r.get(p.body_offset, "the clumps");
+  r.get(p.body, "the clumps"); r.get(p.body_offset, "the clumps"); r.get(p.q, "the orientations");
   ClumpBodies& cb = s.bodies;
   r.get(cb.x, "the clumps"); r.get(cb.v, "the clumps"); r.get(cb.rotation, "the clumps");
   r.get(cb.force, "the clumps"); r.get(cb.torque, "the clumps");

@@ -9,6 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "bonds/bond_models.hpp"
 #include "core/errors.hpp"
 
 namespace dem {
@@ -120,21 +121,14 @@ TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel) {
     for (int w : wall_materials) consider(w, smallest[a].mass, smallest[a].radius);
     rayleigh_min = std::min(rayleigh_min, kernel.wave_time(scene.materials[a], smallest[a].radius));
   }
-  if (scene.bonds) {
-    // A bond between two of the smallest spheres is the stiffest per unit mass: its four springs
-    // (axial kn A, shear ks A, bending kn I, twist ks J) each get a contact time pi sqrt(m*/k).
-    const BondSettings& b = *scene.bonds;
+  if (scene.bonds && scene.bonds->youngs_modulus > 0) {
+    // A bond between two of the smallest spheres is the stiffest per unit mass (the bond model says
+    // how short its springs' periods are: bonds/bond_models.hpp).
     double t_bond = kInf;
-    for (int a = 0; a < materials; ++a) {
-      if (smallest[a].mass == kInf) continue;
-      const double r = smallest[a].radius, m_eff = smallest[a].mass / 2, i_eff = 0.4 * smallest[a].mass * r * r / 2;
-      const double rb = b.radius_multiplier * r, kn = b.youngs_modulus / (2 * r), ks = b.shear_stiffness_ratio * kn;
-      const double area = std::numbers::pi * rb * rb, inertia = area * rb * rb / 4;
-      const double stiffest = std::max(kn, ks);
-      t_bond = std::min({t_bond, std::numbers::pi * std::sqrt(m_eff / (stiffest * area)),
-                         std::numbers::pi * std::sqrt(i_eff / (stiffest * 2 * inertia))});
-    }
-    if (t_bond < kInf && b.youngs_modulus > 0) r.bond_time = t_bond;
+    for (int a = 0; a < materials; ++a)
+      if (smallest[a].mass != kInf)
+        t_bond = std::min(t_bond, bond_shortest_time(*scene.bonds, smallest[a].radius, smallest[a].mass));
+    if (t_bond < kInf) r.bond_time = t_bond;
   }
   if (t_min == kInf) t_min = 1.0;  // nothing can touch: any step resolves the free flight
   r.contact_time = t_min;

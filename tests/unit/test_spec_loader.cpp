@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "bonds/bond_models.hpp"
 #include "contact/models.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -636,7 +637,7 @@ TEST(SpecLoader, BondsAreRead) {
             "zones": [{"min": {"x": -1, "y": -1, "z": -1}, "max": {"x": 1, "y": 1, "z": 0}, "strengthRatio": 0.2}]},)");
   const Scene s = to_scene(parse_json(json));
   ASSERT_TRUE(s.bonds.has_value());
-  EXPECT_FALSE(s.bonds->parallel);
+  EXPECT_EQ(s.bonds->model, ContactBond::kName);
   EXPECT_EQ(s.bonds->radius_multiplier, 1.0);
   EXPECT_EQ(s.bonds->shear_stiffness_ratio, 1.0);
   EXPECT_EQ(s.bonds->gap_tolerance, 1e-3);

@@ -7,7 +7,8 @@
 #include <numbers>
 #include <random>
 
-#include "bonds/parallel_bond.hpp"
+#include "bonds/bond_law.hpp"
+#include "core/rotation.hpp"
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
@@ -28,25 +29,29 @@ Bond make_bond() {
   return b;
 }
 
-// The motion of the two checks: body i moves (velocity u) and turns (spin w) relative to j, whose
-// direction from j is `axis`. `flip`: the same physical motion with the roles of i and j swapped.
+// The motion of the two checks: body A (radius kRa), along `axis` from body B (radius kRb, at the
+// origin), moves with `velocity`; A and B turn about their own centres in opposite senses, each by
+// half of the relative rotation `spin` t: their points at the bond centre then move together (the
+// radii are equal), so a turn bends or twists the bond without shearing or stretching it.
+// `flip`: the bond lists B first (the roles of i and j swapped).
 struct Drive {
   Vec3 axis;
   Vec3 velocity;
   Vec3 spin;
 };
 
-// Steps the bond under a constant relative motion for `steps` steps of dt (or until it breaks);
-// returns the last load carried.
+// Drives the bond for `steps` steps of dt (or until it breaks); returns the last load carried.
 BondLoad drive(Bond& b, const Drive& d, bool flip, int steps, double dt) {
+  auto a_at = [&](double t) {
+    return BondEnd{(kRa + kRb) * d.axis + d.velocity * t, rotation_by(0.5 * t * d.spin), kRa};
+  };
+  auto b_at = [&](double t) { return BondEnd{Vec3::Zero(), rotation_by(-0.5 * t * d.spin), kRb}; };
+  if (flip) glue(b, b_at(0), a_at(0));
+  else glue(b, a_at(0), b_at(0));
   BondLoad last{};
-  for (int k = 0; k < steps; ++k) {
-    BondMotion m;
-    m.normal = flip ? Vec3(-d.axis) : d.axis;
-    m.velocity = flip ? Vec3(-d.velocity) : d.velocity;
-    m.spin = flip ? Vec3(-d.spin) : d.spin;
-    const Vec3 lever_i = -kRa * m.normal, lever_j = kRb * m.normal;
-    const BondLoad load = bond_step(b, m, lever_i, lever_j, dt, k * dt);
+  for (int k = 1; k <= steps; ++k) {
+    const double t = k * dt;
+    const BondLoad load = flip ? bond_load(b, b_at(t), a_at(t), t) : bond_load(b, a_at(t), b_at(t), t);
     if (b.state != BondBreak::Intact) break;
     last = load;
   }

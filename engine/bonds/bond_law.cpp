@@ -1,0 +1,98 @@
+#include "bonds/bond_law.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+#include "core/rotation.hpp"
+
+namespace dem {
+
+BondGeometry BondGeometry::of(double bond_radius) {
+  const double r2 = bond_radius * bond_radius;
+  return {bond_radius, std::numbers::pi * r2, std::numbers::pi * r2 * r2 / 4, std::numbers::pi * r2 * r2 / 2};
+}
+
+void glue(Bond& b, const BondEnd& i, const BondEnd& j) {
+  const Vec3 d = i.x - j.x;
+  const double length = d.norm();
+  const Vec3 n = d / length;
+  const double gap = length - i.radius - j.radius;
+  b.rest_length = length;
+  b.lever_i = i.radius + 0.5 * gap;
+  b.lever_j = j.radius + 0.5 * gap;
+  b.anchor_i = i.q.conjugate() * Vec3(-n);
+  b.anchor_j = j.q.conjugate() * n;
+  b.relative = i.q.conjugate() * j.q;
+  b.normal_force = 0;
+  b.shear_force = b.twist = b.bending = Vec3::Zero();
+}
+
+double bond_tensile_stress(const Bond& b) {
+  // eq. 10: sigma = -Fn / A + |Ms| Rb / I (Fn positive in compression)
+  const double bend = b.moments ? b.bending.norm() * b.geometry.radius / b.geometry.inertia : 0.0;
+  return -b.normal_force / b.geometry.area + bend;
+}
+
+double bond_shear_stress(const Bond& b) {
+  // eq. 11: tau = |Fs| / A + |Mn| Rb / J
+  const double twist = b.moments ? b.twist.norm() * b.geometry.radius / b.geometry.polar : 0.0;
+  return b.shear_force.norm() / b.geometry.area + twist;
+}
+
+BondLoad bond_load(Bond& b, const BondEnd& i, const BondEnd& j, double time) {
+  if (b.state != BondBreak::Intact) return {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  const Vec3 d = i.x - j.x;
+  const double dist = d.norm();
+  const Vec3 n = d / dist;
+  const BondGeometry& g = b.geometry;
+  // P&C's dUn summed: the change of the centres' distance
+  b.normal_force = -b.kn * g.area * (dist - b.rest_length);
+  // dUs summed: where i's and j's attachment points at the bond centre have moved apart, in the plane
+  const Vec3 apart = (i.x + b.lever_i * (i.q * b.anchor_i)) - (j.x + b.lever_j * (j.q * b.anchor_j));
+  b.shear_force = -b.ks * g.area * (apart - apart.dot(n) * n);
+  if (b.moments) {
+    // the rotation of i relative to j since the bond was made, in space: q_i q_i0^-1 q_j0 q_j^-1
+    const Vec3 turn = rotation_vector(i.q * b.relative * j.q.conjugate());
+    const Vec3 twist_angle = turn.dot(n) * n;
+    b.twist = -b.ks * g.polar * twist_angle;
+    b.bending = -b.kn * g.inertia * (turn - twist_angle);
+  }
+  BondLoad out{b.normal_force * n + b.shear_force, Vec3::Zero(), Vec3::Zero()};
+  // the force acts at the bond centre, the middle of the gap between the surfaces
+  const double gap = dist - i.radius - j.radius;
+  const Vec3 lever_i = -(i.radius + 0.5 * gap) * n, lever_j = (j.radius + 0.5 * gap) * n;
+  const Vec3 moment = b.twist + b.bending;
+  out.moment_i = moment + lever_i.cross(out.force);
+  out.moment_j = -moment + lever_j.cross(-out.force);
+
+  if (bond_tensile_stress(b) >= b.tensile_strength) {
+    b.state = BondBreak::Tension;
+  } else if (bond_shear_stress(b) >= b.shear_strength) {
+    b.state = BondBreak::Shear;
+  }
+  if (b.state == BondBreak::Intact) return out;
+  b.broken_at = time;  // it gave way during this step: it carries nothing more
+  return {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+}
+
+void swap_ends(Bond& b) {
+  std::swap(b.i, b.j);
+  std::swap(b.lever_i, b.lever_j);
+  std::swap(b.anchor_i, b.anchor_j);
+  b.relative = b.relative.conjugate();
+  // the loads are i's: the new i carries what the old j did
+  b.shear_force = -b.shear_force;
+  b.twist = -b.twist;
+  b.bending = -b.bending;
+}
+
+double bond_energy(const Bond& b) {
+  if (b.state != BondBreak::Intact || b.kn <= 0) return 0;
+  const BondGeometry& g = b.geometry;
+  double e = b.normal_force * b.normal_force / (2 * b.kn * g.area) + b.shear_force.squaredNorm() / (2 * b.ks * g.area);
+  if (b.moments) e += b.twist.squaredNorm() / (2 * b.ks * g.polar) + b.bending.squaredNorm() / (2 * b.kn * g.inertia);
+  return e;
+}
+
+}  // namespace dem
