@@ -34,7 +34,7 @@ struct CdtRolling {
   DEM_HOT static V3<T> evaluate(const Lanes<T>& p, const NormalResponse<T>&, T fn, const ContactInput<T>& c, V3<T>&) {
     const V3<T> wr = in_plane(c.w_rel, c.n);
     const T w = lane_sqrt(squared_norm(wr));
-    const T moment = lane_min(p.mu_r * c.r_eff * fn, c.i_roll * w / c.dt);
+    const T moment = lane_min(p.mu_r * c.r_eff * lane_max(fn, T{}), c.i_roll * w / c.dt);  // no moment in tension
     return select(w == T{}, V3<T>::zero(), (-moment / w) * wr);
   }
 };

@@ -220,10 +220,13 @@ class ForceKernelImpl final : public ForceKernel {
 
         const V3<T> wi = gather<T>(w, iv), wj = gather<T>(w, jv);
         ContactInput<T> c;
-        const T ri = geo.ri, rj = geo.rj;
         c.n = geo.n;
         c.delta = geo.delta;
-        c.v_rel = gather<T>(v, iv) - gather<T>(v, jv) - cross(ri * wi + rj * wj, c.n);
+        // The contact point: the middle of the overlap, at r - delta/2 from each centre (YADE's), so
+        // that the two levers add up to the distance of the centres and the tangential force keeps
+        // the total angular momentum (through the full radii it leaked delta / R of it).
+        const T li = geo.ri - 0.5 * geo.delta, lj = geo.rj - 0.5 * geo.delta;
+        c.v_rel = gather<T>(v, iv) - gather<T>(v, jv) - cross(li * wi + lj * wj, c.n);
         const T vn = dot(c.v_rel, c.n);
         // full-step prediction: v(n+1) ~ v(n+1/2) + (the first half kick again)
         c.vn_now = vn + dot(gather<T>(kick, iv) - gather<T>(kick, jv), c.n);
@@ -237,7 +240,7 @@ class ForceKernelImpl final : public ForceKernel {
         V3<T> roll_spring = Law::kRollingSpring ? gather<T>(roll, kv) : V3<T>::zero();
         const ContactOutput<T> r = Law::evaluate(params, c, spring, roll_spring);
         const V3<T> lever = cross(c.n, r.shear_force);
-        V3<T> torque_i = -(ri * lever), torque_j = -(rj * lever);
+        V3<T> torque_i = -(li * lever), torque_j = -(lj * lever);
         if constexpr (Law::kRolling) {
           torque_i = torque_i + r.roll_moment;
           torque_j = torque_j - r.roll_moment;
@@ -335,11 +338,11 @@ class ForceKernelImpl final : public ForceKernel {
                                                     const PairConstants& pc, Vec3& shear, Vec3& roll, Vec3& f,
                                                     Vec3& t) {
     const Particles& p = s.particles;
-    const double ri = p.radius[i];
+    const double li = p.radius[i] - 0.5 * delta;  // to the contact point, as for a pair
     ContactInput<double> c;
     c.n = to_v3(normal);
     c.delta = delta;
-    c.v_rel = to_v3(p.v[i]) - ri * cross(to_v3(p.w[i]), c.n);
+    c.v_rel = to_v3(p.v[i]) - li * cross(to_v3(p.w[i]), c.n);
     if (pose.moving()) c.v_rel = c.v_rel - to_v3(pose.velocity_at(point));
     const double vn = dot(c.v_rel, c.n);
     c.vn_now = vn + dot(to_v3(s.half_kick[i]), c.n);
@@ -356,7 +359,7 @@ class ForceKernelImpl final : public ForceKernel {
     shear = spring.get(0);
     if constexpr (Law::kRollingSpring) roll = roll_spring.get(0);
     f += r.force.get(0);
-    t -= ri * cross(c.n, r.shear_force).get(0);
+    t -= li * cross(c.n, r.shear_force).get(0);
     if constexpr (Law::kRolling) t += r.roll_moment.get(0);
     return r;
   }
@@ -379,7 +382,7 @@ class ForceKernelImpl final : public ForceKernel {
       }
       Vec3 unused_roll = Vec3::Zero();
       Vec3& roll = Law::kRollingSpring ? wc.roll[e] : unused_roll;
-      const Vec3 point = p.x[i] - (ri - delta) * normal;
+      const Vec3 point = p.x[i] - (ri - 0.5 * delta) * normal;  // the middle of the overlap
       const ContactOutput<double> r =
           wall_contact(s, table, i, normal, delta, point, wall.pose, wall.material, wc.constants[e], wc.shear[e], roll, f, t);
       wc.fn[e] = r.fn;
@@ -443,11 +446,12 @@ class ForceKernelImpl final : public ForceKernel {
           slot.shear = before[best].shear;
           slot.roll = before[best].roll;
         }
-        const ContactOutput<double> r = wall_contact(s, table, i, touch.normal, touch.delta, touch.point, s.meshes[m].pose,
+        const Vec3 point = p.x[i] - (ri - 0.5 * touch.delta) * touch.normal;  // the middle of the overlap
+        const ContactOutput<double> r = wall_contact(s, table, i, touch.normal, touch.delta, point, s.meshes[m].pose,
                                                      s.meshes[m].material, pc, slot.shear, slot.roll, f, t);
         slot.normal = touch.normal;
         slot.force = r.force.get(0);
-        slot.point = touch.point;
+        slot.point = point;
         slot.fn = r.fn;
         if (s.record_contacts) slot.ft = std::sqrt(squared_norm(r.shear_force));
         slot.delta = touch.delta;

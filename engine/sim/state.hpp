@@ -25,7 +25,7 @@ struct WallContacts {
   std::vector<double> ft;      // tangential force magnitude of the last step
   std::vector<std::uint8_t> touching;
   std::vector<Vec3> force;     // on the particle, last step (zero when apart)
-  std::vector<Vec3> point;     // contact point on the wall, last step
+  std::vector<Vec3> point;     // contact point (the middle of the overlap), last step
 };
 
 // A particle's contact with a mesh, kept from step to step: the spring history follows the contact
@@ -36,7 +36,7 @@ struct MeshSlot {
   Vec3 shear = Vec3::Zero();
   Vec3 roll = Vec3::Zero();
   Vec3 force = Vec3::Zero();  // on the particle
-  Vec3 point = Vec3::Zero();  // on the mesh
+  Vec3 point = Vec3::Zero();  // the contact point (the middle of the overlap)
   double fn = 0, ft = 0, delta = 0;
 };
 
