@@ -511,7 +511,7 @@ ContactChoice contact_models_of(const api::ContactModel& in, Checker& check) {
   if (!rolling_model) check.fail("contact.rolling", "no rolling model \"" + rolling + "\" in this build");
   out.settings.normal = normal;
   out.settings.rolling = rolling;
-  out.settings.no_tensile_force = in.no_tensile_force();
+  out.settings.no_tensile_force = in.has_no_tensile_force() ? in.no_tensile_force() : true;
 
   std::vector<const ModelInfo*> chosen{out.normal, rolling_model};
   for (const ModelInfo& m : catalog.tangential) chosen.push_back(&m);

@@ -33,7 +33,9 @@ struct Interaction {
 struct ContactSettings {
   std::string normal = "LINEAR";
   std::string rolling = "NONE";  // used only where a pair has rolling friction
-  bool no_tensile_force = false;
+  // A contact never pulls: impact theory's assumption, and the one under which friction's impulse is
+  // mu times the normal impulse (with tension, the pull at parting has no friction: docs/physics.md).
+  bool no_tensile_force = true;
   ModelParameters parameters;    // by field name; a model's default where absent
 };
 

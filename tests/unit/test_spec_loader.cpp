@@ -134,12 +134,13 @@ TEST(SpecLoader, GoodSpecBuildsTheSceneItDescribes) {
 
 TEST(SpecLoader, OmittedFieldsTakeTheDocumentedDefaults) {
   const Scene s = to_scene(parse_json(kGoodSpec));
-  // contact (dem.proto ContactModel; the manuals' rns = 0.5, rzs = 0; Ai et al. eta_r = 0.3): the
-  // models' own defaults, for parameters the spec does not give
-  EXPECT_FALSE(s.contact.no_tensile_force);
+  // contact (dem.proto ContactModel; the manuals' rns = 0.5; C_s = C_n, where the manuals' rzs is 0;
+  // Ai et al. eta_r = 0.3): the models' own defaults, for parameters the spec does not give; no
+  // tensile force
+  EXPECT_TRUE(s.contact.no_tensile_force);
   EXPECT_TRUE(s.contact.parameters.given().empty());
   EXPECT_EQ(s.contact.parameters.value(LinearNormal::kStiffnessRatio), 0.5);
-  EXPECT_EQ(s.contact.parameters.value(LinearNormal::kDampingRatio), 0.0);
+  EXPECT_EQ(s.contact.parameters.value(LinearNormal::kDampingRatio), 1.0);
   EXPECT_EQ(s.contact.parameters.value(EpsdRolling::kDampingRatio), 0.3);
   // time: automatic step at 1/50 of the contact time
   EXPECT_EQ(s.time.dt, 0.0);
@@ -314,7 +315,13 @@ TEST(SpecLoader, ContactParametersReachTheirModel) {
   const Scene s = to_scene(parse_json(json));
   EXPECT_EQ(s.contact.parameters.value(LinearNormal::kStiffnessRatio), 0.3);
   EXPECT_EQ(s.contact.parameters.value(EpsdRolling::kDampingRatio), 0.1);
-  EXPECT_EQ(s.contact.parameters.value(LinearNormal::kDampingRatio), 0.0);  // not given: the model's default
+  EXPECT_EQ(s.contact.parameters.value(LinearNormal::kDampingRatio), 1.0);  // not given: the model's default
+}
+
+TEST(SpecLoader, TensionIsAllowedOnlyWhenAsked) {
+  EXPECT_TRUE(to_scene(parse_json(kGoodSpec)).contact.no_tensile_force);
+  const std::string json = replaced(kGoodSpec, R"("rolling": "NONE")", R"("rolling": "NONE", "noTensileForce": false)");
+  EXPECT_FALSE(to_scene(parse_json(json)).contact.no_tensile_force);
 }
 
 TEST(SpecLoader, AParameterOfAModelNotChosenIsRefused) {

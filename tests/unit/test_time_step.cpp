@@ -30,6 +30,7 @@ Scene linear_pair_scene() {
   s.materials = {m};
   s.interactions = {Interaction{0.5, 0.3, 0}};
   s.contact.normal = LinearNormal::kName;
+  s.contact.no_tensile_force = false;  // validation.md section 2's zeta(e) is the law with tension
   for (double x : {0.0, 0.03}) {
     ParticleInit p;
     p.position = Vec3(x, 0, 0);
