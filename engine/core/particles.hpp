@@ -1,6 +1,7 @@
 // Per-particle state, one contiguous array per quantity (the hot loops read a few of them at a time).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -38,6 +39,12 @@ struct Particles {
   // Reorders every array so that new index k holds old index new_to_old[k].
   void permute(const std::vector<int>& new_to_old);
 };
+
+// A particle's state is usable: its position, velocity and spin are finite and so are the squares
+// the energies and files take of them (a speed past ~1e154 m/s overflows m v^2 before it overflows).
+inline bool state_is_finite(const Vec3& x, const Vec3& v, const Vec3& w, double mass) {
+  return std::isfinite(x.squaredNorm()) && std::isfinite(mass * v.squaredNorm()) && std::isfinite(mass * w.squaredNorm());
+}
 
 // Applies new_to_old to one array (used for per-particle history kept outside Particles too).
 template <class T>

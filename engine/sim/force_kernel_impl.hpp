@@ -297,7 +297,9 @@ class ForceKernelImpl final : public ForceKernel {
     Vec3* __restrict torque = p.t.data();
     Vec3* __restrict v = p.v.data();
     Vec3* __restrict w = p.w.data();
-#pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
+    const Vec3* __restrict x = p.x.data();
+    bool bad = false;
+#pragma omp parallel for schedule(static) reduction(|| : bad) if (n >= kParallelMinParticles)
     for (int i = 0; i < n; ++i) {
       Vec3 f = as_vec3(sums[i].f), t = as_vec3(sums[i].t);
       sums[i] = BodySums{};  // zero for the next step's pair loop (while the line is in cache)
@@ -324,9 +326,13 @@ class ForceKernelImpl final : public ForceKernel {
       }
       force[i] = f;
       torque[i] = t;
-      v[i] = v[i] + (half_dt * inv_mass[i]) * f;
-      w[i] = w[i] + (half_dt * inv_inertia[i]) * t;
+      const Vec3 vi = v[i] + (half_dt * inv_mass[i]) * f, wi = w[i] + (half_dt * inv_inertia[i]) * t;
+      v[i] = vi;
+      w[i] = wi;
+      // the end-of-step state, checked every step so that a blow-up is caught where it starts
+      bad = bad || !state_is_finite(x[i], vi, wi, mass[i]);
     }
+    s.non_finite = bad;
   }
 
   // One sphere against a boundary (plane, plate or mesh) that moves with `pose`: the law with the

@@ -15,6 +15,7 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
   const int check_every = std::max(1, sim.scene().numerics.check_interval);
   const StabilityGuard guard(sim);
   auto frame = [&] {
+    guard.check_writable(sim);  // nothing non-finite is ever written
     for (Observer* o : observers) o->frame(sim);
   };
   const auto start = Clock::now();
@@ -37,6 +38,7 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
       const bool frame_due = (every > 0 && next % every == 0) || next == total;
       sim.record_contacts(frame_due);
       sim.step();
+      guard.check_finite(sim);
       const std::int64_t s = sim.step_count();
       if (s % check_every == 0 || s == total) guard.check(sim);
       if (frame_due) frame();
@@ -47,7 +49,10 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
         if (since >= options.progress_seconds || s == total) {
           const double rate = static_cast<double>(s - steps_at_report) / std::max(since, 1e-9);
           if (options.on_progress) options.on_progress({s, total, rate, rate > 0 ? static_cast<double>(total - s) / rate : 0});
-          if (options.periodically) options.periodically(sim);
+          if (options.periodically) {
+            guard.check_writable(sim);  // the server saves a checkpoint here
+            options.periodically(sim);
+          }
           last_report = now;
           steps_at_report = s;
         }

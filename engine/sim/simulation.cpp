@@ -205,6 +205,16 @@ void Simulation::step() {
   settle_walls(t_new, state_.dt);
   contacts_recorded_ = state_.record_contacts;
   ++step_;
+  if (state_.non_finite && !first_non_finite_) {
+    const Particles& p = state_.particles;
+    NonFinite bad{step_, time(), -1, 0};
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (state_is_finite(p.x[i], p.v[i], p.w[i], p.mass[i])) continue;
+      ++bad.particles;
+      if (bad.particle_id < 0 || p.id[i] < bad.particle_id) bad.particle_id = p.id[i];
+    }
+    first_non_finite_ = bad;
+  }
 }
 
 double Simulation::grow() {

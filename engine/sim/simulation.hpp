@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -34,6 +35,15 @@ struct PairContact {
   int j;
   double fn;  // normal force, N
   double ft;  // tangential force magnitude, N
+};
+
+// Where a run first stopped being finite: the step and time, and the particle (its scene id) with
+// the lowest id among those that went bad in that step.
+struct NonFinite {
+  std::int64_t step = 0;
+  double time = 0;
+  int particle_id = 0;
+  int particles = 0;  // how many went bad in that step
 };
 
 class Simulation {
@@ -83,6 +93,10 @@ class Simulation {
   int mesh_index(int k) const { return mesh_index_[k]; }
   bool has_moving_walls() const;
 
+  // Set by the first step that left a particle's position, velocity or spin non-finite (every step
+  // is checked, at the cost of one comparison per particle).
+  const std::optional<NonFinite>& first_non_finite() const { return first_non_finite_; }
+
  private:
   friend class StateIO;  // saves and restores everything below (sim/state_io.hpp)
 
@@ -116,6 +130,7 @@ class Simulation {
   double largest_given_radius_ = 0;         // of the scene's particles (growth scales it)
   double growth_scale_ = 1;                 // radii now over their given sizes (Scene::growth)
   double growth_at_build_ = 1;              // the same at the last build
+  std::optional<NonFinite> first_non_finite_;
 };
 
 }  // namespace dem

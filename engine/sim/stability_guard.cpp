@@ -39,15 +39,52 @@ double StabilityGuard::mechanical_energy(const Simulation& sim, const ContactSum
   return sim.kinetic_energy() + sim.gravitational_energy() + contacts.elastic_energy + sim.bonds().elastic_energy();
 }
 
-void StabilityGuard::check(const Simulation& sim) const {
+void StabilityGuard::check_finite(const Simulation& sim) const {
+  const std::optional<NonFinite>& bad = sim.first_non_finite();
+  if (!bad) return;
+  char buf[260];
+  std::snprintf(buf, sizeof buf,
+                "unstable: position or velocity is not a finite number (or overflows its energy) at step %lld "
+                "(t = %.6e s), particle %d, "
+                "where it started (%d particle%s went bad in that step)",
+                static_cast<long long>(bad->step), bad->time, bad->particle_id + 1, bad->particles,
+                bad->particles == 1 ? "" : "s");
+  throw InstabilityError(buf + std::string("; likely cause: the time step is too large for the contact stiffness (") +
+                         sim.time_step().describe() + ")");
+}
+
+void StabilityGuard::check_writable(const Simulation& sim) const {
+  check_finite(sim);
   const Particles& p = sim.particles();
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (!p.x[i].allFinite() || !p.v[i].allFinite() || !p.w[i].allFinite()) {
-      throw InstabilityError("unstable: position or velocity is not a number " + where(sim, static_cast<int>(i)) +
+    if (!state_is_finite(p.x[i], p.v[i], p.w[i], p.mass[i])) {
+      throw InstabilityError("unstable: position or velocity is not a finite number (or overflows its energy) " +
+                             where(sim, static_cast<int>(i)) +
                              "; likely cause: the time step is too large for the contact stiffness (" +
                              sim.time_step().describe() + ")");
     }
   }
+  // finite states whose energies or wall loads overflow: the files would hold inf
+  bool walls_finite = true;
+  for (const BoundaryLoad& load : sim.boundary_loads()) walls_finite = walls_finite && load.force.allFinite() && load.torque.allFinite();
+  for (std::size_t k = 0; k < sim.scene().walls.size(); ++k) {
+    const WallPose& pose = sim.wall_driver(static_cast<int>(k)).pose();
+    walls_finite = walls_finite && pose.displacement.allFinite() && pose.rotation.allFinite();
+  }
+  if (!walls_finite || !std::isfinite(sim.kinetic_energy()) || !std::isfinite(sim.gravitational_energy())) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "unstable: %s overflowed at step %lld (t = %.6e s)",
+                  walls_finite ? "the kinetic or potential energy" : "a wall's load or position",
+                  static_cast<long long>(sim.step_count()), sim.time());
+    throw InstabilityError(buf + std::string("; likely cause: the time step is too large for the contact stiffness, "
+                                             "or speeds or forces far beyond the scene's scale (") +
+                           sim.time_step().describe() + ")");
+  }
+}
+
+void StabilityGuard::check(const Simulation& sim) const {
+  check_writable(sim);
+  const Particles& p = sim.particles();
   const ContactSummary contacts = sim.contact_summary();
   const double limit = sim.scene().numerics.max_overlap_fraction;
   if (contacts.max_overlap_fraction > limit) {

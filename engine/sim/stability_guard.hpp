@@ -12,6 +12,11 @@ class StabilityGuard {
   // Throws InstabilityError naming the step, the particle (its scene id, 1-based as in the files)
   // and the likely cause.
   void check(const Simulation& sim) const;
+  // Every step (cheap): a blow-up the last step started, named where and when it started.
+  void check_finite(const Simulation& sim) const;
+  // Before anything is written (a frame, a saved state): every number the files take from the
+  // state is finite; a blow-up never reaches them.
+  void check_writable(const Simulation& sim) const;
 
  private:
   double mechanical_energy(const Simulation& sim, const ContactSummary& contacts) const;

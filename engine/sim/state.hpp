@@ -108,6 +108,7 @@ struct SimState {
   Vec3 gravity = Vec3::Zero();
   double dt = 0;
   bool record_contacts = true;  // keep per-contact forces in `pairs` (observers need them)
+  bool non_finite = false;      // some particle's position or velocity stopped being finite this step
 };
 
 }  // namespace dem

@@ -7,6 +7,7 @@
 
 #include "legacy/legacy_formats.hpp"
 #include "output/legacy_output.hpp"
+#include "output/run_writers.hpp"
 #include "support/scenes.hpp"
 
 namespace dem::test {
@@ -86,8 +87,81 @@ TEST(StabilityGuard, NotANumberStopsTheRun) {
   Simulation sim(s);
   const RunOutcome outcome = run(sim, {});
   ASSERT_FALSE(outcome.ok);
-  EXPECT_NE(outcome.error.find("not a number"), std::string::npos) << outcome.error;
+  EXPECT_NE(outcome.error.find("not a finite number"), std::string::npos) << outcome.error;
   EXPECT_NE(outcome.error.find("particle 1"), std::string::npos) << outcome.error;
+}
+
+// A row of 12 touching spheres between two planes, the ninth pushed by a constant force (so only
+// the NaN and overlap checks apply), at three times the stable step: the blow-up grows for some
+// hundred steps until the numbers overflow. Frames every step and the default check interval (100
+// steps): no frame and no statistics row may hold a non-finite number, and the message names the
+// step and the particle where it started (found here by stepping the same scene alone), not the
+// first particle the guard looked at later.
+Scene confined_row() {
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0.25, 1.0, 0.0, 1e4);
+  for (int k = 0; k < 12; ++k) s.particles.push_back(sphere({0.02 * k, 0, 0}, 0.01));
+  s.particles[8].force = {0.5, 0, 0};
+  s.walls.push_back(plane({-0.01, 0, 0}, {1, 0, 0}, "left"));
+  s.walls.push_back(plane({0.23, 0, 0}, {-1, 0, 0}, "right"));
+  s.time.steps = 20000;
+  s.outputs.every_steps = 1;
+  s.outputs.force_chains = true;
+  s.numerics.max_overlap_fraction = 1e300;  // let the blow-up run: the overlap check would stop it first
+  s.time.dt = 3 * std::sqrt(sphere_mass(2500, 0.01) / 2e4);
+  s.time.allow_unstable_dt = true;
+  return s;
+}
+
+TEST(StabilityGuard, ABlowUpNeverReachesTheFilesAndIsTracedToWhereItStarted) {
+  // where it starts: the first step with a particle whose position or energy is not finite, and the
+  // lowest id among them
+  std::int64_t first_step = -1;
+  int first_id = -1;
+  {
+    Simulation alone(confined_row());
+    while (first_step < 0 && alone.step_count() < 20000) {
+      alone.step();
+      const Particles& p = alone.particles();
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const double ke = p.mass[i] * (p.v[i].squaredNorm() + p.w[i].squaredNorm());
+        if (!p.x[i].allFinite() || !std::isfinite(ke))
+          if (first_id < 0 || p.id[i] + 1 < first_id) first_id = p.id[i] + 1;
+      }
+      if (first_id > 0) first_step = alone.step_count();
+    }
+  }
+  ASSERT_GT(first_step, 0) << "the set-up must blow up";
+  ASSERT_NE(first_step % 100, 0) << "the set-up must blow up between two checks";
+
+  const auto folder = std::filesystem::temp_directory_path() / ("dem_blowup_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  Simulation sim(confined_row());
+  RunOutcome outcome;
+  {
+    auto writers = make_run_writers(sim, folder.string(), false);
+    std::vector<Observer*> observers;
+    for (auto& w : writers) observers.push_back(w.get());
+    outcome = run(sim, observers);
+  }
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_NE(outcome.error.find("not a finite number"), std::string::npos) << outcome.error;
+  EXPECT_NE(outcome.error.find("at step " + std::to_string(first_step) + " "), std::string::npos) << outcome.error;
+  EXPECT_NE(outcome.error.find("particle " + std::to_string(first_id) + ","), std::string::npos)
+      << "it started at particle " << first_id << ": " << outcome.error;
+  int files = 0;
+  for (const auto& file : std::filesystem::directory_iterator(folder)) {
+    if (file.path().extension() != ".dat" || file.path().filename() == "restart.dat") continue;
+    ++files;
+    std::ifstream in(file.path());
+    std::string word;
+    while (in >> word) {
+      const bool bad = word.find("nan") != std::string::npos || word.find("inf") != std::string::npos ||
+                       word.find("NaN") != std::string::npos || word.find("Inf") != std::string::npos;
+      ASSERT_FALSE(bad) << file.path().filename() << " holds " << word;
+    }
+  }
+  EXPECT_GE(files, 5);  // animation, force chains, walls, statistics
+  std::filesystem::remove_all(folder);
 }
 
 TEST(StabilityGuard, AStableRunIsLeftAlone) {
