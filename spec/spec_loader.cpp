@@ -893,8 +893,9 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   scene.outputs.force_chains = o.force_chains();
   scene.outputs.length_unit = length_unit(o.length_unit(), check);
   scene.outputs.length_unit_name = o.length_unit().empty() ? "m" : o.length_unit();
-  scene.outputs.number_format =
-      o.number_format() == api::Outputs::LEGACY_FIXED ? FileNumberFormat::LegacyFixed : FileNumberFormat::Scientific;
+  scene.outputs.number_format = o.number_format() == api::Outputs::LEGACY_FIXED ? FileNumberFormat::LegacyFixed
+                                 : o.number_format() == api::Outputs::FULL       ? FileNumberFormat::Full
+                                                                                 : FileNumberFormat::Scientific;
   scene.outputs.every_steps = o.every_steps();
   scene.outputs.interval_seconds = o.interval();
 

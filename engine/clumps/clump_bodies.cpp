@@ -125,4 +125,10 @@ double bodies_kinetic_energy(const ClumpBodies& bodies) {
   return e;
 }
 
+double bodies_rotational_energy(const ClumpBodies& bodies) {
+  double e = 0;
+  for (std::size_t b = 0; b < bodies.size(); ++b) e += rotational_energy(bodies.rotation[b], bodies.moments[b]);
+  return e;
+}
+
 }  // namespace dem

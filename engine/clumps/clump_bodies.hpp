@@ -40,5 +40,6 @@ double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& 
 void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt);
 
 double bodies_kinetic_energy(const ClumpBodies& bodies);
+double bodies_rotational_energy(const ClumpBodies& bodies);
 
 }  // namespace dem

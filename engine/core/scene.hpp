@@ -148,7 +148,7 @@ struct BondSettings {
   std::vector<Zone> zones;
 };
 
-enum class FileNumberFormat { Scientific, LegacyFixed };
+enum class FileNumberFormat { Scientific, LegacyFixed, Full };
 
 struct OutputSettings {
   std::int64_t every_steps = 0;  // 0: only the first and last frame (unless interval_seconds)

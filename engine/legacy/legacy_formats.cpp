@@ -30,6 +30,17 @@ struct RealStyle {
 };
 
 constexpr RealStyle scientific{std::chars_format::scientific, 6};
+constexpr RealStyle full{std::chars_format::scientific, 16};  // 17 significant digits: round-trips a double
+
+// The style of a real: scientific (7 digits), full (17) or the legacy fixed width of that column.
+RealStyle style_of(NumberFormat format, RealStyle legacy_width) {
+  switch (format) {
+    case NumberFormat::Scientific: return scientific;
+    case NumberFormat::Full: return full;
+    case NumberFormat::LegacyFixed: return legacy_width;
+  }
+  return scientific;
+}
 
 constexpr RealStyle fixed(int decimals) { return {std::chars_format::fixed, decimals}; }
 
@@ -93,16 +104,14 @@ struct AnimationStyles {
 };
 
 AnimationStyles animation_styles(NumberFormat format) {
-  if (format == NumberFormat::Scientific) {
-    return {scientific, scientific, scientific, scientific, scientific, scientific, scientific};
-  }
-  // The widths of BallastDEM's sample frame (manual figure 3.5).
-  return {fixed(3), fixed(4), fixed(3), fixed(2), fixed(4), fixed(2), fixed(2)};
+  // The fixed widths are those of BallastDEM's sample frame (manual figure 3.5).
+  return {style_of(format, fixed(3)), style_of(format, fixed(4)), style_of(format, fixed(3)), style_of(format, fixed(2)),
+          style_of(format, fixed(4)), style_of(format, fixed(2)), style_of(format, fixed(2))};
 }
 
 RealStyle force_style(NumberFormat format) {
   // PDEM-EGD's sample (manual section 3.2 item 6) prints forces with two decimals.
-  return format == NumberFormat::Scientific ? scientific : fixed(2);
+  return style_of(format, fixed(2));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -574,7 +583,7 @@ void write_polygons(FrameText& text, const std::vector<AnimationPlate>& plates,
 }  // namespace
 
 void write_row(std::FILE* out, const std::vector<double>& values, NumberFormat format) {
-  const RealStyle style = format == NumberFormat::Scientific ? scientific : fixed(4);
+  const RealStyle style = style_of(format, fixed(4));
   FrameText text(1);
   for (double v : values) text.real(v, style);
   text.end_line();
@@ -614,7 +623,7 @@ void write_wall_force_chain_frame(std::FILE* out, const WallForceChainFrame& fra
 }
 
 void write_force_displacement_row(std::FILE* out, const ForceDisplacementRow& row, NumberFormat format) {
-  const RealStyle style = format == NumberFormat::Scientific ? scientific : fixed(4);
+  const RealStyle style = style_of(format, fixed(4));
   FrameText text(1);
   text.real(row.time, style);
   text.real(row.displacement, style);

@@ -18,8 +18,9 @@ namespace dem::legacy {
 using Vec3 = Eigen::Vector3d;
 
 enum class NumberFormat {
-  Scientific,   // %.6e for every real: full precision at any scale
+  Scientific,   // %.6e for every real: 7 significant digits at any scale
   LegacyFixed,  // the fixed widths of the manuals' samples
+  Full,         // %.16e: 17 significant digits, every double read back exactly
 };
 
 struct AnimationPlate {

@@ -9,14 +9,19 @@
 #include "sim/state_io.hpp"
 
 namespace dem {
-namespace {
 
 legacy::NumberFormat file_format(const Simulation& sim) {
-  return sim.scene().outputs.number_format == FileNumberFormat::LegacyFixed ? legacy::NumberFormat::LegacyFixed
-                                                                            : legacy::NumberFormat::Scientific;
+  switch (sim.scene().outputs.number_format) {
+    case FileNumberFormat::LegacyFixed: return legacy::NumberFormat::LegacyFixed;
+    case FileNumberFormat::Full: return legacy::NumberFormat::Full;
+    case FileNumberFormat::Scientific: break;
+  }
+  return legacy::NumberFormat::Scientific;
 }
 
-}  // namespace
+legacy::NumberFormat counts_format(const Simulation& sim) {
+  return file_format(sim) == legacy::NumberFormat::Full ? legacy::NumberFormat::Full : legacy::NumberFormat::Scientific;
+}
 
 FilePtr open_for_writing(const std::string& path, bool append) {
   FilePtr f(std::fopen(path.c_str(), append ? "ab" : "wb"));

@@ -17,6 +17,11 @@ struct FileCloser {
 };
 using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
+// The number format of a run's files (outputs.numberFormat), and of its columns that hold counts and
+// times (never the legacy fixed widths, which would round them).
+legacy::NumberFormat file_format(const Simulation& sim);
+legacy::NumberFormat counts_format(const Simulation& sim);
+
 // Opens `path` for writing (appending: a run continued from a saved state adds to its files);
 // throws std::runtime_error naming the path and the system's reason.
 FilePtr open_for_writing(const std::string& path, bool append = false);

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "output/energy_output.hpp"
 #include "output/legacy_output.hpp"
 #include "output/statistics_output.hpp"
 
@@ -21,6 +22,7 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
   if (ForceDisplacementWriter::loading_wall(sim) >= 0)
     writers.push_back(std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string(), append));
   writers.push_back(std::make_unique<StatisticsWriter>(dir.string(), sim, append));
+  writers.push_back(std::make_unique<EnergyWriter>((dir / "Energy.dat").string(), append));
   return writers;
 }
 

@@ -26,9 +26,7 @@ void StatisticsWriter::frame(const Simulation& sim) {
   const Particles& p = sim.particles();
   const Scene& scene = sim.scene();
   const double unit = scene.outputs.length_unit;
-  const legacy::NumberFormat format = scene.outputs.number_format == FileNumberFormat::LegacyFixed
-                                          ? legacy::NumberFormat::LegacyFixed
-                                          : legacy::NumberFormat::Scientific;
+  const legacy::NumberFormat format = file_format(sim), counts = counts_format(sim);
   const std::size_t n = p.size();
   Vec3 centre = Vec3::Zero();
   double mass = 0, largest = 0;
@@ -75,13 +73,12 @@ void StatisticsWriter::frame(const Simulation& sim) {
     legacy::write_row(fragments_.get(),
                       {t, static_cast<double>(size.size()), static_cast<double>(biggest), static_cast<double>(c.intact),
                        static_cast<double>(c.tension), static_cast<double>(c.shear)},
-                      legacy::NumberFormat::Scientific);
+                      counts);
     std::fflush(fragments_.get());
     std::map<int, int> by_size;  // fragment size -> how many
     for (const auto& [f, count] : size) ++by_size[count];
     for (const auto& [s, count] : by_size)
-      legacy::write_row(fragment_sizes_.get(), {t, static_cast<double>(s), static_cast<double>(count)},
-                        legacy::NumberFormat::Scientific);
+      legacy::write_row(fragment_sizes_.get(), {t, static_cast<double>(s), static_cast<double>(count)}, counts);
     std::fflush(fragment_sizes_.get());
     struct Break {
       double time;
@@ -100,7 +97,7 @@ void StatisticsWriter::frame(const Simulation& sim) {
     });
     for (const Break& b : fresh)
       legacy::write_row(breaks_.get(), {b.time, static_cast<double>(b.i), static_cast<double>(b.j), static_cast<double>(b.mode)},
-                        legacy::NumberFormat::Scientific);
+                        counts);
     std::fflush(breaks_.get());
   }
 }

@@ -125,6 +125,32 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
   settle_walls(0, 0);
   state_.dt = time_step_.dt;
+  ledger_.initial_energy = mechanical_energy();
+}
+
+double Simulation::mechanical_energy() const {
+  return kinetic_energy() + gravitational_energy() + contact_summary().elastic_energy + state_.bonds.elastic_energy();
+}
+
+Vec3 Simulation::linear_momentum() const {
+  const Particles& p = state_.particles;
+  const ClumpBodies& b = state_.bodies;
+  Vec3 total = Vec3::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.inv_mass[i] > 0 && (p.body.empty() || p.body[i] < 0)) total += p.mass[i] * p.v[i];
+  for (std::size_t k = 0; k < b.size(); ++k) total += b.mass[k] * b.v[k];
+  return total;
+}
+
+Vec3 Simulation::angular_momentum() const {
+  const Particles& p = state_.particles;
+  const ClumpBodies& b = state_.bodies;
+  Vec3 total = Vec3::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.inv_mass[i] > 0 && (p.body.empty() || p.body[i] < 0))
+      total += p.x[i].cross(p.mass[i] * p.v[i]) + p.w[i] / p.inv_inertia[i];
+  for (std::size_t k = 0; k < b.size(); ++k) total += b.x[k].cross(b.mass[k] * b.v[k]) + b.rotation[k].angular_momentum;
+  return total;
 }
 
 bool Simulation::has_moving_walls() const {
@@ -186,8 +212,38 @@ double Simulation::wall_shift_since_build() const {
   return shift;
 }
 
+void Simulation::add_work(double& account, double work) {
+  account += work;
+  ledger_.magnitude += std::abs(work);
+}
+
+// The work of each moving wall on the particles over the step: minus the force and torque the
+// particles put on it (trapezoid of the step's start and end) times its displacement and turn.
+void Simulation::add_wall_work(const std::vector<WallPose>& before, const std::vector<BoundaryLoad>& loads_before) {
+  double work = 0;
+  for (std::size_t k = 0; k < drivers_.size(); ++k) {
+    if (!drivers_[k].moves()) continue;
+    const WallPose& now = drivers_[k].pose();
+    const Vec3 shift = now.displacement - before[k].displacement;
+    const Eigen::AngleAxisd turn(Eigen::Matrix3d(now.rotation * before[k].rotation.transpose()));
+    const Vec3 force = 0.5 * (loads_before[k].force + boundary_loads_[k].force);
+    const Vec3 torque = 0.5 * (loads_before[k].torque + boundary_loads_[k].torque);
+    work -= force.dot(shift) + torque.dot(turn.angle() * turn.axis());
+  }
+  add_work(ledger_.walls, work);
+}
+
 void Simulation::step() {
   const double t_new = static_cast<double>(step_ + 1) * state_.dt;
+  const bool walls_move = has_moving_walls();
+  std::vector<WallPose> poses_before;
+  std::vector<BoundaryLoad> loads_before;
+  if (walls_move) {
+    for (const WallDriver& d : drivers_) poses_before.push_back(d.pose());
+    loads_before = boundary_loads_;
+  }
+  // growth does work on the contacts: it needs this step's forces of each contact
+  if (scene_.growth && step_ < scene_.growth->steps) state_.record_contacts = true;
   move_walls(t_new, state_.dt);
   state_.time = t_new;
   double moved2 = half_kick_and_drift();
@@ -203,6 +259,7 @@ void Simulation::step() {
   kernel_->compute_and_kick(state_);
   if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, state_.dt);
   settle_walls(t_new, state_.dt);
+  if (walls_move) add_wall_work(poses_before, loads_before);
   contacts_recorded_ = state_.record_contacts;
   ++step_;
   if (state_.non_finite && !first_non_finite_) {
@@ -224,11 +281,19 @@ double Simulation::grow() {
   const double scale = 1 + (g.factor - 1) * share;
   Particles& p = state_.particles;
   if (step_ < g.steps) {
-    growth_scale_ = scale;
+    // The work of this step's growth at the state it finds: the contacts' overlaps grow by the two
+    // radii's growth against the last step's forces, and each free particle's energies change with
+    // its mass at its speed, spin and height (1/2 dm v^2 + 1/2 dI w^2 - dm g.x).
+    const std::vector<double> before = p.radius;
+    double work = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
       const ParticleInit& init = scene_.particles[p.id[i]];
       const double r = init.radius * scale;
       const double m = sphere_mass(scene_.materials[init.material].density, r);
+      if (p.inv_mass[i] > 0) {
+        const double dm = m - p.mass[i], di = sphere_inertia(m, r) - sphere_inertia(p.mass[i], p.radius[i]);
+        work += 0.5 * dm * p.v[i].squaredNorm() + 0.5 * di * p.w[i].squaredNorm() - dm * state_.gravity.dot(p.x[i]);
+      }
       p.radius[i] = r;
       p.mass[i] = m;
       if (p.inv_mass[i] > 0) {
@@ -236,6 +301,20 @@ double Simulation::grow() {
         p.inv_inertia[i] = 1 / sphere_inertia(m, r);
       }
     }
+    const NeighborList& nl = state_.neighbors;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
+        if (state_.pairs.touching[k])
+          work += state_.pairs.fn[k] * (p.radius[i] - before[i] + p.radius[nl.partner[k]] - before[nl.partner[k]]);
+    const WallContacts& wc = state_.wall_contacts;
+    for (std::size_t i = 0; i + 1 < wc.row_start.size(); ++i)
+      for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
+        if (wc.touching[e]) work += wc.fn[e] * (p.radius[i] - before[i]);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (int k = 0, used = state_.mesh_contacts.count(static_cast<int>(i)); k < used; ++k)
+        work += state_.mesh_contacts.slot(static_cast<int>(i), k).fn * (p.radius[i] - before[i]);
+    add_work(ledger_.growth, work);
+    growth_scale_ = scale;
   }
   return largest_given_radius_ * (growth_scale_ - growth_at_build_);
 }
@@ -257,7 +336,9 @@ double Simulation::half_kick_and_drift() {
   const double* __restrict inv_mass = p.inv_mass.data();
   const double* __restrict inv_inertia = p.inv_inertia.data();
   Quat* __restrict q = p.q.empty() ? nullptr : p.q.data();
-#pragma omp parallel for schedule(static) reduction(max : moved2) if (n >= kParallelMinParticles)
+  const Vec3* __restrict external = p.external.empty() ? nullptr : p.external.data();
+  double external_work = 0;  // of the constant external forces over this drift
+#pragma omp parallel for schedule(static) reduction(max : moved2) reduction(+ : external_work) if (n >= kParallelMinParticles)
   for (int i = 0; i < n; ++i) {
     const Vec3 k = (half_dt * inv_mass[i]) * f[i];
     kick[i] = k;
@@ -269,8 +350,10 @@ double Simulation::half_kick_and_drift() {
     x[i] = xi;
     // the orientation turns with the half-step spin, as the position moves with the half-step velocity
     if (q) q[i] = (rotation_by(dt * wi) * q[i]).normalized();
+    if (external && inv_mass[i] > 0) external_work += dt * external[i].dot(vi);
     moved2 = std::max(moved2, (xi - x0[i]).squaredNorm());
   }
+  if (external) add_work(ledger_.external, external_work);
   return moved2;
 }
 
@@ -443,6 +526,16 @@ double Simulation::kinetic_energy() const {
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.body.empty() && p.body[i] >= 0) continue;  // counted with its body
     e += 0.5 * p.mass[i] * (p.v[i].squaredNorm() + 0.4 * p.radius[i] * p.radius[i] * p.w[i].squaredNorm());
+  }
+  return e;
+}
+
+double Simulation::rotational_energy() const {
+  const Particles& p = state_.particles;
+  double e = bodies_rotational_energy(state_.bodies);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.body.empty() && p.body[i] >= 0) continue;  // counted with its body
+    e += 0.5 * p.mass[i] * 0.4 * p.radius[i] * p.radius[i] * p.w[i].squaredNorm();
   }
   return e;
 }

@@ -46,6 +46,19 @@ struct NonFinite {
   int particles = 0;  // how many went bad in that step
 };
 
+// The work done on the particles since the start by what feeds energy in, J: moving and loaded
+// walls, constant external forces, and radius growth (larger overlaps, and masses and weights that
+// grow at their speeds and heights). The mechanical energy minus this work, against its start, is
+// what damping, friction and integration took out (or put in).
+struct EnergyLedger {
+  double walls = 0;
+  double external = 0;
+  double growth = 0;
+  double total() const { return walls + external + growth; }
+  double magnitude = 0;  // sum of the sizes of every step's contributions (for the guard's slack)
+  double initial_energy = 0;  // the mechanical energy at t = 0 (kinetic, elastic, gravitational)
+};
+
 class Simulation {
  public:
   // Builds the state from a checked scene; throws SceneError for what cannot run (e.g. dt too large).
@@ -72,7 +85,15 @@ class Simulation {
   bool contacts_recorded() const { return contacts_recorded_; }
 
   double kinetic_energy() const;        // translational + rotational, J
+  double rotational_energy() const;     // the rotational part, J
   double gravitational_energy() const;  // -sum m g.x, J
+  const EnergyLedger& energy_input() const { return ledger_; }
+  // Kinetic, gravitational, and elastic energy of the contacts and the bonds, J.
+  double mechanical_energy() const;
+  // Of the moving bodies (free particles and clumps; held particles excluded): sum m v, and
+  // sum x x m v + I w about the origin.
+  Vec3 linear_momentum() const;
+  Vec3 angular_momentum() const;
   ContactSummary contact_summary() const { return kernel_->summarize(state_); }
   // Both throw std::logic_error when the last step did not record contacts.
   std::vector<int> contact_counts() const;  // per particle index: touching pairs and walls
@@ -101,6 +122,8 @@ class Simulation {
   friend class StateIO;  // saves and restores everything below (sim/state_io.hpp)
 
   double half_kick_and_drift();  // returns the largest squared displacement since the last build
+  void add_wall_work(const std::vector<WallPose>& before, const std::vector<BoundaryLoad>& loads_before);
+  void add_work(double& account, double work);
   void build_neighbors();
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);
   void plan_blocks();
@@ -131,6 +154,7 @@ class Simulation {
   double growth_scale_ = 1;                 // radii now over their given sizes (Scene::growth)
   double growth_at_build_ = 1;              // the same at the last build
   std::optional<NonFinite> first_non_finite_;
+  EnergyLedger ledger_;
 };
 
 }  // namespace dem

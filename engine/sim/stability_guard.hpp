@@ -23,6 +23,7 @@ class StabilityGuard {
 
   double initial_energy_ = 0;
   double energy_scale_ = 0;
+  EnergyLedger input_at_start_;
 };
 
 }  // namespace dem

@@ -92,6 +92,7 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   put(out, sim.growth_scale_);
   put(out, s.bonds.bonds());
   put(out, p.body); put(out, p.body_offset); put(out, p.q);
+  put(out, sim.ledger_);
   const ClumpBodies& cb = s.bodies;
   put(out, cb.x); put(out, cb.v); put(out, cb.rotation); put(out, cb.force); put(out, cb.torque);
   if (!out) throw std::runtime_error("cannot write the saved state");
@@ -183,6 +184,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(saved_bonds, "the bonds");
   s.bonds.restore(std::move(saved_bonds));
   r.get(p.body, "the clumps"); r.get(p.body_offset, "the clumps"); r.get(p.q, "the orientations");
+  r.get(sim.ledger_, "the energy ledger");
   ClumpBodies& cb = s.bodies;
   r.get(cb.x, "the clumps"); r.get(cb.v, "the clumps"); r.get(cb.rotation, "the clumps");
   r.get(cb.force, "the clumps"); r.get(cb.torque, "the clumps");

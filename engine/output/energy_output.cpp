@@ -1,0 +1,23 @@
+#include "output/energy_output.hpp"
+
+namespace dem {
+
+EnergyWriter::EnergyWriter(const std::string& path, bool append) : file_(open_for_writing(path, append)) {}
+
+std::vector<double> EnergyWriter::make_row(const Simulation& sim) {
+  const double kinetic = sim.kinetic_energy(), rotation = sim.rotational_energy();
+  const double contacts = sim.contact_summary().elastic_energy, bonds = sim.bonds().elastic_energy();
+  const double gravity = sim.gravitational_energy();
+  const EnergyLedger& in = sim.energy_input();
+  const double dissipated = in.initial_energy + in.total() - (kinetic + contacts + bonds + gravity);
+  const Vec3 p = sim.linear_momentum(), l = sim.angular_momentum();
+  return {sim.time(), kinetic - rotation, rotation, contacts, bonds, gravity, in.walls, in.external, in.growth,
+          dissipated, p.x(), p.y(), p.z(), l.x(), l.y(), l.z()};
+}
+
+void EnergyWriter::frame(const Simulation& sim) {
+  legacy::write_row(file_.get(), make_row(sim), counts_format(sim));
+  std::fflush(file_.get());
+}
+
+}  // namespace dem

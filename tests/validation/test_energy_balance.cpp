@@ -1,0 +1,141 @@
+// Energy.dat and the full-precision number format: the energy balance a user reads from the files
+// closes for each source of energy (walls, external forces, growth), and FULL gives the state's
+// doubles back exactly.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "legacy/legacy_formats.hpp"
+#include "output/run_writers.hpp"
+#include "support/report.hpp"
+#include "support/scenes.hpp"
+
+namespace dem::test {
+namespace {
+
+enum Column { kTime, kTranslation, kRotation, kContacts, kBonds, kGravity, kWalls, kExternal, kGrowth, kDissipated,
+              kPx, kPy, kPz, kLx, kLy, kLz, kColumns };
+
+// Runs the scene with every writer into a fresh folder; returns Energy.dat's rows.
+std::vector<std::vector<double>> energy_rows(Scene s, std::string* folder_out = nullptr) {
+  s.outputs.number_format = FileNumberFormat::Full;
+  const auto folder = std::filesystem::temp_directory_path() / ("dem_energy_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  Simulation sim(std::move(s));
+  {
+    auto writers = make_run_writers(sim, folder.string(), false);
+    std::vector<Observer*> observers;
+    for (auto& w : writers) observers.push_back(w.get());
+    const RunOutcome outcome = run(sim, observers);
+    EXPECT_TRUE(outcome.ok) << outcome.error;
+  }
+  std::ifstream in(folder / "Energy.dat");
+  const auto rows = legacy::read_rows(in, kColumns);
+  EXPECT_FALSE(rows.truncated) << rows.problem;
+  if (folder_out) *folder_out = folder.string();
+  else std::filesystem::remove_all(folder);
+  return rows.frames;
+}
+
+double mechanical(const std::vector<double>& row) {
+  return row[kTranslation] + row[kRotation] + row[kContacts] + row[kBonds] + row[kGravity];
+}
+
+// A plate moving at V into a resting sphere, elastic, no gravity: the sphere leaves at 2V, and the
+// wall's work is its kinetic energy, 2 m V^2.
+TEST(EnergyBalance, AMovingWallsWorkIsWhatTheParticleGains) {
+  const double v = 0.2, r = 0.01;
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0, 1.0, 0.0, 1e4);
+  s.particles.push_back(sphere({0, 0, r + 0.001}, r));
+  WallInit plate{"pusher", 1, PlateShape{{Vec3(-0.05, -0.05, 0), Vec3(0.05, -0.05, 0), Vec3(0.05, 0.05, 0), Vec3(-0.05, 0.05, 0)}}, {}, {}};
+  PrescribedMotion m;
+  m.velocity = {0, 0, v};
+  plate.motion = m;
+  s.walls.push_back(plate);
+  s.time.steps = 0;
+  s.time.duration = 0.03;
+  s.outputs.every_steps = 50;
+  const auto rows = energy_rows(s);
+  const std::vector<double>& last = rows.back();
+  const double want = 2 * sphere_mass(2500, r) * v * v;
+  report("moving plate: work of the wall", last[kWalls], want);
+  report("moving plate: kinetic energy of the sphere", last[kTranslation], want);
+  EXPECT_NEAR(last[kWalls], want, 1e-3 * want);
+  EXPECT_NEAR(last[kTranslation], want, 1e-3 * want);
+  EXPECT_LT(std::abs(last[kDissipated]), 1e-3 * want);
+  EXPECT_NEAR(last[kPz], 2 * sphere_mass(2500, r) * v, 1e-3 * sphere_mass(2500, r) * v);
+}
+
+// A constant force on a free sphere: its work F x is the kinetic energy, nothing dissipated.
+TEST(EnergyBalance, AnExternalForcesWorkIsTheKineticEnergy) {
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0, 1.0, 0.0, 1e4);
+  s.particles.push_back(sphere({0, 0, 0}, 0.01));
+  s.particles[0].force = {0.01, 0.02, 0};
+  s.time.steps = 0;
+  s.time.duration = 0.5;
+  s.outputs.every_steps = 1000;
+  const auto rows = energy_rows(s);
+  const std::vector<double>& last = rows.back();
+  EXPECT_GT(last[kExternal], 0);
+  EXPECT_NEAR(last[kTranslation], last[kExternal], 1e-12 * last[kExternal]);
+  EXPECT_LT(std::abs(last[kDissipated]), 1e-12 * last[kExternal]);
+}
+
+// Two touching spheres growing by 5% with no damping and no friction: what growth did is the energy
+// they now have (pressed, then pushing each other apart).
+TEST(EnergyBalance, GrowthsWorkIsTheEnergyItGave) {
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0, 1.0, 0.0, 1e4);
+  s.particles.push_back(sphere({-0.01, 0, 0}, 0.01));
+  s.particles.push_back(sphere({0.01, 0, 0}, 0.01));
+  s.growth = Scene::Growth{1.05, 20000};
+  s.time.steps = 30000;
+  s.outputs.every_steps = 1000;
+  const auto rows = energy_rows(s);
+  const std::vector<double>& last = rows.back();
+  report("growing pair: work of growth", last[kGrowth], mechanical(last) - mechanical(rows.front()));
+  EXPECT_GT(last[kGrowth], 0);
+  EXPECT_NEAR(mechanical(last) - mechanical(rows.front()), last[kGrowth], 1e-3 * last[kGrowth]);
+}
+
+// A frictional gas of 27 spheres in a box (e = 0.5): the kinetic energy goes, the dissipated column
+// takes it; in a free elastic gas with nothing to hold it the momenta stay.
+TEST(EnergyBalance, WhatIsLostIsDissipatedAndTheMomentaOfAFreeGasStay) {
+  Scene s = base_scene(HertzNormal::kName, 2500, 1e8, 0.25, 0.5, 0.3);
+  for (int k = 0; k < 27; ++k)
+    s.particles.push_back(sphere(0.03 * Vec3(k % 3, (k / 3) % 3, k / 9), 0.01,
+                                 Vec3(std::sin(k), std::cos(2.0 * k), std::sin(3.0 * k)), Vec3(std::cos(k), 0, 1)));
+  s.time.steps = 0;
+  s.time.duration = 0.2;
+  s.outputs.every_steps = 2000;
+  const auto rows = energy_rows(s);
+  const std::vector<double>& first = rows.front();
+  const std::vector<double>& last = rows.back();
+  EXPECT_LT(mechanical(last), 0.9 * mechanical(first)) << "the spheres met and lost energy";
+  EXPECT_NEAR(last[kDissipated], mechanical(first) - mechanical(last), 1e-12 * mechanical(first));
+  for (int c : {kPx, kPy, kPz, kLx, kLy, kLz}) EXPECT_NEAR(last[c], first[c], 1e-12) << "column " << c;
+}
+
+// outputs.numberFormat FULL: the positions read back from ANIMATION_3D.dat are the state's doubles.
+TEST(EnergyBalance, FullPrecisionGivesTheDoublesBack) {
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0, 1.0, 0.0, 1e4);
+  s.particles.push_back(sphere({0.1 / 3, std::sqrt(2.0), -1e-7 / 7}, 0.01, {1.0 / 3, 0, 0}));
+  s.time.steps = 7;
+  s.outputs.animation = true;
+  std::string folder;
+  energy_rows(s, &folder);
+  Simulation sim(s);
+  for (int k = 0; k < 7; ++k) sim.step();
+  std::ifstream in(std::filesystem::path(folder) / "ANIMATION_3D.dat");
+  const auto frames = legacy::read_animation(in);
+  ASSERT_FALSE(frames.truncated) << frames.problem;
+  const legacy::AnimationParticle& p = frames.frames.back().particles[0];
+  EXPECT_EQ(p.position, sim.particles().x[0]);
+  EXPECT_EQ(p.velocity, sim.particles().v[0]);
+  std::filesystem::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace dem::test
