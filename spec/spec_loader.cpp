@@ -22,6 +22,7 @@
 #include "spec/lattice.hpp"
 #include "spec/ballast_stones.hpp"
 #include "spec/clump_template.hpp"
+#include "spec/input_range.hpp"
 #include "spec/inside_mesh.hpp"
 #include "spec/packing.hpp"
 #include "spec/referenced_files.hpp"
@@ -63,8 +64,20 @@ class Checker {
       fail(path, "must be in " + std::string(lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]") +
                      " (got " + num(v) + ")");
   }
-  void finite(const std::string& path, const api::Vec3& v) {
+  // A vector quantity: finite, each component within the quantity's range (spec/input_range.hpp).
+  void vector(const std::string& path, const api::Vec3& v, const Quantity& q) {
+    const double largest = std::max({std::abs(v.x()), std::abs(v.y()), std::abs(v.z())});
     if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z())) fail(path, "must be finite");
+    else if (largest > q.max) fail(path, beyond(largest, q));
+  }
+  // A positive quantity within its range.
+  void positive(const std::string& path, double v, const Quantity& q) {
+    if (!(v > 0) || !std::isfinite(v)) fail(path, "must be a positive number (got " + num(v) + ")");
+    else if (v > q.max) fail(path, beyond(v, q));
+  }
+  static std::string beyond(double v, const Quantity& q) {
+    return "must be at most " + num(q.max) + (q.unit[0] ? " " : "") + q.unit + " in size (got " + num(v) +
+           "): far beyond any scene; check the units";
   }
 
   std::vector<std::string> problems;
@@ -110,15 +123,21 @@ void load_mesh(const api::Mesh& in, const std::string& path, const std::string& 
   }
   const double scale = in.scale() == 0 ? 1.0 : in.scale();
   if (!(scale > 0) || !std::isfinite(scale)) check.fail(path + ".scale", "must be a positive number (got " + num(scale) + ")");
-  check.finite(path + ".translation", in.translation());
+  check.vector(path + ".translation", in.translation(), kLength);
   mesh.transform(scale, rotation(in.rotation_axis(), in.rotation_degrees(), path, check), vec(in.translation()));
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (!mesh.vertices[v].allFinite() || mesh.vertices[v].cwiseAbs().maxCoeff() > kLength.max) {
+      check.fail(path, "vertex " + std::to_string(v + 1) + " lies at " + num(mesh.vertices[v].cwiseAbs().maxCoeff()) +
+                           " m once placed: " + Checker::beyond(mesh.vertices[v].cwiseAbs().maxCoeff(), kLength));
+      break;
+    }
   w.shape = MeshShape{std::move(mesh.vertices), std::move(mesh.triangles), source};
 }
 
 PrescribedMotion motion(const api::Motion& in, const std::string& path, Checker& check) {
-  check.finite(path + ".velocity", in.velocity());
-  check.finite(path + ".amplitude", in.amplitude());
-  check.finite(path + ".angularVelocity", in.angular_velocity());
+  check.vector(path + ".velocity", in.velocity(), kSpeed);
+  check.vector(path + ".amplitude", in.amplitude(), kSpeed);
+  check.vector(path + ".angularVelocity", in.angular_velocity(), kAngularSpeed);
   check.non_negative(path + ".frequency", in.frequency());
   if (!std::isfinite(in.phase_degrees())) check.fail(path + ".phaseDegrees", "must be finite");
   PrescribedMotion m;
@@ -128,7 +147,7 @@ PrescribedMotion motion(const api::Motion& in, const std::string& path, Checker&
   m.phase = in.phase_degrees() * std::numbers::pi / 180;
   m.angular_velocity = vec(in.angular_velocity());
   if (in.has_center()) {
-    check.finite(path + ".center", in.center());
+    check.vector(path + ".center", in.center(), kLength);
     m.center = vec(in.center());
   }
   if (!m.amplitude.isZero(0) && !(m.frequency > 0))
@@ -139,7 +158,7 @@ PrescribedMotion motion(const api::Motion& in, const std::string& path, Checker&
 LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
   LoadControl l;
   if (in.has_direction()) {
-    check.finite(path + ".direction", in.direction());
+    check.vector(path + ".direction", in.direction(), kDirection);
     const Vec3 d = vec(in.direction());
     if (!(d.norm() > 0)) check.fail(path + ".direction", "must not be zero");
     else l.direction = d.normalized();
@@ -177,9 +196,9 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
 void add_packing(const api::Packing& in, const std::string& path, const std::string& base_dir, Checker& check,
                  Scene& scene, int material) {
   const std::size_t before = check.problems.size();
-  check.finite(path + ".min", in.min());
-  check.finite(path + ".max", in.max());
-  check.finite(path + ".velocity", in.velocity());
+  check.vector(path + ".min", in.min(), kLength);
+  check.vector(path + ".max", in.max(), kLength);
+  check.vector(path + ".velocity", in.velocity(), kSpeed);
   std::optional<ClosedMesh> region;
   double region_volume = 0;
   if (in.has_inside()) {
@@ -205,10 +224,11 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
   d.d_max = sz.d_max();
   d.small_fraction = sz.small_fraction() == 0 ? 0.5 : sz.small_fraction();
   const std::string sp = path + ".sizes";
-  if (d.kind == SizeKind::One || d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) check.positive(sp + ".mean", d.mean);
+  if (d.kind == SizeKind::One || d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) check.positive(sp + ".mean", d.mean, kRadius);
   if (d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) check.positive(sp + ".spread", d.spread);
   if (d.kind != SizeKind::One) {
-    check.positive(sp + ".dMin", d.d_min);
+    check.positive(sp + ".dMin", d.d_min, kRadius);
+    if (d.d_max > kRadius.max) check.fail(sp + ".dMax", Checker::beyond(d.d_max, kRadius));
     if (!(d.d_max >= d.d_min)) check.fail(sp + ".dMax", "must be >= dMin (got " + num(d.d_max) + ")");
   }
   if ((d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) && !(d.mean >= d.d_min && d.mean <= d.d_max))
@@ -264,7 +284,7 @@ struct ClumpBody {
 // sum of the other two (true of every real body); its principal moments and axes.
 void given_body(const api::GivenMassProperties& in, const std::string& path, Checker& check, ClumpBody& body) {
   check.positive(path + ".mass", in.mass());
-  check.finite(path + ".centroid", in.centroid());
+  check.vector(path + ".centroid", in.centroid(), kLength);
   const api::Inertia& t = in.inertia();
   Eigen::Matrix3d inertia;
   inertia << t.xx(), t.xy(), t.xz(), t.xy(), t.yy(), t.yz(), t.xz(), t.yz(), t.zz();
@@ -306,8 +326,8 @@ ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const s
   }
   for (int s = 0; s < in.spheres_size(); ++s) {
     const std::string sp = path + ".spheres[" + std::to_string(s) + "]";
-    check.finite(sp + ".center", in.spheres(s).center());
-    check.positive(sp + ".radius", in.spheres(s).radius());
+    check.vector(sp + ".center", in.spheres(s).center(), kLength);
+    check.positive(sp + ".radius", in.spheres(s).radius(), kRadius);
     spheres.push_back({vec(in.spheres(s).center()), in.spheres(s).radius()});
   }
   if (spheres.empty() && in.file().empty()) check.fail(path + ".spheres", "a clump shape needs at least one sphere");
@@ -363,9 +383,9 @@ void add_clumps(const api::JobSpec& spec, const std::string& base_dir, Checker& 
       continue;
     }
     const int material = material_of(in.material(), path + ".material");
-    check.finite(path + ".position", in.position());
-    check.finite(path + ".velocity", in.velocity());
-    check.finite(path + ".angularVelocity", in.angular_velocity());
+    check.vector(path + ".position", in.position(), kLength);
+    check.vector(path + ".velocity", in.velocity(), kSpeed);
+    check.vector(path + ".angularVelocity", in.angular_velocity(), kAngularSpeed);
     const ClumpBody& body = bodies[shape->second];
     if (material < 0 || !body.usable) continue;
     const double density = scene.materials[material].density;
@@ -429,7 +449,7 @@ void add_stones(const api::BallastStones& in, const std::string& path, bool has_
                                           " kg, outside [massMin, massMax]");
   if (in.has_bonded()) {
     r.bonded_sphere_radius = in.bonded().sphere_radius();
-    check.positive(path + ".bonded.sphereRadius", r.bonded_sphere_radius);
+    check.positive(path + ".bonded.sphereRadius", r.bonded_sphere_radius, kRadius);
     if (!has_bonds)
       check.fail(path + ".bonded", "breakable stones need the spec's \"bonds\" block (the bonds' stiffness and strength)");
   }
@@ -551,9 +571,9 @@ void check_required_properties(const ModelInfo& model, const Material& m, const 
     const std::string field = path + "." + std::string(material_property_name(property));
     switch (property) {
       case MaterialProperty::Density: check.positive(field, m.density); break;
-      case MaterialProperty::YoungsModulus: check.positive(field, m.youngs_modulus); break;
+      case MaterialProperty::YoungsModulus: check.positive(field, m.youngs_modulus, kModulus); break;
       case MaterialProperty::PoissonRatio: break;  // checked for every material
-      case MaterialProperty::NormalStiffness: check.positive(field, m.normal_stiffness); break;
+      case MaterialProperty::NormalStiffness: check.positive(field, m.normal_stiffness, kStiffness); break;
     }
   }
 }
@@ -657,7 +677,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
       check.fail(path + ".name", "duplicate material name \"" + in.name() + "\"");
     if (!out.rigid) {
       // every particle needs a density (its mass); a Poisson ratio, where given, must be one
-      check.positive(path + ".density", out.density);
+      check.positive(path + ".density", out.density, kDensity);
       check.in_range(path + ".poissonRatio", out.poisson_ratio, -1, 0.5, true, true);
       if (contact.normal) check_required_properties(*contact.normal, out, path, check);
     }
@@ -708,17 +728,17 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     const auto& in = spec.particles(k);
     const std::string path = at("particles", k);
     ParticleInit p;
-    check.finite(path + ".position", in.position());
-    check.finite(path + ".velocity", in.velocity());
-    check.finite(path + ".angularVelocity", in.angular_velocity());
-    check.positive(path + ".radius", in.radius());
+    check.vector(path + ".position", in.position(), kLength);
+    check.vector(path + ".velocity", in.velocity(), kSpeed);
+    check.vector(path + ".angularVelocity", in.angular_velocity(), kAngularSpeed);
+    check.positive(path + ".radius", in.radius(), kRadius);
     p.position = vec(in.position());
     p.velocity = vec(in.velocity());
     p.angular_velocity = vec(in.angular_velocity());
     p.radius = in.radius();
     p.material = particle_material(in.material(), path + ".material");
     p.fixed = in.fixed();
-    check.finite(path + ".force", in.force());
+    check.vector(path + ".force", in.force(), kForce);
     p.force = vec(in.force());
     scene.particles.push_back(p);
   }
@@ -727,11 +747,11 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     const std::string path = at("lattices", k);
     const int m = particle_material(in.material(), path + ".material");
     const double spacing = in.spacing() == 0 ? 1.0 : in.spacing();
-    check.positive(path + ".radius", in.radius());
+    check.positive(path + ".radius", in.radius(), kRadius);
     check.in_range(path + ".spacing", spacing, 0.5, 100, true, false);
-    check.finite(path + ".min", in.min());
-    check.finite(path + ".max", in.max());
-    check.finite(path + ".velocity", in.velocity());
+    check.vector(path + ".min", in.min(), kLength);
+    check.vector(path + ".max", in.max(), kLength);
+    check.vector(path + ".velocity", in.velocity(), kSpeed);
     const Vec3 lo = vec(in.min()), hi = vec(in.max());
     if (!(lo.array() < hi.array()).all()) {
       check.fail(path + ".max", "must be above min in x, y and z");
@@ -784,8 +804,8 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     w.material = material(in.material(), path + ".material");
     if (w.material >= 0) wall_materials.insert(w.material);
     if (in.has_plane()) {
-      check.finite(path + ".plane.point", in.plane().point());
-      check.finite(path + ".plane.normal", in.plane().normal());
+      check.vector(path + ".plane.point", in.plane().point(), kLength);
+      check.vector(path + ".plane.normal", in.plane().normal(), kDirection);
       const Vec3 n = vec(in.plane().normal());
       if (!(n.norm() > 0)) check.fail(path + ".plane.normal", "must not be zero");
       w.shape = PlaneShape{vec(in.plane().point()), n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitZ()};
@@ -793,10 +813,10 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
       const auto& pl = in.plate();
       PlateShape plate{{vec(pl.c1()), vec(pl.c2()), vec(pl.c3()), vec(pl.c4())}};
       const std::size_t before = check.problems.size();
-      check.finite(path + ".plate.c1", pl.c1());
-      check.finite(path + ".plate.c2", pl.c2());
-      check.finite(path + ".plate.c3", pl.c3());
-      check.finite(path + ".plate.c4", pl.c4());
+      check.vector(path + ".plate.c1", pl.c1(), kLength);
+      check.vector(path + ".plate.c2", pl.c2(), kLength);
+      check.vector(path + ".plate.c3", pl.c3(), kLength);
+      check.vector(path + ".plate.c4", pl.c4(), kLength);
       // The shape checks mean nothing (NaN compares false) unless every corner is finite.
       if (check.problems.size() == before) check_plate(plate.corners, path + ".plate", check);
       w.shape = plate;
@@ -824,7 +844,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     b.model = api::Bonds::Model_Name(in.model());  // the enum's names are the bond models' (bonds/bond_models.hpp)
     b.radius_multiplier = in.radius_multiplier() == 0 ? 1.0 : in.radius_multiplier();
     check.positive("bonds.radiusMultiplier", b.radius_multiplier);
-    check.positive("bonds.youngsModulus", in.youngs_modulus());
+    check.positive("bonds.youngsModulus", in.youngs_modulus(), kModulus);
     b.youngs_modulus = in.youngs_modulus();
     b.shear_stiffness_ratio = in.shear_stiffness_ratio() == 0 ? 1.0 : in.shear_stiffness_ratio();
     check.positive("bonds.shearStiffnessRatio", b.shear_stiffness_ratio);
@@ -838,16 +858,16 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     b.gap_tolerance = in.gap_tolerance() == 0 ? 1e-3 : in.gap_tolerance();
     check.positive("bonds.gapTolerance", b.gap_tolerance);
     if (in.has_region()) {
-      check.finite("bonds.region.min", in.region().min());
-      check.finite("bonds.region.max", in.region().max());
+      check.vector("bonds.region.min", in.region().min(), kLength);
+      check.vector("bonds.region.max", in.region().max(), kLength);
       b.region = Box{vec(in.region().min()), vec(in.region().max())};
       if ((b.region->max.array() < b.region->min.array()).any()) check.fail("bonds.region", "max is below min");
     }
     for (int k = 0; k < in.zones_size(); ++k) {
       const auto& z = in.zones(k);
       const std::string path = at("bonds.zones", k);
-      check.finite(path + ".min", z.min());
-      check.finite(path + ".max", z.max());
+      check.vector(path + ".min", z.min(), kLength);
+      check.vector(path + ".max", z.max(), kLength);
       check.non_negative(path + ".strengthRatio", z.strength_ratio());
       b.zones.push_back({Box{vec(z.min()), vec(z.max())}, z.strength_ratio()});
     }
@@ -867,7 +887,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   }
 
   // gravity, time, outputs, domain, numerics
-  check.finite("gravity", spec.gravity());
+  check.vector("gravity", spec.gravity(), kAcceleration);
   scene.gravity = vec(spec.gravity());
   const auto& t = spec.time();
   check.non_negative("time.dt", t.dt());
@@ -901,8 +921,8 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
 
   if (spec.has_domain()) {
     // Written into every animation frame header, where a non-finite number cannot be read back.
-    check.finite("domain.min", spec.domain().min());
-    check.finite("domain.max", spec.domain().max());
+    check.vector("domain.min", spec.domain().min(), kLength);
+    check.vector("domain.max", spec.domain().max(), kLength);
     const Vec3 lo = vec(spec.domain().min()), hi = vec(spec.domain().max());
     if (!(lo.array() < hi.array()).all()) check.fail("domain.max", "must be above domain.min in x, y and z");
     scene.domain = Box{lo, hi};

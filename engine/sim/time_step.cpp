@@ -141,7 +141,8 @@ TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel) {
   if (scene.time.dt > 0) {
     r.automatic = false;
     r.dt = scene.time.dt;
-    if (r.dt > r.stable_limit && !scene.time.allow_unstable_dt) {
+    // a step at the limit as printed (7 digits) or computed another way is at the limit
+    if (r.dt > r.stable_limit * (1 + 1e-6) && !scene.time.allow_unstable_dt) {
       char buf[400];
       std::snprintf(buf, sizeof buf,
                     "time.dt: %.6e s is above the stable limit %.6e s (shortest contact time %.6e s / 10); "

@@ -1,0 +1,102 @@
+// The edges of the input range: a value whose squares or step counts would overflow is a spec error
+// naming the field; an output interval longer than the run gives its first and last frames; a step
+// at the stable limit, however it was computed, is accepted.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "sim/runner.hpp"
+#include "sim/simulation.hpp"
+#include "spec/spec_loader.hpp"
+#include "support/spec_problems.hpp"
+
+namespace dem::test {
+namespace {
+
+// One sphere falling onto a floor, with `extra` replacing the marker.
+std::string spec_with(const std::string& time, const std::string& extra = "", const std::string& sphere = "") {
+  return R"({
+  "materials": [{"name": "rock", "density": 2600, "youngsModulus": 1e9, "poissonRatio": 0.25}, {"name": "floor", "rigid": true}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}, {"a": "rock", "b": "floor", "restitution": 0.5}],
+  "contact": {"normal": "HERTZ"},
+  "particles": [{"position": {"z": 0.02}, "radius": 0.01, "material": "rock")" + sphere + R"(}],
+  "walls": [{"material": "floor", "plane": {"normal": {"z": 1}}}],
+  "gravity": {"z": -9.81},
+  "time": )" + time + extra + "}";
+}
+
+// The problems of a spec, including those only its Simulation finds (the time step and the step count).
+std::string problems(const std::string& json) {
+  std::string found = spec_problems(json);
+  if (!found.empty()) return found;
+  try {
+    Simulation sim(spec::to_scene(spec::parse_json(json)));
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(InputRange, ARunTooLongToCountIsRefusedNamingTheDuration) {
+  const std::string p = problems(spec_with(R"({"duration": 1e300})"));
+  EXPECT_NE(p.find("time.duration: 1e+300 s"), std::string::npos) << p;
+  EXPECT_NE(p.find("more than a run can count"), std::string::npos) << p;
+}
+
+TEST(InputRange, ATinyGivenStepIsRefusedNamingTheDuration) {
+  const std::string p = problems(spec_with(R"({"duration": 1, "dt": 1e-300})"));
+  EXPECT_NE(p.find("time.duration:"), std::string::npos) << p;
+  EXPECT_NE(p.find("(given)"), std::string::npos) << p;
+}
+
+TEST(InputRange, TooManyStepsAreRefused) {
+  const std::string p = problems(spec_with(R"({"steps": 9223372036854775807})"));
+  EXPECT_NE(p.find("time.steps:"), std::string::npos) << p;
+}
+
+TEST(InputRange, AnAbsurdModulusIsASpecErrorNotANegativeStepCount) {
+  std::string json = spec_with(R"({"duration": 1})");
+  json.replace(json.find("1e9"), 3, "1e300");
+  const std::string p = problems(json);
+  EXPECT_NE(p.find("materials[0].youngsModulus: must be at most 1e+15 Pa"), std::string::npos) << p;
+}
+
+TEST(InputRange, AbsurdGravityAndSpeedAreSpecErrors) {
+  std::string json = spec_with(R"({"duration": 1})");
+  json.replace(json.find("-9.81"), 5, "-1e300");
+  EXPECT_NE(problems(json).find("gravity: must be at most 1e+09 m/s^2"), std::string::npos) << problems(json);
+  const std::string fast = spec_with(R"({"duration": 1})", "", R"(, "velocity": {"x": 1e300})");
+  EXPECT_NE(problems(fast).find("particles[0].velocity: must be at most 3e+08 m/s"), std::string::npos) << problems(fast);
+  const std::string huge = spec_with(R"({"duration": 1})", "", R"(, "position": {"z": 1e200})");
+  EXPECT_NE(problems(huge).find("particles[0].position"), std::string::npos) << problems(huge);
+}
+
+TEST(InputRange, AnIntervalLongerThanTheRunGivesTheFirstAndLastFrames) {
+  const std::string json = spec_with(R"({"steps": 50})", R"(, "outputs": {"interval": 1e300})");
+  Simulation sim(spec::to_scene(spec::parse_json(json)));
+  struct Count : Observer {
+    int frames = 0;
+    void frame(const Simulation&) override { ++frames; }
+  } count;
+  EXPECT_TRUE(run(sim, {&count}).ok);
+  EXPECT_EQ(count.frames, 2);
+}
+
+TEST(InputRange, AStepAtTheStableLimitIsAccepted) {
+  const Simulation probe(spec::to_scene(spec::parse_json(spec_with(R"({"steps": 5})"))));
+  const double limit = probe.time_step().stable_limit;
+  char printed[32];
+  std::snprintf(printed, sizeof printed, "%.6e", limit);  // as the report prints it (rounded either way)
+  for (const std::string dt : {std::to_string(limit), std::string(printed)}) {
+    char exact[40];
+    std::snprintf(exact, sizeof exact, "%.17g", dt == printed ? std::stod(printed) : limit);
+    EXPECT_EQ(problems(spec_with(std::string(R"({"steps": 5, "dt": )") + exact + "}")), "") << exact;
+  }
+  char above[40];
+  std::snprintf(above, sizeof above, "%.17g", limit * 1.001);
+  EXPECT_NE(problems(spec_with(std::string(R"({"steps": 5, "dt": )") + above + "}")).find("above the stable limit"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace dem::test
