@@ -95,6 +95,13 @@ DEM_LANES_INLINE bool any_lane(M mask) {
   }
 }
 
+// Lane-wise a and b of two masks (for one lane, bool && bool: & would give an int).
+template <class M>
+DEM_LANES_INLINE M lane_and(M a, M b) {
+  if constexpr (std::is_same_v<M, bool>) return a && b;
+  else return a & b;
+}
+
 // Mask of the lanes below `count`.
 template <class T>
 DEM_LANES_INLINE auto lanes_below(int count) {

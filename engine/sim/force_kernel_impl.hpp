@@ -22,6 +22,7 @@ class ForceKernelImpl final : public ForceKernel {
   explicit ForceKernelImpl(const Scene& scene) : table_(scene, &Law::mix) {}
 
   void compute_and_kick(SimState& s) override {
+    s.deep_overlap.store(false, std::memory_order_relaxed);
     if (s.record_contacts) evaluate_pairs<true>(s, table_);
     else evaluate_pairs<false>(s, table_);
     const bool bonded = !s.bonds.empty();
@@ -169,6 +170,8 @@ class ForceKernelImpl final : public ForceKernel {
       V3<T> n;
       T delta, ri, rj;
     } geometry[kGroups];
+    const T overlap_limit = splat<T>(s.overlap_limit);
+    bool deep = false;  // a contact past the guard's overlap limit
     const int k_end = nl.row_start[end];
     for (int chunk = nl.row_start[begin]; chunk < k_end; chunk += kGroups * W) {
       const int groups = std::min(kGroups, (k_end - chunk + W - 1) / W);
@@ -195,6 +198,7 @@ class ForceKernelImpl final : public ForceKernel {
         if (!any_lane(geo.touching)) continue;
         geo.n = d * (1.0 / dist);
         geo.delta = rs - dist;
+        deep = deep || any_lane(lane_and(geo.touching, geo.delta > overlap_limit * lane_min(geo.ri, geo.rj)));
       }
       for (int g = 0; g < groups; ++g) {
         const Geometry& geo = geometry[g];
@@ -274,6 +278,7 @@ class ForceKernelImpl final : public ForceKernel {
         }
       }
     }
+    if (deep) s.deep_overlap.store(true, std::memory_order_relaxed);
   }
 
   // bonded: bond forces and torques wait in f_next and particles.t.
@@ -338,12 +343,13 @@ class ForceKernelImpl final : public ForceKernel {
   // One sphere against a boundary (plane, plate or mesh) that moves with `pose`: the law with the
   // wall's velocity at the contact point; returns the force on the sphere and adds it and its
   // torque to f and t. shear and roll are the contact's springs, updated in place.
-  DEM_HOT static ContactOutput<double> wall_contact(const SimState& s, const PairTable<Pair>& table, int i,
+  DEM_HOT static ContactOutput<double> wall_contact(SimState& s, const PairTable<Pair>& table, int i,
                                                     const Vec3& normal, double delta,
                                                     const Vec3& point, const WallPose& pose, int wall_material,
                                                     const PairConstants& pc, Vec3& shear, Vec3& roll, Vec3& f,
                                                     Vec3& t) {
     const Particles& p = s.particles;
+    if (delta > s.overlap_limit * p.radius[i]) s.deep_overlap.store(true, std::memory_order_relaxed);
     const double li = p.radius[i] - 0.5 * delta;  // to the contact point, as for a pair
     ContactInput<double> c;
     c.n = to_v3(normal);

@@ -40,7 +40,7 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
       sim.step();
       guard.check_finite(sim);
       const std::int64_t s = sim.step_count();
-      if (s % check_every == 0 || s == total) guard.check(sim);
+      if (s % check_every == 0 || s == total || sim.deep_overlap()) guard.check(sim);
       if (frame_due) frame();
       if (options.after_step) options.after_step(sim, frame_due);
       if (options.on_progress || options.periodically) {

@@ -101,6 +101,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   state_.f_next.assign(state_.particles.size(), Vec3::Zero());
   state_.half_kick.assign(state_.particles.size(), Vec3::Zero());
   state_.gravity = scene_.gravity;
+  state_.overlap_limit = scene_.numerics.max_overlap_fraction;
   state_.local_damping = scene_.numerics.local_damping;
   for (const ParticleInit& init : scene_.particles) largest_given_radius_ = std::max(largest_given_radius_, init.radius);
   const int boundaries = static_cast<int>(scene_.walls.size());

@@ -117,6 +117,8 @@ class Simulation {
   // Set by the first step that left a particle's position, velocity or spin non-finite (every step
   // is checked, at the cost of one comparison per particle).
   const std::optional<NonFinite>& first_non_finite() const { return first_non_finite_; }
+  // The last step had a contact past numerics.maxOverlapFraction (a comparison per contact).
+  bool deep_overlap() const { return state_.deep_overlap.load(std::memory_order_relaxed); }
 
  private:
   friend class StateIO;  // saves and restores everything below (sim/state_io.hpp)

@@ -1,6 +1,7 @@
 // Everything the force loop reads and writes, in one place.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -109,6 +110,10 @@ struct SimState {
   double dt = 0;
   bool record_contacts = true;  // keep per-contact forces in `pairs` (observers need them)
   bool non_finite = false;      // some particle's position or velocity stopped being finite this step
+  // Some contact of this step overlaps by more than overlap_limit times the smaller radius (the
+  // stability guard's limit), found in the force loop at the cost of a comparison per contact.
+  double overlap_limit = 0.25;
+  std::atomic<bool> deep_overlap{false};
 };
 
 }  // namespace dem

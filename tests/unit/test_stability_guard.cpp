@@ -81,6 +81,23 @@ TEST(StabilityGuard, OverlapBeyondTheLimitStopsTheRun) {
   EXPECT_GE(r.frames.frames.size(), 1u);
 }
 
+// A contact that passes the overlap limit and parts again between two checks (every 100 steps;
+// the contact lasts 50): the force loop sees it, the run stops at that step. It once ran to its end.
+TEST(StabilityGuard, AnOverlapPastTheLimitBetweenChecksStopsTheRun) {
+  Scene s = pressed_pair();
+  s.particles.resize(1);
+  s.particles[0].position = {0, 0, 0.01};
+  s.particles[0].velocity = {0, 0, -20};  // k = 2e4 N/m against a rigid floor: overlap ~0.75 r
+  s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+  s.numerics.check_interval = 100;
+  s.outputs.every_steps = 1000;
+  Simulation sim(s);
+  const RunOutcome outcome = run(sim, {});
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_NE(outcome.error.find("overlap of"), std::string::npos) << outcome.error;
+  EXPECT_NE(outcome.steps % 100, 0) << "stopped at a step of its own, not at a check";
+}
+
 TEST(StabilityGuard, NotANumberStopsTheRun) {
   Scene s = pressed_pair();
   s.particles[0].velocity = {std::nan(""), 0, 0};
