@@ -1,4 +1,4 @@
-// Random loose packings (the seeds' pattern LOS) and particle size distributions (the seeds'
+// Random loose packings (LOS, the PDEM-EGD manual's packing pattern, section 4.2.1) and particle size distributions (its
 // IPATTERN: one size, two sizes, uniform, normal, lognormal), reproducible from a seed.
 #pragma once
 

@@ -82,7 +82,7 @@ double hertz_restitution(double eta, bool no_tensile_force) {
 
 double linear_damping_ratio(double e, bool no_tensile_force) {
   if (!no_tensile_force) {
-    // the seeds' eq. 6 (exact for the linear law when tension is allowed)
+    // the PDEM-EGD manual's eq. 6 (exact for the linear law when tension is allowed)
     const double l = std::log(e);
     return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
   }

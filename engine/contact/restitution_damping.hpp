@@ -2,7 +2,7 @@
 //
 // Both normal laws are written in a dimensionless form in which e depends on one damping number
 // only (not on the impact speed), so e -> damping is found once per material pair:
-//   linear:  x'' = -x - 2 zeta x'                (zeta: the seeds' eq. 6 when tension is allowed)
+//   linear:  x'' = -x - 2 zeta x'                (zeta: the PDEM-EGD manual's eq. 6 when tension is allowed)
 //   Hertz:   x'' = -x^1.5 - eta x^0.25 x'        (Tsuji et al. 1992 form; eta = sqrt(5) * |beta| of
 //                                                 the usual fit, which is only approximate)
 // With "no tensile force" the contact force is clamped at zero, which ends the contact early and

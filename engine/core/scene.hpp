@@ -175,7 +175,7 @@ struct NumericsSettings {
 
 struct TimeSettings {
   double dt = 0;                    // 0: automatic
-  double dt_fraction = 1.0 / 50.0;  // of the shortest contact time (the seeds' 1/50)
+  double dt_fraction = 1.0 / 50.0;  // of the shortest contact time (the PDEM-EGD manual's 1/50, section 4.1.1)
   double duration = 0;
   std::int64_t steps = 0;           // derived from duration when 0
   bool allow_unstable_dt = false;
@@ -195,7 +195,7 @@ struct Scene {
   std::optional<Box> domain;
   NumericsSettings numerics;
   std::optional<BondSettings> bonds;
-  // Radius growth (the seeds' GROWTH and NGROWTH): every radius grows uniformly from its given
+  // Radius growth (the PDEM-EGD manual's GROWTH and NGROWTH): every radius grows uniformly from its given
   // size to `factor` times it over the first `steps` steps, packing a loose assembly (a solid
   // fraction cc grows to cc factor^3); masses follow, densities stay.
   struct Growth {

@@ -79,7 +79,7 @@ struct MeshTouch {
 };
 
 // The contacts of a sphere (centre x, radius r) with `mesh`, testing the given candidate triangles.
-// Sound across edges and vertices (seeds 4.1.2, the finite-wall method, with the mesh's
+// Sound across edges and vertices (the PDEM-EGD manual's finite-wall method, section 4.1.2, with the mesh's
 // connectivity): an edge or vertex point counts only when the centre lies in that feature's own
 // Voronoi region of the surface, a feature is counted once however many triangles share it, and an
 // edge (vertex) that borders a touched face (edge) is not counted again. A sphere resting across

@@ -1,4 +1,4 @@
-// Saving and restoring a running simulation (the seeds' restart option): every piece of state a
+// Saving and restoring a running simulation (the manuals' restart option): every piece of state a
 // step reads, so that a run continued from a saved state is the uninterrupted run, bit for bit.
 // The file is binary, for the same build of the engine and the same job spec (checked: counts of
 // particles, walls, bonds and the step size must match).

@@ -1,4 +1,4 @@
-// Analytic walls: infinite planes (one-sided) and planar quadrilateral plates (two-sided, the seeds'
+// Analytic walls: infinite planes (one-sided) and planar quadrilateral plates (two-sided, the BallastDEM manual's
 // rplate), with the closest-point query the contact loop needs.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Radius growth (the seeds' GROWTH and NGROWTH): a loose random packing at a solid fraction of 0.25
+// Radius growth (the PDEM-EGD manual's GROWTH and NGROWTH): a loose random packing at a solid fraction of 0.25
 // grown by (0.5 / 0.25)^(1/3) in a closed box packs to 0.5 without excessive overlap.
 #include <gtest/gtest.h>
 

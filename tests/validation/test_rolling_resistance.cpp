@@ -20,7 +20,7 @@ Scene sphere_on_plane(std::string_view model, const Vec3& g, const Vec3& v0, con
   set_rolling(s, model, kMuR);
   s.gravity = g;
   const double m = sphere_mass(kDensity, kR);
-  // the linear wall contact has K_n = 2 k (rigid wall, seeds' eq. 4)
+  // the linear wall contact has K_n = 2 k (rigid wall, the PDEM-EGD manual's eq. 4)
   const double overlap = m * std::abs(g.z()) / (2 * kKn);
   s.particles.push_back(sphere({0, 0, kR - overlap}, kR, v0, w0));
   s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
