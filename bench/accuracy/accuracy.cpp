@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "clumps/rigid_rotation.hpp"
 #include "contact/models.hpp"
 #include "sim/simulation.hpp"
 #include "spec/spec_loader.hpp"
@@ -25,7 +26,19 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// The errors of one run, by kind; a negative value: that kind is not measured.
+enum Kind { kNormal, kTangential, kRotational };
+
+// One measured quantity of a run, of a kind, with its closed-form value (0 for the many-body
+// scenes, which compare with their own run at N = 800).
+struct Q {
+  Kind kind;
+  double value;
+  double reference;
+};
+using Quantities = std::vector<Q>;
+
+// The relative errors of a run by kind (against `reference` where given, else the quantities'
+// own references); a negative value: that kind is not measured.
 struct Errors {
   double normal = -1, tangential = -1, rotational = -1;
 };
@@ -34,7 +47,7 @@ struct Scenario {
   std::string name;
   double contact_time;                          // the reference t_c of the sweep, s
   std::function<Scene()> scene;                 // at the engine's automatic step
-  std::function<Errors(Simulation&)> measure;   // runs the simulation and measures
+  std::function<Quantities(Simulation&)> measure;  // runs the simulation and measures
   bool many_body = false;                       // against its own run at N = 800
 };
 
@@ -123,7 +136,7 @@ Scenario normal_pair() {
           },
           [=](Simulation& sim) {
             const Impact i = impact(sim);
-            return Errors{std::max({rel(i.contact_time, t_c), rel(i.max_overlap, alpha), rel(i.max_force, force)}), -1, -1};
+            return Quantities{{kNormal, i.contact_time, t_c}, {kNormal, i.max_overlap, alpha}, {kNormal, i.max_force, force}};
           }};
 }
 
@@ -141,7 +154,7 @@ Scenario normal_plane() {
           },
           [=](Simulation& sim) {
             const Impact i = impact(sim);
-            return Errors{std::max({rel(i.contact_time, t_c), rel(i.max_overlap, alpha), rel(i.max_force, force)}), -1, -1};
+            return Quantities{{kNormal, i.contact_time, t_c}, {kNormal, i.max_overlap, alpha}, {kNormal, i.max_force, force}};
           }};
 }
 
@@ -158,15 +171,15 @@ Scenario restitution(std::string_view law) {
             return s;
           },
           [=](Simulation& first) {
-            double worst = 0;
+            Quantities out;
             for (double want : {0.1, 0.3, 0.5, 0.7, 0.9}) {
               Scene s = first.scene();
               s.interactions.assign(4, Interaction{want, 0, 0});
               Simulation sim(s);
               impact(sim);
-              worst = std::max(worst, rel(sim.particles().v[0].z() / v, want));
+              out.push_back({kNormal, sim.particles().v[0].z() / v, want});
             }
-            return Errors{worst, -1, -1};
+            return out;
           }};
 }
 
@@ -189,8 +202,10 @@ Scenario oblique(std::string_view law) {
             impact(sim);
             const Vec3 vel = sim.particles().v[0], w = sim.particles().w[0];
             const Vec3 vc = vel + w.cross(Vec3(0, 0, -r));
-            return Errors{rel(vel.z(), e * vn), std::max(rel(vel.x(), vt_after), rel(std::atan2(vc.x(), vc.z()), angle)),
-                          rel(w.norm(), spin)};
+            return Quantities{{kNormal, vel.z(), e * vn},
+                              {kTangential, vel.x(), vt_after},
+                              {kTangential, std::atan2(vc.x(), vc.z()), angle},
+                              {kRotational, w.norm(), spin}};
           }};
 }
 
@@ -221,8 +236,8 @@ Scenario sliding(std::string_view law, bool pair) {
             // sphere 0 (the lower one of the pair moves up into the other: its normal is -z)
             const double sign = pair ? -1 : 1;
             const Vec3 dv = sim.particles().v[0] - v0, dw = sim.particles().w[0] - w0;
-            const double dvn = sign * pn / m, dvt = -mu * pn / m * (pair ? 1 : 1), dwy = mu * pn * r / inertia;
-            return Errors{rel(dv.z(), dvn), rel(dv.x(), dvt), rel(std::abs(dw.y()), std::abs(dwy))};
+            const double dvn = sign * pn / m, dvt = -mu * pn / m, dwy = mu * pn * r / inertia;
+            return Quantities{{kNormal, dv.z(), dvn}, {kTangential, dv.x(), dvt}, {kRotational, std::abs(dw.y()), std::abs(dwy)}};
           }};
 }
 
@@ -244,7 +259,7 @@ Scenario rolling(std::string_view model) {
           },
           [=](Simulation& sim) {
             while (sim.particles().v[0].norm() > 1e-5 && sim.time() < 2) sim.step();
-            return Errors{-1, -1, rel(sim.particles().x[0].x(), want)};
+            return Quantities{{kRotational, sim.particles().x[0].x(), want}};
           }};
 }
 
@@ -280,7 +295,7 @@ Scenario incline_mesh() {
             const double t1 = sim.time(), v1 = sim.particles().v[0].x();
             while (sim.time() < 0.4) sim.step();
             const double a = (sim.particles().v[0].x() - v1) / (sim.time() - t1);
-            return Errors{-1, rel(a, 5.0 / 7.0 * g * std::sin(th)), -1};
+            return Quantities{{kTangential, a, 5.0 / 7.0 * g * std::sin(th)}};
           }};
 }
 
@@ -310,7 +325,7 @@ Scenario bond_pair() {
               if (k > 3 && previous < 0 && x >= 0) measured = sim.time() - sim.dt() * x / (x - previous);
               previous = x;
             }
-            return Errors{rel(measured, period), -1, -1};
+            return Quantities{{kNormal, measured, period}};
           }};
 }
 
@@ -328,20 +343,14 @@ Scenario clump_rotation() {
   return {"clump-rotation", t_c, [=] { return scene; },
           [=](Simulation& sim) {
             const double e0 = sim.kinetic_energy();
-            double worst = 0;
-            while (sim.time() < 0.5) {
-              sim.step();
-              worst = std::max(worst, rel(sim.kinetic_energy(), e0));
-            }
-            return Errors{-1, -1, worst};
+            while (sim.time() < 0.5) sim.step();
+            // the energy (exact: e0) and the orientation's turn, whose reference is the run at N = 3200
+            const Eigen::AngleAxisd turn(sim.state().bodies.rotation[0].orientation);
+            return Quantities{{kRotational, sim.kinetic_energy(), e0}, {kRotational, turn.angle(), 0}};
           }};
 }
 
 // The many-body scenes: quantities at the end, against the same scene at N = 800.
-struct EndState {
-  double a = 0, b = 0;
-};
-
 // 2,000 spheres on a 10 x 10 x 20 cubic lattice fall and spread on a floor (SCENARIOS.md, 6).
 Scenario collapse(double duration) {
   const double r = 0.002, rho = 2500, kn = 1e4;
@@ -366,8 +375,7 @@ Scenario collapse(double duration) {
                  z += p.x[i].z();
                  spread += p.x[i].x() * p.x[i].x() + p.x[i].y() * p.x[i].y();
                }
-               // the raw end state; the sweep compares it with the reference run
-               return Errors{z / p.size(), std::sqrt(spread / p.size()), -1};
+               return Quantities{{kNormal, z / p.size(), 0}, {kTangential, std::sqrt(spread / p.size()), 0}};
              },
              true};
   return s;
@@ -397,7 +405,8 @@ Scenario bonded_block() {
             const BondCounts c = sim.bonds().counts();
             const std::vector<int> parts = sim.fragments();
             const std::set<int> distinct(parts.begin(), parts.end());
-            return Errors{static_cast<double>(c.tension + c.shear), static_cast<double>(distinct.size()), -1};
+            return Quantities{{kNormal, static_cast<double>(c.tension + c.shear), 0},
+                              {kTangential, static_cast<double>(distinct.size()), 0}};
           },
           true};
 }
@@ -405,7 +414,7 @@ Scenario bonded_block() {
 // ------------------------------------------------------------------------------------------------
 
 struct Timed {
-  Errors errors;
+  Quantities q;
   double seconds = 0;
   double dt = 0;
 };
@@ -425,12 +434,25 @@ Timed timed_run(const Scenario& sc, double dt) {
     Simulation sim(std::move(s));
     out.dt = sim.dt();
     const auto start = Clock::now();
-    out.errors = sc.measure(sim);
+    out.q = sc.measure(sim);
     total += std::chrono::duration<double>(Clock::now() - start).count();
     ++repeats;
   } while (total < 0.02 && !sc.many_body);
   out.seconds = total / repeats;
   return out;
+}
+
+// The errors by kind: against each quantity's reference, or (`against`) another run's values.
+Errors errors_of(const Quantities& q, const Quantities* against) {
+  Errors e;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    if (!against && q[k].reference == 0) continue;  // no closed form: measured against a run only
+    const double want = against ? (*against)[k].value : q[k].reference;
+    const double err = want != 0 ? rel(q[k].value, want) : std::abs(q[k].value);
+    double& slot = q[k].kind == kNormal ? e.normal : q[k].kind == kTangential ? e.tangential : e.rotational;
+    slot = std::max(slot, err);
+  }
+  return e;
 }
 
 std::string cell(double e) {
@@ -440,9 +462,12 @@ std::string cell(double e) {
   return buf;
 }
 
-void print_row(const std::string& scenario, const std::string& code, const Scenario& sc, const Timed& t, const Errors& e) {
+// `code` dem: the error against the closed form (the many-body scenes: their run at N = 800);
+// dem-self: against this engine's own run at N = 3200 (the discretisation error alone, for the
+// orders of convergence); dem-default: the automatic step.
+void print_row(const std::string& code, const Scenario& sc, const Timed& t, const Errors& e) {
   const double worst = std::max({e.normal, e.tangential, e.rotational});
-  std::printf("%s,%s,%.6e,%.4g,%.6e,%s,%s,%s,%s\n", scenario.c_str(), code.c_str(), t.dt, sc.contact_time / t.dt,
+  std::printf("%s,%s,%.6e,%.4g,%.6e,%s,%s,%s,%s\n", sc.name.c_str(), code.c_str(), t.dt, sc.contact_time / t.dt,
               t.seconds, cell(e.normal).c_str(), cell(e.tangential).c_str(), cell(e.rotational).c_str(), cell(worst).c_str());
   std::fflush(stdout);
 }
@@ -480,25 +505,14 @@ int main(int argc, char** argv) {
   for (const Scenario& sc : all) {
     if (!only.empty() && !only.count(sc.name)) continue;
     std::fprintf(stderr, "%s\n", sc.name.c_str());
-    if (sc.many_body) {
-      const Timed ref = timed_run(sc, sc.contact_time / (quick ? 100 : 800));
-      auto against = [&](const Errors& e) {
-        return Errors{rel(e.normal, ref.errors.normal), rel(e.tangential, ref.errors.tangential), -1};
-      };
-      for (double n : sweep) {
-        const Timed t = timed_run(sc, sc.contact_time / n);
-        print_row(sc.name, "dem", sc, t, against(t.errors));
-      }
-      const Timed d = timed_run(sc, 0);
-      print_row(sc.name, "dem-default", sc, d, against(d.errors));
-    } else {
-      for (double n : sweep) {
-        const Timed t = timed_run(sc, sc.contact_time / n);
-        print_row(sc.name, "dem", sc, t, t.errors);
-      }
-      const Timed d = timed_run(sc, 0);
-      print_row(sc.name, "dem-default", sc, d, d.errors);
+    const Timed self = timed_run(sc, sc.contact_time / (sc.many_body ? (quick ? 100 : 800) : (quick ? 200 : 3200)));
+    for (double n : sweep) {
+      const Timed t = timed_run(sc, sc.contact_time / n);
+      print_row("dem", sc, t, errors_of(t.q, sc.many_body ? &self.q : nullptr));
+      if (!sc.many_body) print_row("dem-self", sc, t, errors_of(t.q, &self.q));
     }
+    const Timed d = timed_run(sc, 0);
+    print_row("dem-default", sc, d, errors_of(d.q, sc.many_body ? &self.q : nullptr));
   }
   return 0;
 }
