@@ -26,6 +26,7 @@ struct ContactInput {
   V3<T> v_rel;      // contact-point relative velocity at the half step (moves the springs)
   T vn_now;         // normal relative velocity predicted at the full step (normal damping)
   T onset;          // share of the step's force window inside the contact (boundary_share)
+  T travel;         // |v_n| dt: the overlap gained or lost in a step (a contact boundary is nearer)
   V3<T> w_rel;      // w_i - w_j
   T sqrt_m_eff;     // sqrt of the reduced mass
   T r_eff;          // reduced radius (Hertz and rolling laws)

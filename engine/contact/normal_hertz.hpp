@@ -45,9 +45,22 @@ struct HertzNormal {
     const T sqrt_rd = lane_sqrt(c.r_eff * c.delta);
     const T f_elastic = (4.0 / 3.0) * p.e_star * sqrt_rd * c.delta;
     // C_n = eta sqrt(m* 4/3 E* sqrt(R* d)); C_t = eta sqrt(2/3 k_t m*) (LIGGGHTS' gamma_t, beta -> eta)
-    const T scale = lane_sqrt(sqrt_rd) * c.sqrt_m_eff;
+    const T quarter = lane_sqrt(sqrt_rd);  // (R* d)^(1/4)
+    const T scale = quarter * c.sqrt_m_eff;
     const T kt = 8.0 * p.g_star * sqrt_rd;
-    return {f_elastic - c.onset * p.hertz_cn * scale * c.vn_now, 2.0 * p.e_star * sqrt_rd, kt, p.hertz_ct * scale};
+    // At a contact boundary (see boundary_share) the dashpot, which rises as d^(1/4), acts over the
+    // part of the window inside the contact, (s + 1/2) dt with s = d / travel: its exact impulse there
+    // is that of (R* travel)^(1/4) (s + 1/2)^(5/4) / (5/4) in place of (R* d)^(1/4). The linear law's
+    // share (s + 1/2), right for a dashpot that jumps, left a boundary error of order dt^(5/4).
+    T damping_quarter = quarter;
+    const auto boundary = c.delta < c.travel;
+    if (any_lane(boundary)) {
+      const T reach = c.delta / c.travel + 0.5;
+      const T window = lane_sqrt(lane_sqrt(c.r_eff * c.travel)) * reach * lane_sqrt(lane_sqrt(reach)) * 0.8;
+      damping_quarter = select(boundary, window, quarter);
+    }
+    return {f_elastic - p.hertz_cn * damping_quarter * c.sqrt_m_eff * c.vn_now, 2.0 * p.e_star * sqrt_rd, kt,
+            p.hertz_ct * scale};
   }
 
   static double elastic_energy(const Pair& p, double delta, double r_eff) {

@@ -235,6 +235,7 @@ class ForceKernelImpl final : public ForceKernel {
         // full-step prediction: v(n+1) ~ v(n+1/2) + (the first half kick again)
         c.vn_now = vn + dot(gather<T>(kick, iv) - gather<T>(kick, jv), c.n);
         c.onset = boundary_share(c.delta, vn, dt);
+        c.travel = lane_abs(vn) * dt;
         c.w_rel = wi - wj;
         c.sqrt_m_eff = gather<T>(sqrt_m_eff, kv);
         c.r_eff = Law::kNeedsEffectiveRadius ? gather<T>(r_eff, kv) : T{};
@@ -359,6 +360,7 @@ class ForceKernelImpl final : public ForceKernel {
     const double vn = dot(c.v_rel, c.n);
     c.vn_now = vn + dot(to_v3(s.half_kick[i]), c.n);
     c.onset = boundary_share(c.delta, vn, s.dt);
+    c.travel = std::abs(vn) * s.dt;
     c.w_rel = to_v3(p.w[i] - pose.angular_velocity);
     c.sqrt_m_eff = pc.sqrt_m_eff;
     c.r_eff = pc.r_eff;
