@@ -23,6 +23,10 @@ class ForceKernel {
   virtual void compute_and_kick(SimState& state) = 0;
   // Overlaps and stored elastic energy of the current contacts, for the stability guard.
   virtual ContactSummary summarize(const SimState& state) const = 0;
+  // The elastic energy the contacts would store at the current positions with these radii (one per
+  // particle; a mesh contact's overlap, kept from the last force loop, changes by the radius's
+  // change): what growing the radii puts in.
+  virtual double elastic_energy(const SimState& state, const std::vector<double>& radius) const = 0;
   virtual bool has_rolling_spring() const = 0;
 
   // What the time step needs of the normal model (sim/time_step.cpp), for materials a and b: the

@@ -42,7 +42,15 @@ class ForceKernelImpl final : public ForceKernel {
   bool contact_time_needs_speed() const override { return Normal::kContactTimeNeedsSpeed; }
   double wave_time(const Material& m, double r_min) const override { return Normal::wave_time(m, r_min); }
 
-  ContactSummary summarize(const SimState& s) const override {
+  ContactSummary summarize(const SimState& s) const override { return survey(s, s.particles.radius); }
+
+  double elastic_energy(const SimState& s, const std::vector<double>& radius) const override {
+    return survey(s, radius).elastic_energy;
+  }
+
+ private:
+  // The contacts the particles at their positions make with these radii.
+  ContactSummary survey(const SimState& s, const std::vector<double>& radius) const {
     const Particles& p = s.particles;
     ContactSummary sum;
     auto note = [&](int i, double delta, double r_min, double elastic) {
@@ -55,35 +63,35 @@ class ForceKernelImpl final : public ForceKernel {
     };
     const int n = static_cast<int>(p.size());
     for (int i = 0; i < n; ++i) {
+      const double ri = radius[i];
       for (int k = s.neighbors.row_start[i]; k < s.neighbors.row_start[i + 1]; ++k) {
         const int j = s.neighbors.partner[k];
-        const double rs = p.radius[i] + p.radius[j];
+        const double rj = radius[j], rs = ri + rj;
         const double dist = (p.x[i] - p.x[j]).norm();
         if (dist >= rs) continue;
-        note(i, rs - dist, std::min(p.radius[i], p.radius[j]),
-             Normal::elastic_energy(table_(p.material[i], p.material[j]).normal, rs - dist, s.neighbors.r_eff[k]));
+        note(i, rs - dist, std::min(ri, rj),
+             Normal::elastic_energy(table_(p.material[i], p.material[j]).normal, rs - dist, ri * rj / rs));
       }
       if constexpr (kWalls) {
         for (int e = s.wall_contacts.row_start[i]; e < s.wall_contacts.row_start[i + 1]; ++e) {
           const Wall& wall = s.walls[s.wall_contacts.wall[e]];
           Vec3 normal;
           double delta;
-          if (!wall.contact(p.x[i], p.radius[i], normal, delta)) continue;
-          note(i, delta, p.radius[i], Normal::elastic_energy(table_(p.material[i], wall.material).normal, delta, p.radius[i]));
+          if (!wall.contact(p.x[i], ri, normal, delta)) continue;
+          note(i, delta, ri, Normal::elastic_energy(table_(p.material[i], wall.material).normal, delta, ri));
         }
         const MeshContacts& mc = s.mesh_contacts;
         for (int k = 0, used = mc.count(i); k < used; ++k) {
           const MeshSlot& slot = mc.slot(i, k);
-          note(i, slot.delta, p.radius[i],
-               Normal::elastic_energy(table_(p.material[i], s.meshes[slot.mesh].material).normal, slot.delta,
-                                      p.radius[i]));
+          const double delta = slot.delta + (ri - p.radius[i]);
+          if (delta <= 0) continue;
+          note(i, delta, ri, Normal::elastic_energy(table_(p.material[i], s.meshes[slot.mesh].material).normal, delta, ri));
         }
       }
     }
     return sum;
   }
 
- private:
   // kRecord: keep each pair's forces for observers (force chains, contact counts) this step.
   template <bool kRecord>
   static void evaluate_pairs(SimState& s, const PairTable<Pair>& table) {

@@ -133,7 +133,17 @@ class Simulation {
   void move_walls(double t_new, double dt);  // the walls' first half of the step
   void settle_walls(double t_new, double dt);  // loads from this step's forces, then their second half
   double wall_shift_since_build() const;
-  double grow();  // the growth of this step (Scene::growth); returns how much the largest radius grew since the last build
+  // The growth of this step (Scene::growth), given its work on the contacts at the step's start
+  // positions; returns how much the largest radius grew since the last build.
+  double grow(double contacts_work_at_start);
+  bool growing() const;                      // this step grows the radii
+  double grown_scale() const;                // the radii's scale after this step's growth
+  std::vector<double> grown_radii() const;   // the radii after this step's growth
+  // What this step's growth adds to the contacts' stored energy at the particles' positions now.
+  double growth_energy_at_positions_now() const;
+  // The contacts' reduced masses, radii and rolling inertias from the particles' radii and masses
+  // now (they are computed at each build; growth changes them in between).
+  void refresh_contact_constants();
 
   Scene scene_;
   SimState state_;

@@ -60,6 +60,7 @@ struct MeshContacts {
     return k;
   }
   const MeshSlot& slot(int i, int k) const { return slots[static_cast<std::size_t>(i) * kSlots + k]; }
+  MeshSlot& slot(int i, int k) { return slots[static_cast<std::size_t>(i) * kSlots + k]; }
 };
 
 // Results of the last force evaluation per listed pair, for observers (force chains, contact counts).

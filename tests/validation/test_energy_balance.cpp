@@ -100,6 +100,31 @@ TEST(EnergyBalance, GrowthsWorkIsTheEnergyItGave) {
   EXPECT_NEAR(mechanical(last) - mechanical(rows.front()), last[kGrowth], 1e-3 * last[kGrowth]);
 }
 
+// Damped contacts growing (e = 0.2, both laws, spheres against each other and against a plane):
+// growth's work is what it adds to the stored elastic energy, so the dashpot, which only takes
+// energy out, leaves the dissipated column rising, never below zero. It once counted the last
+// step's force, dashpot pull included, times the growth of the overlap: the column fell to -0.7 of
+// the growth's work and the guard stopped the run at step 100 ("energy grew with no source").
+TEST(EnergyBalance, GrowingDampedContactsOnlyDissipate) {
+  for (const std::string_view law : {LinearNormal::kName, HertzNormal::kName}) {
+    Scene s = base_scene(law, 2500, 1e8, 0.25, 0.2, 0.0, 1e5);
+    s.particles.push_back(sphere({-0.005, 0, 0.005}, 0.005));
+    s.particles.push_back(sphere({0.005, 0, 0.005}, 0.005));
+    s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+    s.growth = Scene::Growth{1.05, 2000};
+    s.time.steps = 6000;
+    s.outputs.every_steps = 20;
+    const auto rows = energy_rows(s);
+    const double work = rows.back()[kGrowth];
+    EXPECT_GT(work, 0) << law;
+    double lowest = 0;
+    for (const auto& row : rows) lowest = std::min(lowest, row[kDissipated]);
+    report(std::string(law) + " damped growing contacts: lowest dissipated / growth work", lowest / work, 0.0);
+    EXPECT_GT(lowest, -1e-6 * work) << law;
+    EXPECT_GT(rows.back()[kDissipated], 0.01 * work) << law << ": the dashpot took energy out";
+  }
+}
+
 // A frictional gas of 27 spheres in a box (e = 0.5): the kinetic energy goes, the dissipated column
 // takes it; in a free elastic gas with nothing to hold it the momenta stay.
 TEST(EnergyBalance, WhatIsLostIsDissipatedAndTheMomentaOfAFreeGasStay) {
