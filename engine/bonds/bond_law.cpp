@@ -49,8 +49,10 @@ BondLoad bond_load(Bond& b, const BondEnd& i, const BondEnd& j, double time) {
   // P&C's dUn summed: the change of the centres' distance
   b.normal_force = -b.kn * g.area * (dist - b.rest_length);
   // dUs summed: where i's and j's attachment points at the bond centre have moved apart, in the plane
-  const Vec3 apart = (i.x + b.lever_i * (i.q * b.anchor_i)) - (j.x + b.lever_j * (j.q * b.anchor_j));
-  b.shear_force = -b.ks * g.area * (apart - apart.dot(n) * n);
+  const Vec3 arm_i = b.lever_i * (i.q * b.anchor_i), arm_j = b.lever_j * (j.q * b.anchor_j);
+  const Vec3 apart = (i.x + arm_i) - (j.x + arm_j);
+  const double apart_n = apart.dot(n);
+  b.shear_force = -b.ks * g.area * (apart - apart_n * n);
   if (b.moments) {
     // the rotation of i relative to j since the bond was made, in space: q_i q_i0^-1 q_j0 q_j^-1
     const Vec3 turn = rotation_vector(i.q * b.relative * j.q.conjugate());
@@ -58,13 +60,18 @@ BondLoad bond_load(Bond& b, const BondEnd& i, const BondEnd& j, double time) {
     b.twist = -b.ks * g.polar * twist_angle;
     b.bending = -b.kn * g.inertia * (turn - twist_angle);
   }
-  BondLoad out{b.normal_force * n + b.shear_force, Vec3::Zero(), Vec3::Zero()};
-  // the force acts at the bond centre, the middle of the gap between the surfaces
-  const double gap = dist - i.radius - j.radius;
-  const Vec3 lever_i = -(i.radius + 0.5 * gap) * n, lever_j = (j.radius + 0.5 * gap) * n;
+  // The forces and moments are the gradients of the springs' energy (bond_energy), so that a bond
+  // left to itself keeps its energy and the pair's angular momentum: the normal spring pulls along
+  // the line of centres; the shear spring, 1/2 ks A |apart in the plane|^2, turns each particle about
+  // its own attachment point (which rolls off the line of centres when the spheres roll on each
+  // other, a motion a contact bond does not resist) and pulls the centres with the plane's tilt
+  // taken into account (the factor 1 - apart_n / dist). Turning about the line of centres instead
+  // made two contact-bonded spheres of 10 and 5 mm rolling on each other gain 5% of their energy in
+  // 0.05 s, at any time step.
+  BondLoad out{b.normal_force * n + (1 - apart_n / dist) * b.shear_force, Vec3::Zero(), Vec3::Zero()};
   const Vec3 moment = b.twist + b.bending;
-  out.moment_i = moment + lever_i.cross(out.force);
-  out.moment_j = -moment + lever_j.cross(-out.force);
+  out.moment_i = moment + arm_i.cross(b.shear_force);
+  out.moment_j = -moment - arm_j.cross(b.shear_force);
 
   if (bond_tensile_stress(b) >= b.tensile_strength) {
     b.state = BondBreak::Tension;
