@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -36,11 +37,11 @@ std::string join(const std::vector<std::string>& lines) {
   return s;
 }
 
+// The shortest text that reads back as v: "0.10000001" stays itself ("(got 0.1)" hid why it was refused).
 std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
+  char buf[32];
+  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  return std::string(buf, end);
 }
 
 std::string at(const std::string& path, int index) { return path + "[" + std::to_string(index) + "]"; }
@@ -74,6 +75,9 @@ class Checker {
   void positive(const std::string& path, double v, const Quantity& q) {
     if (!(v > 0) || !std::isfinite(v)) fail(path, "must be a positive number (got " + num(v) + ")");
     else if (v > q.max) fail(path, beyond(v, q));
+    else if (v < q.min)
+      fail(path, "must be at least " + num(q.min) + (q.unit[0] ? " " : "") + q.unit + " (got " + num(v) +
+                     "): far below any scene; check the units");
   }
   static std::string beyond(double v, const Quantity& q) {
     return "must be at most " + num(q.max) + (q.unit[0] ? " " : "") + q.unit + " in size (got " + num(v) +
@@ -570,7 +574,7 @@ void check_required_properties(const ModelInfo& model, const Material& m, const 
   for (MaterialProperty property : model.required) {
     const std::string field = path + "." + std::string(material_property_name(property));
     switch (property) {
-      case MaterialProperty::Density: check.positive(field, m.density); break;
+      case MaterialProperty::Density: break;       // checked for every particle material
       case MaterialProperty::YoungsModulus: check.positive(field, m.youngs_modulus, kModulus); break;
       case MaterialProperty::PoissonRatio: break;  // checked for every material
       case MaterialProperty::NormalStiffness: check.positive(field, m.normal_stiffness, kStiffness); break;
@@ -843,7 +847,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     BondSettings b;
     b.model = api::Bonds::Model_Name(in.model());  // the enum's names are the bond models' (bonds/bond_models.hpp)
     b.radius_multiplier = in.radius_multiplier() == 0 ? 1.0 : in.radius_multiplier();
-    check.positive("bonds.radiusMultiplier", b.radius_multiplier);
+    check.positive("bonds.radiusMultiplier", b.radius_multiplier, kRatio);
     check.positive("bonds.youngsModulus", in.youngs_modulus(), kModulus);
     b.youngs_modulus = in.youngs_modulus();
     b.shear_stiffness_ratio = in.shear_stiffness_ratio() == 0 ? 1.0 : in.shear_stiffness_ratio();

@@ -68,33 +68,6 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   if (scene_.numerics.threads > 0) omp_set_num_threads(scene_.numerics.threads);
 #endif
   kernel_ = select(scene_, !scene_.walls.empty());
-  time_step_ = choose_time_step(scene_, *kernel_);
-  state_.dt = time_step_.dt;
-  // Step counts are int64 and times step * dt: past 2^53 steps neither is exact any more.
-  constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
-  if (scene_.time.steps > 0) {
-    if (static_cast<double>(scene_.time.steps) > kMaxSteps)
-      throw SceneError("time.steps: " + std::to_string(scene_.time.steps) + " is more than a run can count (at most 2^53)");
-    total_steps_ = scene_.time.steps;
-  } else {
-    const double steps = std::ceil(scene_.time.duration / state_.dt - 1e-9);
-    if (!(steps <= kMaxSteps)) {
-      char buf[400];
-      std::snprintf(buf, sizeof buf,
-                    "time.duration: %.6g s at a step of %.6e s (%s) would take %.3g steps, more than a run can count "
-                    "(at most 2^53 = 9.0e15); shorten the run, or make the contacts softer or the particles heavier",
-                    scene_.time.duration, state_.dt, time_step_.automatic ? "automatic" : "given", steps);
-      throw SceneError(buf);
-    }
-    total_steps_ = static_cast<std::int64_t>(steps);
-  }
-  if (scene_.outputs.every_steps == 0 && scene_.outputs.interval_seconds > 0) {
-    // an interval longer than the run gives its first and last frames only
-    const double every = scene_.outputs.interval_seconds / state_.dt;
-    scene_.outputs.every_steps = every >= static_cast<double>(total_steps_)
-                                     ? std::max<std::int64_t>(1, total_steps_)
-                                     : std::max<std::int64_t>(1, std::llround(every));
-  }
   state_.particles = make_particles(scene_);
   state_.bodies = make_bodies(scene_);
   mark_members(scene_, state_.bodies, state_.particles);
@@ -140,6 +113,35 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
     std::vector<int> stone;  // breakable stones glue only inside themselves
     for (const ParticleInit& p : scene_.particles) stone.push_back(p.stone);
     state_.bonds = BondSet(*scene_.bonds, state_.particles, state_.neighbors, stone);
+  }
+  // the step knows whether any bond was made (a bonds block that glued nothing does not shorten it)
+  time_step_ = choose_time_step(scene_, *kernel_, !state_.bonds.empty());
+  state_.dt = time_step_.dt;
+  // Step counts are int64 and times step * dt: past 2^53 steps neither is exact any more.
+  constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
+  if (scene_.time.steps > 0) {
+    if (scene_.time.steps > (std::int64_t{1} << 53))
+      throw SceneError("time.steps: " + std::to_string(scene_.time.steps) + " is more than a run can count (at most 2^53)");
+    total_steps_ = scene_.time.steps;
+  } else {
+    // at least one step for any positive duration (5e-324 s once ran none)
+    const double steps = std::max(1.0, std::ceil(scene_.time.duration / state_.dt - 1e-9));
+    if (!(steps <= kMaxSteps)) {
+      char buf[400];
+      std::snprintf(buf, sizeof buf,
+                    "time.duration: %.6g s at a step of %.6e s (%s) would take %.3g steps, more than a run can count "
+                    "(at most 2^53 = 9.0e15); shorten the run, or make the contacts softer or the particles heavier",
+                    scene_.time.duration, state_.dt, time_step_.automatic ? "automatic" : "given", steps);
+      throw SceneError(buf);
+    }
+    total_steps_ = static_cast<std::int64_t>(steps);
+  }
+  if (scene_.outputs.every_steps == 0 && scene_.outputs.interval_seconds > 0) {
+    // an interval longer than the run gives its first and last frames only
+    const double every = scene_.outputs.interval_seconds / state_.dt;
+    scene_.outputs.every_steps = every >= static_cast<double>(total_steps_)
+                                     ? std::max<std::int64_t>(1, total_steps_)
+                                     : std::max<std::int64_t>(1, std::llround(every));
   }
   // Forces at t = 0 for the first half kick: a zero step leaves history and velocities unchanged.
   state_.dt = 0;

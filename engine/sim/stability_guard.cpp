@@ -73,10 +73,14 @@ void StabilityGuard::check_writable(const Simulation& sim) const {
     const WallPose& pose = sim.wall_driver(static_cast<int>(k)).pose();
     walls_finite = walls_finite && pose.displacement.allFinite() && pose.rotation.allFinite();
   }
-  if (!walls_finite || !std::isfinite(sim.kinetic_energy()) || !std::isfinite(sim.gravitational_energy())) {
+  // (Energy.dat holds the energies stored in the contacts and bonds too)
+  const bool energies_finite = std::isfinite(sim.kinetic_energy()) && std::isfinite(sim.gravitational_energy()) &&
+                               std::isfinite(sim.contact_summary().elastic_energy) &&
+                               std::isfinite(sim.bonds().elastic_energy());
+  if (!walls_finite || !energies_finite) {
     char buf[200];
     std::snprintf(buf, sizeof buf, "unstable: %s overflowed at step %lld (t = %.6e s)",
-                  walls_finite ? "the kinetic or potential energy" : "a wall's load or position",
+                  walls_finite ? "the kinetic, potential or stored elastic energy" : "a wall's load or position",
                   static_cast<long long>(sim.step_count()), sim.time());
     throw InstabilityError(buf + std::string("; likely cause: the time step is too large for the contact stiffness, "
                                              "or speeds or forces far beyond the scene's scale (") +

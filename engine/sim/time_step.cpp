@@ -93,7 +93,7 @@ double contact_mass(const Scene& scene, const ParticleInit& p) {
 
 }  // namespace
 
-TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel) {
+TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel, bool bonded) {
   const int materials = static_cast<int>(scene.materials.size());
   std::vector<Smallest> smallest(materials);
   for (const ParticleInit& p : scene.particles) {
@@ -121,7 +121,7 @@ TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel) {
     for (int w : wall_materials) consider(w, smallest[a].mass, smallest[a].radius);
     rayleigh_min = std::min(rayleigh_min, kernel.wave_time(scene.materials[a], smallest[a].radius));
   }
-  if (scene.bonds && scene.bonds->youngs_modulus > 0) {
+  if (bonded && scene.bonds && scene.bonds->youngs_modulus > 0) {
     // A bond between two of the smallest spheres is the stiffest per unit mass (the bond model says
     // how short its springs' periods are: bonds/bond_models.hpp).
     double t_bond = kInf;

@@ -20,7 +20,8 @@ struct TimeStepReport {
 };
 
 // Throws SceneError when a given dt exceeds the stable limit and the scene does not allow it.
-// The contact times come from the scene's normal model, through its force kernel.
-TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel);
+// The contact times come from the scene's normal model, through its force kernel; the bonds' periods
+// count when `bonded` (some bond was made).
+TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel, bool bonded = true);
 
 }  // namespace dem

@@ -98,5 +98,63 @@ TEST(InputRange, AStepAtTheStableLimitIsAccepted) {
             std::string::npos);
 }
 
+// Quantities so small that the contact time, the bond's inertia or the step underflow: a density of
+// 1e-300 once gave "dt = 0 (automatic)", valid, then a run stopped at step 0 blaming the step; a bond
+// disc of 1e-80 radii wrote -nan into Energy.dat and the run "succeeded".
+TEST(InputRange, TinyDensitiesRadiiStiffnessesAndBondDiscsAreSpecErrors) {
+  std::string json = spec_with(R"({"duration": 1})");
+  json.replace(json.find("2600"), 4, "1e-300");
+  EXPECT_NE(problems(json).find("materials[0].density: must be at least 0.001 kg/m^3 (got 1e-300)"), std::string::npos)
+      << problems(json);
+  json = spec_with(R"({"duration": 1})");
+  json.replace(json.find("\"radius\": 0.01"), 14, "\"radius\": 5e-324");
+  EXPECT_NE(problems(json).find("particles[0].radius: must be at least 1e-09 m"), std::string::npos) << problems(json);
+  json = spec_with(R"({"duration": 1})");
+  json.replace(json.find("\"youngsModulus\": 1e9"), 20, "\"youngsModulus\": 5e-324");
+  EXPECT_NE(problems(json).find("materials[0].youngsModulus: must be at least 0.001 Pa"), std::string::npos)
+      << problems(json);
+  const std::string bonded = spec_with(R"({"duration": 1})", R"(, "bonds": {"youngsModulus": 1e8, "tensileStrength": 1e6,
+      "shearStrength": 1e6, "radiusMultiplier": 1e-80})");
+  EXPECT_NE(problems(bonded).find("bonds.radiusMultiplier: must be at least 0.001 (got 1e-80)"), std::string::npos)
+      << problems(bonded);
+}
+
+// A density given wrong is reported once (the normal model's required properties and every particle
+// material's own check both reported it).
+TEST(InputRange, ABadDensityIsReportedOnce) {
+  std::string json = spec_with(R"({"duration": 1})");
+  json.replace(json.find("2600"), 4, "-1");
+  const std::string p = problems(json);
+  EXPECT_NE(p.find("materials[0].density"), std::string::npos) << p;
+  EXPECT_EQ(p.find("materials[0].density"), p.rfind("materials[0].density")) << p;
+}
+
+// A refused value is quoted as it was given: 0.10000001 is not "(got 0.1)".
+TEST(InputRange, ARefusedValueIsQuotedInFull) {
+  const std::string p = problems(spec_with(R"({"duration": 1, "dtFraction": 0.10000001})"));
+  EXPECT_NE(p.find("(got 0.10000001)"), std::string::npos) << p;
+}
+
+// The step count's edges: 2^53 + 1 steps is one more than a run can count; a positive duration
+// shorter than one step still runs one (5e-324 s ran none).
+TEST(InputRange, StepCountsAtTheEdges) {
+  EXPECT_NE(problems(spec_with(R"({"steps": 9007199254740993})")).find("time.steps:"), std::string::npos);
+  EXPECT_EQ(problems(spec_with(R"({"steps": 9007199254740992})")), "");
+  const Simulation sim(spec::to_scene(spec::parse_json(spec_with(R"({"duration": 5e-324})"))));
+  EXPECT_EQ(sim.total_steps(), 1);
+}
+
+// A bonds block that glues nothing (no two spheres within reach) leaves the step to the contacts: it
+// once shrank the step by the bonds' period all the same (3.2x for Eb = 1e8 Pa).
+TEST(InputRange, BondsThatGlueNothingDoNotShortenTheStep) {
+  const std::string plain = spec_with(R"({"duration": 1})");
+  const std::string bonded = spec_with(R"({"duration": 1})", R"(, "bonds": {"youngsModulus": 1e15, "tensileStrength": 1e6,
+      "shearStrength": 1e6})");
+  const Simulation a(spec::to_scene(spec::parse_json(plain)));
+  const Simulation b(spec::to_scene(spec::parse_json(bonded)));
+  EXPECT_EQ(b.bonds().bonds().size(), 0u);
+  EXPECT_EQ(a.dt(), b.dt());
+}
+
 }  // namespace
 }  // namespace dem::test

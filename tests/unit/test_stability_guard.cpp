@@ -181,6 +181,25 @@ TEST(StabilityGuard, ABlowUpNeverReachesTheFilesAndIsTracedToWhereItStarted) {
   std::filesystem::remove_all(folder);
 }
 
+// A stored energy that is not a number (a bond disc so thin that its moments of area underflow to 0,
+// which the spec refuses, built here directly) stops the run before any file holds it: Energy.dat once
+// got -nan in its bond and dissipated columns on every row, and the run "succeeded".
+TEST(StabilityGuard, ANonFiniteStoredEnergyNeverReachesTheFiles) {
+  Scene s = pressed_pair();
+  s.particles[1].position.x() = 0.0101;  // a hair apart: bonded, not touching
+  BondSettings b;
+  b.youngs_modulus = 1e8;
+  b.tensile_strength = b.shear_strength = 1e12;
+  b.radius_multiplier = 1e-80;
+  s.bonds = b;
+  s.particles[1].velocity = {0, 0.01, 0};  // shears the bond a little
+  s.time.steps = 50;
+  Simulation sim(std::move(s));
+  const RunOutcome outcome = run(sim, {});
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_NE(outcome.error.find("stored elastic energy"), std::string::npos) << outcome.error;
+}
+
 TEST(StabilityGuard, AStableRunIsLeftAlone) {
   Scene s = pressed_pair();
   const RunOutcome outcome = run_with_file(s).outcome;
