@@ -40,7 +40,7 @@ std::string join(const std::vector<std::string>& lines) {
 // The shortest text that reads back as v: "0.10000001" stays itself ("(got 0.1)" hid why it was refused).
 std::string num(double v) {
   char buf[32];
-  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  const auto end = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general).ptr;
   return std::string(buf, end);
 }
 

@@ -286,6 +286,19 @@ void Simulation::step() {
   if (walls_move) add_wall_work(poses_before, loads_before);
   contacts_recorded_ = state_.record_contacts;
   ++step_;
+  if (moved_too_far_ && !first_too_fast_) {
+    const Particles& p = state_.particles;
+    std::size_t worst = 0;
+    double worst_ratio = -1;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double ratio = state_.dt * p.v[i].norm() / p.radius[i];
+      if (ratio > worst_ratio) {
+        worst_ratio = ratio;
+        worst = i;
+      }
+    }
+    first_too_fast_ = TooFast{step_, time(), p.id[worst], worst_ratio * p.radius[worst], p.radius[worst]};
+  }
   if (state_.non_finite && !first_non_finite_) {
     const Particles& p = state_.particles;
     NonFinite bad{step_, time(), -1, 0};
@@ -394,7 +407,12 @@ double Simulation::half_kick_and_drift() {
   Quat* __restrict q = p.q.empty() ? nullptr : p.q.data();
   const Vec3* __restrict external = p.external.empty() ? nullptr : p.external.data();
   double external_work = 0;  // of the constant external forces over this drift
-#pragma omp parallel for schedule(static) reduction(max : moved2) reduction(+ : external_work) if (n >= kParallelMinParticles)
+  const double* __restrict radius = p.radius.data();
+  // a particle may move at most this share of its radius in a step (TooFast)
+  const double reach = 0.5 * scene_.numerics.max_overlap_fraction;
+  const double reach2_over_dt2 = reach * reach / (dt * dt);
+  bool too_fast = false;
+#pragma omp parallel for schedule(static) reduction(max : moved2) reduction(+ : external_work) reduction(|| : too_fast) if (n >= kParallelMinParticles)
   for (int i = 0; i < n; ++i) {
     const Vec3 k = (half_dt * inv_mass[i]) * f[i];
     kick[i] = k;
@@ -408,7 +426,9 @@ double Simulation::half_kick_and_drift() {
     if (q) q[i] = (rotation_by(dt * wi) * q[i]).normalized();
     if (external && inv_mass[i] > 0) external_work += dt * external[i].dot(vi);
     moved2 = std::max(moved2, (xi - x0[i]).squaredNorm());
+    too_fast = too_fast || vi.squaredNorm() > reach2_over_dt2 * radius[i] * radius[i];
   }
+  moved_too_far_ = too_fast;
   if (external) add_work(ledger_.external, external_work);
   return moved2;
 }

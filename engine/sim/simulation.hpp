@@ -46,6 +46,17 @@ struct NonFinite {
   int particles = 0;  // how many went bad in that step
 };
 
+// Where a particle first moved so far in one step that it could pass through another, or past a
+// contact's overlap limit, between two force evaluations: farther than half the overlap limit
+// (numerics.maxOverlapFraction) times its radius.
+struct TooFast {
+  std::int64_t step = 0;
+  double time = 0;
+  int particle_id = 0;
+  double distance = 0;  // moved in that step, m
+  double radius = 0;
+};
+
 // The work done on the particles since the start by what feeds energy in, J: moving and loaded
 // walls, constant external forces, and radius growth (larger overlaps, and masses and weights that
 // grow at their speeds and heights). The mechanical energy minus this work, against its start, is
@@ -117,6 +128,8 @@ class Simulation {
   // Set by the first step that left a particle's position, velocity or spin non-finite (every step
   // is checked, at the cost of one comparison per particle).
   const std::optional<NonFinite>& first_non_finite() const { return first_non_finite_; }
+  // Set by the first step in which a particle moved too far (TooFast; a comparison per particle).
+  const std::optional<TooFast>& first_too_fast() const { return first_too_fast_; }
   // The last step had a contact past numerics.maxOverlapFraction (a comparison per contact).
   bool deep_overlap() const { return state_.deep_overlap.load(std::memory_order_relaxed); }
 
@@ -166,6 +179,8 @@ class Simulation {
   double growth_scale_ = 1;                 // radii now over their given sizes (Scene::growth)
   double growth_at_build_ = 1;              // the same at the last build
   std::optional<NonFinite> first_non_finite_;
+  std::optional<TooFast> first_too_fast_;
+  bool moved_too_far_ = false;              // set by the last drift
   EnergyLedger ledger_;
 };
 

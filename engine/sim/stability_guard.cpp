@@ -42,6 +42,16 @@ double StabilityGuard::mechanical_energy(const Simulation& sim, const ContactSum
 }
 
 void StabilityGuard::check_finite(const Simulation& sim) const {
+  if (const std::optional<TooFast>& fast = sim.first_too_fast()) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "unstable: particle %d moved %.3e m in one step at step %lld (t = %.6e s), more than %.3g of its "
+                  "radius (%.3e m): it could pass through another particle or press into it past the overlap limit "
+                  "unseen; likely cause: a speed far beyond what the time step resolves (",
+                  fast->particle_id + 1, fast->distance, static_cast<long long>(fast->step), fast->time,
+                  0.5 * sim.scene().numerics.max_overlap_fraction, fast->radius);
+    throw InstabilityError(buf + sim.time_step().describe() + ")");
+  }
   const std::optional<NonFinite>& bad = sim.first_non_finite();
   if (!bad) return;
   char buf[260];

@@ -200,6 +200,24 @@ TEST(StabilityGuard, ANonFiniteStoredEnergyNeverReachesTheFiles) {
   EXPECT_NE(outcome.error.find("stored elastic energy"), std::string::npos) << outcome.error;
 }
 
+// Two spheres meeting at 10 km/s: each step moves them past each other's reach, so no force loop
+// ever sees them overlap. They once passed through each other and the run "succeeded" with both
+// still at full speed; now the first step stops it, naming the particle and how far it moved.
+TEST(StabilityGuard, SpheresFastEnoughToPassThroughEachOtherStopTheRun) {
+  for (const std::string_view law : {LinearNormal::kName, HertzNormal::kName}) {
+    Scene s = base_scene(law, 2500, 1e9, 0.25, 0.5, 0.0, 1e4);
+    s.particles.push_back(sphere({-0.0055, 0, 0}, 0.005, {5000, 0, 0}));
+    s.particles.push_back(sphere({0.0055, 0, 0}, 0.005, {-5000, 0, 0}));
+    s.time.steps = 200;
+    Simulation sim(std::move(s));
+    const RunOutcome outcome = run(sim, {});
+    ASSERT_FALSE(outcome.ok) << law;
+    EXPECT_EQ(outcome.steps, 1) << law;
+    EXPECT_NE(outcome.error.find("moved"), std::string::npos) << outcome.error;
+    EXPECT_NE(outcome.error.find("in one step at step 1"), std::string::npos) << outcome.error;
+  }
+}
+
 TEST(StabilityGuard, AStableRunIsLeftAlone) {
   Scene s = pressed_pair();
   const RunOutcome outcome = run_with_file(s).outcome;
