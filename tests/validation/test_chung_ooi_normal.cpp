@@ -92,6 +92,34 @@ INSTANTIATE_TEST_SUITE_P(
              (c.density == 4000 ? "_al_oxide" : "_cast_iron");
     });
 
+// Test 3 wherever the steps fall: the sphere starts at 20 positions across one step of travel, for
+// both tension settings of the linear law (e = 0.1, 0.2, 0.3: the strongest dashpots). With tension
+// the dashpot still pulls at parting, and where the parting falls between the next step's window
+// and its evaluation the share of that window was guessed from the speed alone: at two of the
+// twenty positions it was counted twice and the rebound came out 3.4-4.3% short.
+TEST(RestitutionAnywhereInTheStep, LinearLawWithinOnePercent) {
+  const double r = 0.0025, v = 3.9;
+  for (bool no_tensile : {false, true}) {
+    for (double e : {0.1, 0.2, 0.3}) {
+      double worst = 0;
+      for (int k = 0; k < 20; ++k) {
+        Scene s = base_scene(LinearNormal::kName, 4000, 0, 0.23, e, 0.0, 1e6);
+        s.contact.no_tensile_force = no_tensile;
+        s.particles.push_back(sphere({0, 0, r + 1e-4}, r, {0, 0, -v}));
+        s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+        s.particles[0].position.z() += v * Simulation(s).dt() * k / 20.0;
+        Simulation sim(s);
+        record_impact(sim, 1000000);
+        worst = std::max(worst, std::abs(sim.particles().v[0].z() / v - e) / e);
+      }
+      report(std::string("linear") + (no_tensile ? " no-tension" : " with tension") + " restitution e = " +
+                 std::to_string(e).substr(0, 3) + ", largest error over 20 positions of the step",
+             worst, 0.0);
+      EXPECT_LT(worst, 0.01) << "e = " << e << (no_tensile ? " no tension" : " with tension");
+    }
+  }
+}
+
 // Test 3's reference contact time: Al oxide, e = 1, t_c = 6.104 us.
 TEST(ChungOoiTest3, AluminiumOxideElasticContactTime) {
   const double r = 0.0025, v = 3.9;
