@@ -11,6 +11,7 @@ namespace dem {
 struct ContactSummary {
   double max_overlap_fraction = 0;  // overlap / smaller radius
   int worst_particle = -1;          // index of the particle with that overlap
+  int worst_partner = -1;           // index of the other particle of that contact (-1: a wall)
   double elastic_energy = 0;        // stored in the normal springs
   std::size_t contacts = 0;
 };

@@ -53,12 +53,13 @@ class ForceKernelImpl final : public ForceKernel {
   ContactSummary survey(const SimState& s, const std::vector<double>& radius) const {
     const Particles& p = s.particles;
     ContactSummary sum;
-    auto note = [&](int i, double delta, double r_min, double elastic) {
+    auto note = [&](int i, int j, double delta, double r_min, double elastic) {
       ++sum.contacts;
       sum.elastic_energy += elastic;
       if (delta / r_min > sum.max_overlap_fraction) {
         sum.max_overlap_fraction = delta / r_min;
         sum.worst_particle = i;
+        sum.worst_partner = j;
       }
     };
     const int n = static_cast<int>(p.size());
@@ -69,7 +70,7 @@ class ForceKernelImpl final : public ForceKernel {
         const double rj = radius[j], rs = ri + rj;
         const double dist = (p.x[i] - p.x[j]).norm();
         if (dist >= rs) continue;
-        note(i, rs - dist, std::min(ri, rj),
+        note(i, j, rs - dist, std::min(ri, rj),
              Normal::elastic_energy(table_(p.material[i], p.material[j]).normal, rs - dist, ri * rj / rs));
       }
       if constexpr (kWalls) {
@@ -78,14 +79,14 @@ class ForceKernelImpl final : public ForceKernel {
           Vec3 normal;
           double delta;
           if (!wall.contact(p.x[i], ri, normal, delta)) continue;
-          note(i, delta, ri, Normal::elastic_energy(table_(p.material[i], wall.material).normal, delta, ri));
+          note(i, -1, delta, ri, Normal::elastic_energy(table_(p.material[i], wall.material).normal, delta, ri));
         }
         const MeshContacts& mc = s.mesh_contacts;
         for (int k = 0, used = mc.count(i); k < used; ++k) {
           const MeshSlot& slot = mc.slot(i, k);
           const double delta = slot.delta + (ri - p.radius[i]);
           if (delta <= 0) continue;
-          note(i, delta, ri, Normal::elastic_energy(table_(p.material[i], s.meshes[slot.mesh].material).normal, delta, ri));
+          note(i, -1, delta, ri, Normal::elastic_energy(table_(p.material[i], s.meshes[slot.mesh].material).normal, delta, ri));
         }
       }
     }

@@ -107,7 +107,10 @@ void StabilityGuard::check(const Simulation& sim) const {
     char buf[200];
     std::snprintf(buf, sizeof buf, "unstable: overlap of %.3g times the radius (limit %.3g) ",
                   contacts.max_overlap_fraction, limit);
-    throw InstabilityError(buf + where(sim, contacts.worst_particle) +
+    const std::string partner = contacts.worst_partner >= 0
+                                    ? " (its contact with particle " + std::to_string(p.id[contacts.worst_partner] + 1) + ")"
+                                    : " (its contact with a wall)";
+    throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner +
                            "; likely cause: the contact stiffness is too low for the load, or the time step "
                            "too large (" + sim.time_step().describe() + ")");
   }
