@@ -46,19 +46,32 @@ std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::
 }
 
 std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<double>& diameters, std::mt19937_64& rng,
-                                 const std::function<bool(const Vec3&, double)>& accept) {
+                                 const std::function<bool(const Vec3&, double)>& accept,
+                                 const std::vector<Sphere>& obstacles) {
   std::sort(diameters.begin(), diameters.end(), std::greater<>());
   const int n = static_cast<int>(diameters.size());
   std::vector<Vec3> placed;
   placed.reserve(n);
   if (n == 0) return placed;
-  // a hash grid of cell = largest diameter: a new sphere checks the 27 cells around it
-  const double cell = diameters[0];
+  // The spheres already there that a new one could touch, then the new ones, in one hash grid of
+  // cell = the largest diameter: a new sphere checks the 27 cells around it.
+  std::vector<Vec3> centre;
+  std::vector<double> radius;
+  double cell = diameters[0];
+  for (const Sphere& o : obstacles) {
+    const Vec3 reach = Vec3::Constant(o.radius);
+    if (((o.centre + reach).array() < lo.array()).any() || ((o.centre - reach).array() > hi.array()).any()) continue;
+    centre.push_back(o.centre);
+    radius.push_back(o.radius);
+    cell = std::max(cell, 2 * o.radius);
+  }
+  const int given = static_cast<int>(centre.size());
   auto key = [&](const Vec3& x) {
     const auto c = ((x - lo) / cell).array().floor().cast<long long>();
     return (c[0] * 73856093LL) ^ (c[1] * 19349663LL) ^ (c[2] * 83492791LL);
   };
   std::unordered_multimap<long long, int> grid;
+  for (int o = 0; o < given; ++o) grid.emplace(key(centre[o]), o);
   constexpr int kAttempts = 2000;
   for (int k = 0; k < n; ++k) {
     const double r = diameters[k] / 2;
@@ -75,12 +88,14 @@ std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<dou
             const auto range = grid.equal_range(key(x + cell * Vec3(dx, dy, dz)));
             for (auto it = range.first; it != range.second && ok; ++it) {
               const int o = it->second;
-              const double reach = r + diameters[o] / 2;
-              ok = (placed[o] - x).squaredNorm() >= reach * reach;
+              const double reach = r + radius[o];
+              ok = (centre[o] - x).squaredNorm() >= reach * reach;
             }
           }
       if (ok) {
-        grid.emplace(key(x), k);
+        grid.emplace(key(x), given + k);
+        centre.push_back(x);
+        radius.push_back(r);
         placed.push_back(x);
       }
     }

@@ -259,7 +259,10 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
   try {
     std::function<bool(const Vec3&, double)> accept;
     if (region) accept = [&](const Vec3& x, double r) { return region->holds(x, r); };
-    const std::vector<Vec3> sites = random_packing(lo, hi, diameters, rng, accept);
+    // around the particles listed, lattices and packings before it
+    std::vector<Sphere> there;
+    for (const ParticleInit& p : scene.particles) there.push_back({p.position, p.radius});
+    const std::vector<Vec3> sites = random_packing(lo, hi, diameters, rng, accept, there);
     for (std::size_t k = 0; k < sites.size(); ++k) {
       ParticleInit p;
       p.position = sites[k];

@@ -131,6 +131,25 @@ TEST(PackingSpec, BadPackingsAreNamed) {
   }
 }
 
+// A packing fills around the particles listed before it (here a 3 cm boulder in the middle of the
+// box and a lattice row along its floor): none overlaps them. It once put spheres 2.4 radii into a
+// listed particle, and the first step threw them apart.
+TEST(PackingSpec, FillsAroundTheParticlesAlreadyThere) {
+  std::string text = with_seed(3);
+  text.replace(text.find("\"packings\""), 0,
+               R"("particles": [{"position": {"x": 0.05, "y": 0.05, "z": 0.05}, "radius": 0.03, "material": "rock"}],
+  "lattices": [{"kind": "CUBIC", "min": {}, "max": {"x": 0.1, "y": 0.02, "z": 0.02}, "radius": 0.005, "material": "rock"}],
+  )");
+  const Scene s = to_scene(parse_json(text));
+  const std::size_t listed = 1 + 10 * 2 * 2;
+  ASSERT_GT(s.particles.size(), listed + 100);
+  for (std::size_t k = listed; k < s.particles.size(); ++k)
+    for (std::size_t o = 0; o < listed; ++o) {
+      const double reach = s.particles[k].radius + s.particles[o].radius;
+      ASSERT_GE((s.particles[k].position - s.particles[o].position).norm(), reach * (1 - 1e-12)) << k << " on " << o;
+    }
+}
+
 // The key block: a tetrahedron (inline mesh) filled at a solid fraction of 0.2; every sphere lies
 // wholly inside (checked against the four face planes) and the volume matches.
 TEST(PackingSpec, FillsAClosedMesh) {
