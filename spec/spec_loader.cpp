@@ -68,7 +68,8 @@ class Checker {
   // A vector quantity: finite, each component within the quantity's range (spec/input_range.hpp).
   void vector(const std::string& path, const api::Vec3& v, const Quantity& q) {
     const double largest = std::max({std::abs(v.x()), std::abs(v.y()), std::abs(v.z())});
-    if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z())) fail(path, "must be finite");
+    if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z()))
+      fail(path, "must be finite (got (" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "))");
     else if (largest > q.max) fail(path, beyond(largest, q));
   }
   // A positive quantity within its range.
