@@ -1,5 +1,6 @@
 #include "sim/state_io.hpp"
 
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -115,8 +116,9 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(bonds, "the header");
   r.get(dt, "the header");
   auto mismatch = [](const std::string& what, double saved, double now) {
-    throw std::runtime_error("the saved state was written for another job: " + what + " " + std::to_string(saved) +
-                             " there, " + std::to_string(now) + " in this spec");
+    char buf[120];
+    std::snprintf(buf, sizeof buf, "%s %.17g there, %.17g in this spec", what.c_str(), saved, now);
+    throw std::runtime_error(std::string("the saved state was written for another job: ") + buf);
   };
   if (particles != s.particles.size()) mismatch("particles", static_cast<double>(particles), static_cast<double>(s.particles.size()));
   if (walls != sim.drivers_.size()) mismatch("walls", static_cast<double>(walls), static_cast<double>(sim.drivers_.size()));
