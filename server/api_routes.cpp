@@ -5,6 +5,7 @@
 
 #include "core/errors.hpp"
 #include "server/bundled_cases.hpp"
+#include "server/request_policy.hpp"
 #include "server/version.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -27,6 +28,37 @@ Response method_not_allowed(const Request& req, const char* allowed) {
                                 std::string(req.method_string()) + " is not allowed here (allowed: " + allowed + ")");
   res.set(http::field::allow, allowed);
   return res;
+}
+
+// The methods each kind of resource answers (its Allow header), HEAD and OPTIONS with the rest.
+constexpr const char* kReadOnly = "GET, HEAD, OPTIONS";
+constexpr const char* kJobs = "GET, HEAD, POST, OPTIONS";
+constexpr const char* kJob = "GET, HEAD, DELETE, OPTIONS";
+constexpr const char* kAction = "POST, OPTIONS";
+
+// The methods the API resource at these segments answers; nothing when there is none.
+const char* allowed_methods(const std::vector<std::string>& s) {
+  if (s.size() == 2 && (s[1] == "health" || s[1] == "openapi.json" || s[1] == "cases")) return kReadOnly;
+  if (s.size() == 3 && s[1] == "cases") return kReadOnly;
+  if (s.size() >= 2 && s[1] == "jobs") {
+    if (s.size() == 2) return kJobs;
+    if (s.size() == 3) return kJob;
+    if (s.size() == 4 && (s[3] == "cancel" || s[3] == "resume")) return kAction;
+    if (s.size() == 4 && s[3] == "frames") return kReadOnly;
+    if (s[3] == "artifacts") return kReadOnly;
+  }
+  return nullptr;
+}
+
+bool allows(const char* allowed, std::string_view method) {
+  std::string_view list = allowed;
+  while (!list.empty()) {
+    const std::size_t comma = list.find(',');
+    if (list.substr(0, comma) == method) return true;
+    if (comma == std::string_view::npos) break;
+    list = list.substr(comma + 2);
+  }
+  return false;
 }
 
 Response submit(const Request& req, ApiContext& ctx) {
@@ -134,60 +166,52 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
   const std::vector<std::string>& s = target.segments;  // s[0] == "api"
   const http::verb m = req.method();
   const bool get = m == http::verb::get || m == http::verb::head;
+  const char* allowed = allowed_methods(s);
+  if (!allowed) return error_response(req, http::status::not_found, "no API at " + std::string(req.target()) + " (see /api/openapi.json)");
+  if (!allows(allowed, req.method_string())) return method_not_allowed(req, allowed);
+  if (m == http::verb::options) {
+    Response res{http::status::no_content, req.version()};
+    res.set(http::field::allow, allowed);
+    res.set(http::field::date, http_date_now());
+    res.keep_alive(req.keep_alive());
+    res.prepare_payload();
+    return res;
+  }
+  // the method is one the resource allows (above)
   if (s.size() == 2 && s[1] == "health") {
-    if (!get) return method_not_allowed(req, "GET");
     nlohmann::json counts = nlohmann::json::object();
     for (const auto& [state, n] : ctx.jobs.counts()) counts[state] = n;
     return json_response(req, http::status::ok, {{"status", "ok"}, {"version", kVersion}, {"jobs", counts}});
   }
-  if (s.size() == 2 && s[1] == "openapi.json") {
-    if (!get) return method_not_allowed(req, "GET");
-    return text_response(req, http::status::ok, "application/json", ctx.openapi);
-  }
-  if (s.size() >= 2 && s[1] == "cases") {
-    if (!get) return method_not_allowed(req, "GET");
+  if (s.size() == 2 && s[1] == "openapi.json") return text_response(req, http::status::ok, "application/json", ctx.openapi);
+  if (s[1] == "cases") {
     if (s.size() == 2) return json_response(req, http::status::ok, {{"cases", list_cases(ctx.cases)}});
-    if (s.size() == 3) {
-      if (std::optional<std::string> spec = case_spec(ctx.cases, s[2]))
-        return text_response(req, http::status::ok, "application/json", std::move(*spec));
-      return error_response(req, http::status::not_found, "no bundled case " + s[2]);
-    }
+    if (std::optional<std::string> spec = case_spec(ctx.cases, s[2]))
+      return text_response(req, http::status::ok, "application/json", std::move(*spec));
+    return error_response(req, http::status::not_found, "no bundled case " + s[2]);
   }
-  if (s.size() >= 2 && s[1] == "jobs") {
-    if (s.size() == 2) {
-      if (m == http::verb::post) return submit(req, ctx);
-      if (get) return list_jobs(req, target, ctx);
-      return method_not_allowed(req, "GET, POST");
-    }
-    const std::optional<std::int64_t> id = parse_job_id(s[2]);
-    const std::optional<JobRecord> job = id ? ctx.jobs.get(*id) : std::nullopt;
-    if (!job) return error_response(req, http::status::not_found, "no job " + s[2]);
-    if (s.size() == 3) {
-      if (get) return json_response(req, http::status::ok, to_json(*job));
-      if (m == http::verb::delete_) return action(req, ctx.jobs.remove(*id), http::status::no_content);
-      return method_not_allowed(req, "GET, DELETE");
-    }
-    if (s.size() == 4 && (s[3] == "cancel" || s[3] == "resume")) {
-      if (m != http::verb::post) return method_not_allowed(req, "POST");
-      return action(req, s[3] == "cancel" ? ctx.jobs.cancel(*id) : ctx.jobs.resume(*id));
-    }
-    if (s.size() == 4 && s[3] == "frames") {
-      if (!get) return method_not_allowed(req, "GET");
-      Response res = error_response(req, http::status::upgrade_required,
-                                    "the frames of job " + s[2] + " are a WebSocket stream: connect with ws://");
-      res.set(http::field::upgrade, "websocket");
-      res.set(http::field::connection, "Upgrade");
-      return res;
-    }
-    if (s[3] == "artifacts") {
-      if (!get) return method_not_allowed(req, "GET");
-      if (s.size() == 4) return list_artifacts(req, *id, ctx);
-      std::string name = s[4];
-      for (std::size_t k = 5; k < s.size(); ++k) name += "/" + s[k];  // a path, refused by is_artifact_name
-      return artifact(req, *id, name, ctx);
-    }
+  // s[1] == "jobs"
+  if (s.size() == 2) return m == http::verb::post ? submit(req, ctx) : list_jobs(req, target, ctx);
+  const std::optional<std::int64_t> id = parse_job_id(s[2]);
+  const std::optional<JobRecord> job = id ? ctx.jobs.get(*id) : std::nullopt;
+  if (!job) return error_response(req, http::status::not_found, "no job " + s[2]);
+  if (s.size() == 3) {
+    if (get) return json_response(req, http::status::ok, to_json(*job));
+    return action(req, ctx.jobs.remove(*id), http::status::no_content);
   }
-  return error_response(req, http::status::not_found, "no API at " + std::string(req.target()) + " (see /api/openapi.json)");
+  if (s[3] == "cancel" || s[3] == "resume") return action(req, s[3] == "cancel" ? ctx.jobs.cancel(*id) : ctx.jobs.resume(*id));
+  if (s[3] == "frames") {
+    Response res = error_response(req, http::status::upgrade_required,
+                                  "the frames of job " + s[2] + " are a WebSocket stream: connect with ws://");
+    res.set(http::field::upgrade, "websocket");
+    res.set(http::field::connection, "Upgrade");
+    return res;
+  }
+  // artifacts
+  if (s.size() == 4) return list_artifacts(req, *id, ctx);
+  std::string name = s[4];
+  for (std::size_t k = 5; k < s.size(); ++k) name += "/" + s[k];  // a path, refused by is_artifact_name
+  return artifact(req, *id, name, ctx);
 }
 
 }  // namespace dem::server

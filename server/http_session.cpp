@@ -6,6 +6,7 @@
 #include <boost/beast/websocket.hpp>
 
 #include "server/frame_session.hpp"
+#include "server/request_policy.hpp"
 #include "server/static_files.hpp"
 
 namespace dem::server {
@@ -37,9 +38,17 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   if (ec == http::error::end_of_stream) return close();
   if (ec) return on_read_error(ec);
   const auto& head = parser_->get();
+  // an answer before the body: the request's version, and HEAD kept (a method Beast does not know
+  // must not be copied: setting it throws, which once took the whole server down)
   Request head_only;
   head_only.version(head.version());
-  head_only.method(head.method());
+  if (head.method() == http::verb::head) head_only.method(http::verb::head);
+  if (head.method() == http::verb::unknown)
+    return refuse(error_response(head_only, http::status::not_implemented,
+                                 printable(head.method_string()) + " is not a method this server knows (methods are "
+                                                                   "case-sensitive: GET, HEAD, POST, DELETE, OPTIONS)"));
+  if (head.version() >= 11 && head.find(http::field::host) == head.end())
+    return refuse(error_response(head_only, http::status::bad_request, "an HTTP/1.1 request needs a Host header"));
   const std::optional<Target> target = parse_target(head.target());
   if (!target) return refuse(error_response(head_only, http::status::bad_request, "malformed path: " + std::string(head.target())));
   if (!state_.token.empty()) {
@@ -53,6 +62,11 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
       res.set(http::field::www_authenticate, "Bearer");
       return refuse(std::move(res));
     }
+    // a page of another site (or of another port of this host, which SameSite does not tell apart)
+    // must not use the cookie this server gave its own pages
+    if (!same_origin_or_none(head))
+      return refuse(error_response(head_only, http::status::forbidden,
+                                   "requests from pages of another origin are refused (the Origin is not this server)"));
   } else if (!local_request(head)) {
     // without a token only this machine's pages may talk to the server: a foreign Host is DNS
     // rebinding, a foreign Origin another site's page driving the browser
@@ -63,6 +77,23 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   if (parser_->content_length() && *parser_->content_length() > state_.max_body)
     return refuse(error_response(head_only, http::status::payload_too_large,
                                  "the request body is over the limit of " + std::to_string(state_.max_body) + " bytes"));
+  const auto expect = head.find(http::field::expect);
+  if (expect != head.end()) {
+    if (!beast::iequals(expect->value(), "100-continue"))
+      return refuse(error_response(head_only, http::status::expectation_failed,
+                                   "the only expectation this server meets is 100-continue"));
+    // the client waits for this before it sends the body (curl does past 1 KB)
+    auto go_on = std::make_shared<http::response<http::empty_body>>(http::status::continue_, head.version());
+    return http::async_write(stream_, *go_on,
+                             [self = shared_from_this(), go_on](beast::error_code write_ec, std::size_t) {
+                               if (write_ec) return self->close();
+                               self->read_body();
+                             });
+  }
+  read_body();
+}
+
+void HttpSession::read_body() {
   http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_read, shared_from_this()));
 }
 
@@ -91,10 +122,11 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
       ApiContext ctx{state_.jobs, state_.openapi, state_.cases};
       return send(handle_api(req, target, ctx));
     }
-    // a page opened with ?access_token= keeps the token in a cookie for its scripts and styles
+    // a page opened with ?access_token= keeps the token in a cookie for its scripts and styles: the
+    // server's own token (checked cookie-safe at start), never the value of the request
     std::string cookie;
-    if (!state_.token.empty() && target.query.count("access_token"))
-      cookie = "dem_token=" + target.query.at("access_token") + "; Path=/; HttpOnly; SameSite=Strict";
+    if (!state_.token.empty() && target.query.count("access_token") && tokens_equal(target.query.at("access_token"), state_.token))
+      cookie = "dem_token=" + state_.token + "; Path=/; HttpOnly; SameSite=Strict";
     send(serve_static(req, target, state_.web, cookie));
   } catch (const std::exception& e) {  // the store or the disk failed: say so, keep serving
     send(error_response(req, http::status::internal_server_error, std::string("internal error: ") + e.what()));
@@ -102,22 +134,26 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
 }
 
 bool HttpSession::local_request(const http::request_header<>& head) {
-  auto host_of = [](std::string_view authority) {  // "127.0.0.1:8080" -> "127.0.0.1", "[::1]:80" -> "[::1]"
-    if (!authority.empty() && authority[0] == '[') return std::string(authority.substr(0, authority.find(']') + 1));
-    return std::string(authority.substr(0, authority.find(':')));
-  };
-  auto local = [](const std::string& host) {
-    return host == "127.0.0.1" || host == "localhost" || host == "[::1]" || host.rfind("127.", 0) == 0;
+  auto local = [](std::string_view authority) {
+    const std::optional<std::string> host = host_of_authority(authority);
+    return host && is_loopback_host(*host);
   };
   const auto host = head.find(http::field::host);
-  if (host != head.end() && !local(host_of(std::string_view(host->value().data(), host->value().size())))) return false;
+  if (host != head.end() && !local(std::string_view(host->value().data(), host->value().size()))) return false;
   const auto origin = head.find(http::field::origin);
   if (origin != head.end()) {
-    std::string_view o(origin->value().data(), origin->value().size());
-    const std::size_t scheme = o.find("://");
-    if (scheme == std::string_view::npos || !local(host_of(o.substr(scheme + 3)))) return false;
+    const std::optional<std::string> authority = authority_of_origin(std::string_view(origin->value().data(), origin->value().size()));
+    if (!authority || !local(*authority)) return false;
   }
   return true;
+}
+
+bool HttpSession::same_origin_or_none(const http::request_header<>& head) {
+  const auto origin = head.find(http::field::origin);
+  if (origin == head.end()) return true;  // not sent by a page
+  const auto host = head.find(http::field::host);
+  const std::optional<std::string> authority = authority_of_origin(std::string_view(origin->value().data(), origin->value().size()));
+  return authority && host != head.end() && same_authority(*authority, std::string_view(host->value().data(), host->value().size()));
 }
 
 void HttpSession::upgrade(Request request, const Target& target) {

@@ -36,10 +36,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
  private:
   void read();
   void on_header(boost::beast::error_code ec, std::size_t bytes);
+  void read_body();
   void on_read(boost::beast::error_code ec, std::size_t bytes);
   void on_read_error(boost::beast::error_code ec);
   void refuse(http::response<http::string_body> res);
   static bool local_request(const http::request_header<>& head);
+  static bool same_origin_or_none(const http::request_header<>& head);
   void drain();
   void send(http::message_generator message);
   void on_write(bool keep_alive, boost::beast::error_code ec, std::size_t bytes);

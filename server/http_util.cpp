@@ -1,5 +1,7 @@
 #include "server/http_util.hpp"
 
+#include "server/request_policy.hpp"
+
 #include <cctype>
 
 namespace dem::server {
@@ -71,6 +73,7 @@ http::response<http::string_body> text_response(const Request& req, http::status
   http::response<http::string_body> res{status, req.version()};
   res.set(http::field::content_type, content_type);
   res.set(http::field::cache_control, "no-store");
+  res.set(http::field::date, http_date_now());
   res.keep_alive(req.keep_alive());
   res.body() = std::move(body);
   res.prepare_payload();
@@ -100,6 +103,7 @@ std::optional<http::message_generator> file_response(const Request& req, const s
   if (ec) return std::nullopt;
   const auto size = body.size();
   auto fill = [&](auto& res) {
+    res.set(http::field::date, http_date_now());
     for (const auto& [field, value] : headers) res.set(field, value);
     res.content_length(size);
     res.keep_alive(req.keep_alive());
@@ -120,6 +124,12 @@ std::optional<std::int64_t> parse_job_id(const std::string& text) {
   for (char c : text)
     if (c < '0' || c > '9') return std::nullopt;
   return std::stoll(text);
+}
+
+std::string printable(std::string_view bytes) {
+  std::string out;
+  for (unsigned char c : bytes.substr(0, 40)) out.push_back(c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?');
+  return out;
 }
 
 bool tokens_equal(std::string_view a, std::string_view b) {

@@ -44,6 +44,9 @@ using Headers = std::vector<std::pair<http::field, std::string>>;
 std::optional<http::message_generator> file_response(const Request& req, const std::filesystem::path& path,
                                                      const Headers& headers);
 
+// Bytes from a request made safe to quote in an answer: at most 40, anything but printable ASCII as '?'.
+std::string printable(std::string_view bytes);
+
 bool tokens_equal(std::string_view a, std::string_view b);  // time independent of where they differ
 // The token of a request: "Authorization: Bearer T", or ?access_token=T (browsers cannot set
 // headers on a WebSocket), or the cookie dem_token=T that a page opened with ?access_token= gets.

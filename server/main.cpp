@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "server/http_server.hpp"
+#include "server/request_policy.hpp"
 
 namespace {
 
@@ -90,6 +91,12 @@ int main(int argc, char** argv) {
   }
   if (options.data.empty()) {
     std::fprintf(stderr, "dem-server: --data DIR is required\n%s", kUsage);
+    return 2;
+  }
+  // the viewer's page keeps the token in a cookie, where it must go unquoted
+  if (!options.token.empty() && !dem::server::is_cookie_safe(options.token)) {
+    std::fprintf(stderr, "dem-server: the token must be printable ASCII without blanks, quotes, commas, semicolons or "
+                         "backslashes\n");
     return 2;
   }
   try {

@@ -631,6 +631,8 @@ api::JobSpec parse_json(const std::string& text) {
     (void)syntax_only;
   } catch (const nlohmann::json::parse_error& e) {
     throw SpecError({std::string("spec: malformed JSON: ") + e.what()});
+  } catch (const nlohmann::json::exception& e) {  // a number too large for a double (1e999)
+    throw SpecError({std::string("spec: malformed JSON: ") + e.what()});
   }
   api::JobSpec spec;
   google::protobuf::util::JsonParseOptions options;

@@ -46,7 +46,7 @@ TEST_F(ServerErrors, UnknownJobsRoutesAndMethods) {
   EXPECT_EQ(client_->get("/api/nothing").status, 404);
   const client::Response put = client_->request("PUT", "/api/jobs");
   EXPECT_EQ(put.status, 405);
-  EXPECT_EQ(put.header("allow"), "GET, POST");
+  EXPECT_EQ(put.header("allow"), "GET, HEAD, POST, OPTIONS");
   EXPECT_EQ(client_->get("/api/jobs/1/frames").status, 404);  // no job 1
 }
 
