@@ -55,4 +55,18 @@ std::vector<Vec3> lattice_sites(LatticeKind kind, const Vec3& lo, const Vec3& hi
   return out;
 }
 
+double lattice_site_bound(LatticeKind kind, const Vec3& lo, const Vec3& hi, double radius, double spacing) {
+  const double s = spacing * 2 * radius;
+  const Vec3 room = (hi - lo).array() - 2 * radius;  // where centres may lie
+  if ((room.array() < 0).any()) return 0;
+  // centres a step apart along an axis, the first at its start
+  auto along = [](double length, double step) { return std::floor(length / step * (1 + 1e-12)) + 1; };
+  if (kind == LatticeKind::Cubic) return along(room.x(), s) * along(room.y(), s) * along(room.z(), s);
+  if (kind == LatticeKind::Fcc) {
+    const double h = std::sqrt(2.0) * s / 2;
+    return std::ceil(along(room.x(), h) * along(room.y(), h) * along(room.z(), h) / 2);
+  }
+  return along(room.x(), s) * along(room.y(), s * std::sqrt(3.0) / 2) * along(room.z(), s * std::sqrt(2.0 / 3.0));
+}
+
 }  // namespace dem::spec

@@ -48,10 +48,33 @@ std::string at(const std::string& path, int index) { return path + "[" + std::to
 
 Vec3 vec(const api::Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
-// Collects problems, each "path: what is wrong (got value; allowed range)".
+// Collects problems, each "path: what is wrong (got value; allowed range)"; past the limits' count
+// they are only counted (a spec of 20,000 bad particles once got a 121 MB list).
 class Checker {
  public:
-  void fail(const std::string& path, const std::string& what) { problems.push_back(path + ": " + what); }
+  explicit Checker(const SpecLimits& l = {}) : limits(l) {}
+
+  void fail(const std::string& path, const std::string& what) {
+    ++found;
+    if (problems.size() < limits.max_problems) problems.push_back(path + ": " + what);
+  }
+  // The problems as reported: the first ones, then how many more there were.
+  std::vector<std::string> listed() const {
+    std::vector<std::string> out = problems;
+    if (found > problems.size()) out.push_back("(" + std::to_string(found - problems.size()) + " more problems not listed)");
+    return out;
+  }
+  bool failed() const { return found > 0; }
+  std::size_t count() const { return found; }
+
+  // Whether `more` particles fit beside the `already` made, within the spec's limit; a problem at
+  // `path` when not.
+  bool room(const std::string& path, std::size_t already, double more) {
+    if (static_cast<double>(already) + more <= static_cast<double>(limits.max_particles)) return true;
+    fail(path, "would make " + num(std::round(static_cast<double>(already) + more)) + " particles in all, more than the limit of " +
+                   std::to_string(limits.max_particles));
+    return false;
+  }
 
   void positive(const std::string& path, double v) {
     if (!(v > 0) || !std::isfinite(v)) fail(path, "must be a positive number (got " + num(v) + ")");
@@ -86,6 +109,10 @@ class Checker {
   }
 
   std::vector<std::string> problems;
+  SpecLimits limits;
+
+ private:
+  std::size_t found = 0;
 };
 
 Eigen::Matrix3d rotation(const api::Vec3& axis, double degrees, const std::string& path, Checker& check) {
@@ -200,7 +227,7 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
 
 void add_packing(const api::Packing& in, const std::string& path, const std::string& base_dir, Checker& check,
                  Scene& scene, int material) {
-  const std::size_t before = check.problems.size();
+  const std::size_t before = check.count();
   check.vector(path + ".min", in.min(), kLength);
   check.vector(path + ".max", in.max(), kLength);
   check.vector(path + ".velocity", in.velocity(), kSpeed);
@@ -209,7 +236,7 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
   if (in.has_inside()) {
     WallInit holder;
     load_mesh(in.inside(), path + ".inside", base_dir, check, holder);
-    if (check.problems.size() != before) return;
+    if (check.count() != before) return;
     const MeshShape& shape = std::get<MeshShape>(holder.shape);
     region.emplace(shape);
     double six_v = 0;  // the enclosed volume by the divergence theorem: signed tetrahedra from the origin
@@ -243,7 +270,7 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
     check.fail(path, "give count or solidFraction (one of them)");
   check.in_range(path + ".solidFraction", in.solid_fraction(), 0, 0.74, false, false);
   if (in.count() < 0 || in.count() > 10000000) check.fail(path + ".count", "must be in [1, 10000000] (got " + std::to_string(in.count()) + ")");
-  if (check.problems.size() != before) return;
+  if (check.count() != before) return;
   std::mt19937_64 rng(in.seed() == 0 ? 1u : in.seed());
   std::vector<double> diameters;
   if (in.count() > 0) {
@@ -257,6 +284,7 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
       volume += std::numbers::pi / 6 * dia * dia * dia;
     }
   }
+  if (!check.room(path, scene.particles.size(), static_cast<double>(diameters.size()))) return;
   try {
     std::function<bool(const Vec3&, double)> accept;
     if (region) accept = [&](const Vec3& x, double r) { return region->holds(x, r); };
@@ -462,7 +490,7 @@ void add_stones(const api::BallastStones& in, const std::string& path, bool has_
       check.fail(path + ".bonded", "breakable stones need the spec's \"bonds\" block (the bonds' stiffness and strength)");
   }
   r.material = material;
-  if (!check.problems.empty() || r.material < 0) return;  // generation needs a sound spec
+  if (check.failed() || r.material < 0) return;  // generation needs a sound spec
   r.density = scene.materials[r.material].density;
   if (r.bonded_sphere_radius > 0) {
     const double sphere_mass = r.density * 4.0 / 3.0 * std::numbers::pi * std::pow(r.bonded_sphere_radius, 3);
@@ -660,8 +688,10 @@ api::JobSpec read_json_file(const std::string& path) {
   }
 }
 
-Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
-  Checker check;
+Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const SpecLimits& limits) {
+  Checker check(limits);
+  if (spec.name().size() > limits.max_name)
+    check.fail("name", "must be at most " + std::to_string(limits.max_name) + " bytes (got " + std::to_string(spec.name().size()) + ")");
   Scene scene;
   scene.name = spec.name();
 
@@ -772,14 +802,10 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
       continue;
     }
     if (!(in.radius() > 0) || !(spacing > 0.5)) continue;
-    const double per_site = std::pow(spacing * 2 * in.radius(), 3) / std::sqrt(2.0);
-    if ((hi - lo).prod() / per_site > 5e7) {
-      check.fail(path, "would make more than 50 million particles");
-      continue;
-    }
     const LatticeKind kind = in.kind() == api::Lattice::CUBIC ? LatticeKind::Cubic
                              : in.kind() == api::Lattice::FCC ? LatticeKind::Fcc
                                                               : LatticeKind::Hex;
+    if (!check.room(path, scene.particles.size(), lattice_site_bound(kind, lo, hi, in.radius(), spacing))) continue;
     const std::vector<Vec3> sites = lattice_sites(kind, lo, hi, in.radius(), spacing);
     if (sites.empty()) check.fail(path, "the box is too small to hold one particle of radius " + num(in.radius()));
     for (const Vec3& x : sites) {
@@ -803,6 +829,9 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty() && spec.clumps().empty() &&
       spec.ballast_stones().empty())
     check.fail("particles", "the scene has no particles");
+  if (static_cast<std::int64_t>(scene.particles.size()) > limits.max_particles)
+    check.fail("particles", std::to_string(scene.particles.size()) + " particles in all, more than the limit of " +
+                                std::to_string(limits.max_particles));
 
   // walls
   std::set<int> wall_materials;
@@ -822,13 +851,13 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     } else if (in.has_plate()) {
       const auto& pl = in.plate();
       PlateShape plate{{vec(pl.c1()), vec(pl.c2()), vec(pl.c3()), vec(pl.c4())}};
-      const std::size_t before = check.problems.size();
+      const std::size_t before = check.count();
       check.vector(path + ".plate.c1", pl.c1(), kLength);
       check.vector(path + ".plate.c2", pl.c2(), kLength);
       check.vector(path + ".plate.c3", pl.c3(), kLength);
       check.vector(path + ".plate.c4", pl.c4(), kLength);
       // The shape checks mean nothing (NaN compares false) unless every corner is finite.
-      if (check.problems.size() == before) check_plate(plate.corners, path + ".plate", check);
+      if (check.count() == before) check_plate(plate.corners, path + ".plate", check);
       w.shape = plate;
     } else if (in.has_mesh()) {
       load_mesh(in.mesh(), path + ".mesh", base_dir, check, w);
@@ -896,6 +925,13 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
                                        scene.materials[w].name + "\"");
   }
 
+  std::size_t triangles = 0;
+  for (const WallInit& w : scene.walls)
+    if (const MeshShape* m = std::get_if<MeshShape>(&w.shape)) triangles += m->triangles.size();
+  if (static_cast<std::int64_t>(triangles) > limits.max_triangles)
+    check.fail("walls", std::to_string(triangles) + " mesh triangles in all, more than the limit of " +
+                            std::to_string(limits.max_triangles));
+
   // gravity, time, outputs, domain, numerics
   check.vector("gravity", spec.gravity(), kAcceleration);
   scene.gravity = vec(spec.gravity());
@@ -944,7 +980,9 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
     scene.numerics.skin_fraction = n.skin();
   }
   if (n.search_interval() < 0) check.fail("numerics.searchInterval", "must be >= 0");
-  if (n.threads() < 0) check.fail("numerics.threads", "must be >= 0 (0 = all cores)");
+  if (n.threads() < 0 || n.threads() > check.limits.max_threads)
+    check.fail("numerics.threads", "must be in [0, " + std::to_string(check.limits.max_threads) + "] (0 = all cores; got " +
+                                       std::to_string(n.threads()) + ")");
   if (n.check_interval() < 0) check.fail("numerics.checkInterval", "must be >= 0");
   if (n.reorder_interval() < 0) check.fail("numerics.reorderInterval", "must be >= 0");
   scene.numerics.search_interval = n.search_interval();
@@ -958,7 +996,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir) {
   check.in_range("numerics.localDamping", n.local_damping(), 0, 1, false, true);
   scene.numerics.local_damping = n.local_damping();
 
-  if (!check.problems.empty()) throw SpecError(check.problems);
+  if (check.failed()) throw SpecError(check.listed());
   return scene;
 }
 

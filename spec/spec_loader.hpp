@@ -3,6 +3,7 @@
 #pragma once
 
 #include <stdexcept>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,17 @@ api::JobSpec parse_binary(const std::string& bytes);
 // Reads a JSON spec file (errors name the file).
 api::JobSpec read_json_file(const std::string& path);
 
+// What one spec may ask for in all; a front end may set lower limits of its own.
+struct SpecLimits {
+  std::int64_t max_particles = 50'000'000;
+  std::int64_t max_triangles = 50'000'000;
+  int max_threads = 256;          // numerics.threads
+  std::size_t max_name = 200;     // name, in bytes
+  std::size_t max_problems = 100; // problems listed in a SpecError (then "N more")
+};
+
 // Checks the spec and builds the scene; throws SpecError listing every problem found. Mesh files
 // are read relative to `base_dir` (the spec file's folder; empty: the working directory).
-Scene to_scene(const api::JobSpec& spec, const std::string& base_dir = "");
+Scene to_scene(const api::JobSpec& spec, const std::string& base_dir = "", const SpecLimits& limits = {});
 
 }  // namespace dem::spec

@@ -87,10 +87,19 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
   constexpr int kBlock = 512;
   const int blocks = (n + kBlock - 1) / kBlock;
   std::vector<std::vector<std::pair<int, int>>> block_pairs(blocks);
+  // Packed spheres have a dozen neighbours within reach, a few dozen with a wide skin: a block with
+  // kMostPairsPerParticle on average holds particles that overlap far past contact (20,000 at one
+  // point once asked for 2e8 pairs and the memory to hold them). The search stops there.
+  constexpr std::size_t kMostPairsPerParticle = 256;
+  std::vector<int> crowded(blocks, -1);
 #pragma omp parallel for schedule(dynamic) if (n >= kParallelMinParticles)
   for (int b = 0; b < blocks; ++b) {
     std::vector<std::pair<int, int>>& out = block_pairs[b];
-    for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+    for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock) && crowded[b] < 0; ++i) {
+      if (out.size() > kMostPairsPerParticle * kBlock) {
+        crowded[b] = i;
+        break;
+      }
       const Vec3 xi = p.x[i];
       const double ri = p.radius[i];
       for (std::size_t l = level_of[i]; l < grids.size(); ++l) {
@@ -99,11 +108,21 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
           if (same_level ? j <= i : false) return;
           if (!p.body.empty() && p.body[i] >= 0 && p.body[i] == p.body[j]) return;  // one rigid body
           const double cut = ri + p.radius[j] + options.skin;
-          if ((p.x[j] - xi).squaredNorm() < cut * cut) out.emplace_back(std::min(i, j), std::max(i, j));
+          if ((p.x[j] - xi).squaredNorm() < cut * cut && out.size() <= kMostPairsPerParticle * kBlock)
+            out.emplace_back(std::min(i, j), std::max(i, j));
         });
       }
     }
   }
+  for (int b = 0; b < blocks; ++b)
+    if (crowded[b] >= 0) {
+      const int i = crowded[b];
+      throw CrowdedError("more than " + std::to_string(kMostPairsPerParticle) +
+                         " neighbours within reach of each particle around particle " + std::to_string(p.id[i] + 1) +
+                         " (at " + std::to_string(p.x[i].x()) + ", " + std::to_string(p.x[i].y()) + ", " +
+                         std::to_string(p.x[i].z()) + "): particles there overlap far past contact, or lie on top of "
+                         "each other");
+    }
   for (const auto& found : block_pairs)
     for (const auto& [a, b] : found) ++next.row_start[a + 1];
   for (int i = 0; i < n; ++i) next.row_start[i + 1] += next.row_start[i];

@@ -8,6 +8,8 @@
 // from it, is the same whatever the number of threads.
 #pragma once
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/particles.hpp"
@@ -42,6 +44,12 @@ struct NeighborList {
   std::vector<double> i_roll;
 
   std::size_t pair_count() const { return partner.size(); }
+};
+
+// Particles so crowded that the list would hold hundreds of neighbours each (build_neighbor_list).
+class CrowdedError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct NeighborBuildOptions {

@@ -452,7 +452,13 @@ void Simulation::build_neighbors() {
   }
   ++builds_;
   NeighborList next;
-  build_neighbor_list(p, {skin_, kernel_->has_rolling_spring()}, state_.neighbors, order, next);
+  try {
+    build_neighbor_list(p, {skin_, kernel_->has_rolling_spring()}, state_.neighbors, order, next);
+  } catch (const CrowdedError& e) {
+    if (step_ == 0 && builds_ == 1) throw SceneError(std::string("particles: ") + e.what());  // the scene as given
+    throw InstabilityError("unstable at step " + std::to_string(step_) + ": " + e.what() +
+                           "; likely cause: the contact stiffness is too low for the load, or the time step too large");
+  }
   state_.neighbors = std::move(next);
   const std::size_t pairs = state_.neighbors.pair_count();
   PairResults& r = state_.pairs;

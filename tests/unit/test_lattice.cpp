@@ -203,5 +203,29 @@ TEST(Lattice, HexNearestNeighboursAtSpacingTimesDiameterTwelveOfThem) {
   }
 }
 
+// The count a spec's particle limit is checked with, before any site is made: the exact count for
+// a cubic lattice, an upper bound for the others, and no overflow for a box of 1e300 m.
+TEST(Lattice, SiteBoundIsTheCountOrAboveIt) {
+  const double r = 0.01;
+  for (const Vec3& hi : {Vec3(0.1, 0.13, 0.171), Vec3(0.2, 0.05, 0.3), Vec3(0.021, 0.3, 0.11), Vec3(0.019, 1, 1)})
+    for (double spacing : {1.0, 1.05, 1.7}) {
+      const Vec3 lo(-0.01, 0.003, 0);
+      const double cubic = lattice_site_bound(LatticeKind::Cubic, lo, lo + hi, r, spacing);
+      EXPECT_EQ(cubic, static_cast<double>(lattice_sites(LatticeKind::Cubic, lo, lo + hi, r, spacing).size()))
+          << hi.transpose() << " spacing " << spacing;
+      for (LatticeKind kind : {LatticeKind::Fcc, LatticeKind::Hex}) {
+        const double bound = lattice_site_bound(kind, lo, lo + hi, r, spacing);
+        const double made = static_cast<double>(lattice_sites(kind, lo, lo + hi, r, spacing).size());
+        EXPECT_GE(bound, made) << hi.transpose() << " spacing " << spacing;
+        // and not far above it where the box holds several spheres across (a box one sphere thick
+        // loses the shifted rows of a hexagonal lattice)
+        if (hi.minCoeff() > 4 * r) EXPECT_LE(bound, 1.5 * made + 8) << hi.transpose() << " spacing " << spacing;
+      }
+    }
+  const double huge = lattice_site_bound(LatticeKind::Fcc, Vec3::Zero(), Vec3::Constant(1e300), r, 1);
+  EXPECT_TRUE(std::isfinite(huge) || huge == INFINITY);
+  EXPECT_GT(huge, 1e100);
+}
+
 }  // namespace
 }  // namespace dem::spec
