@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/parallel.hpp"
+
 namespace dem {
 namespace {
 
@@ -12,8 +14,9 @@ constexpr int kParallelMinBodies = 256;
 std::vector<Vec3> spins(const ClumpBodies& bodies) {
   const int nb = static_cast<int>(bodies.size());
   std::vector<Vec3> w(bodies.size());
-#pragma omp parallel for schedule(static) if (nb >= kParallelMinBodies)
-  for (int b = 0; b < nb; ++b) w[b] = angular_velocity(bodies.rotation[b], bodies.moments[b]);
+  for_ranges(nb, kParallelMinBodies, [&](int begin, int end) {
+    for (int b = begin; b < end; ++b) w[b] = angular_velocity(bodies.rotation[b], bodies.moments[b]);
+  });
   return w;
 }
 
@@ -21,14 +24,15 @@ std::vector<Vec3> spins(const ClumpBodies& bodies) {
 void move_members(const ClumpBodies& bodies, Particles& p, bool place) {
   const std::vector<Vec3> w = spins(bodies);
   const int n = static_cast<int>(p.size());
-#pragma omp parallel for schedule(static) if (n >= kParallelMinBodies)
-  for (int i = 0; i < n; ++i) {
-    const int b = p.body[i];
-    if (b < 0) continue;
-    if (place) p.x[i] = bodies.x[b] + bodies.rotation[b].orientation * p.body_offset[i];
-    p.v[i] = bodies.v[b] + w[b].cross(p.x[i] - bodies.x[b]);
-    p.w[i] = w[b];
-  }
+  for_ranges(n, kParallelMinBodies, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      const int b = p.body[i];
+      if (b < 0) continue;
+      if (place) p.x[i] = bodies.x[b] + bodies.rotation[b].orientation * p.body_offset[i];
+      p.v[i] = bodies.v[b] + w[b].cross(p.x[i] - bodies.x[b]);
+      p.w[i] = w[b];
+    }
+  });
 }
 
 }  // namespace
@@ -69,20 +73,25 @@ void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p) {
 
 double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt) {
   const int nb = static_cast<int>(bodies.size());
-#pragma omp parallel for schedule(static) if (nb >= kParallelMinBodies)
-  for (int b = 0; b < nb; ++b) {
-    bodies.v[b] += (0.5 * dt / bodies.mass[b]) * bodies.force[b];
-    bodies.x[b] += dt * bodies.v[b];
-    bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
-    rotate_free(bodies.rotation[b], bodies.moments[b], dt);
-  }
+  for_ranges(nb, kParallelMinBodies, [&](int begin, int end) {
+    for (int b = begin; b < end; ++b) {
+      bodies.v[b] += (0.5 * dt / bodies.mass[b]) * bodies.force[b];
+      bodies.x[b] += dt * bodies.v[b];
+      bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
+      rotate_free(bodies.rotation[b], bodies.moments[b], dt);
+    }
+  });
   move_members(bodies, p, true);
-  double moved2 = 0;
   const int n = static_cast<int>(p.size());
-#pragma omp parallel for schedule(static) reduction(max : moved2) if (n >= kParallelMinBodies)
-  for (int i = 0; i < n; ++i)
-    if (p.body[i] >= 0) moved2 = std::max(moved2, (p.x[i] - x_at_build[i]).squaredNorm());
-  return moved2;
+  return reduce_ranges(
+      n, kParallelMinBodies, 0.0,
+      [&](int begin, int end) {
+        double moved2 = 0;
+        for (int i = begin; i < end; ++i)
+          if (p.body[i] >= 0) moved2 = std::max(moved2, (p.x[i] - x_at_build[i]).squaredNorm());
+        return moved2;
+      },
+      [](double a, double b) { return std::max(a, b); });
 }
 
 void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt) {
@@ -99,21 +108,22 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
     for (int i = 0; i < n; ++i)
       if (p.body[i] >= 0) members[next[p.body[i]]++] = i;
   }
-#pragma omp parallel for schedule(static) if (nb >= kParallelMinBodies)
-  for (int b = 0; b < nb; ++b) {
-    Vec3 force = bodies.mass[b] * gravity, torque = Vec3::Zero();
-    for (int k = start[b]; k < start[b + 1]; ++k) {
-      const int i = members[k];
-      const Vec3 contact = p.f[i] - p.mass[i] * gravity;
-      force += contact;
-      torque += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
+  for_ranges(nb, kParallelMinBodies, [&](int begin, int end) {
+    for (int b = begin; b < end; ++b) {
+      Vec3 force = bodies.mass[b] * gravity, torque = Vec3::Zero();
+      for (int k = start[b]; k < start[b + 1]; ++k) {
+        const int i = members[k];
+        const Vec3 contact = p.f[i] - p.mass[i] * gravity;
+        force += contact;
+        torque += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
+      }
+      bodies.force[b] = force;
+      bodies.torque[b] = torque;
+      if (dt == 0) continue;
+      bodies.v[b] += (0.5 * dt / bodies.mass[b]) * force;
+      bodies.rotation[b].angular_momentum += 0.5 * dt * torque;
     }
-    bodies.force[b] = force;
-    bodies.torque[b] = torque;
-    if (dt == 0) continue;
-    bodies.v[b] += (0.5 * dt / bodies.mass[b]) * force;
-    bodies.rotation[b].angular_momentum += 0.5 * dt * torque;
-  }
+  });
   if (dt == 0) return;
   move_members(bodies, p, false);  // the velocities and spins the kick changed
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "contact/contact_law.hpp"
+#include "core/parallel.hpp"
 #include "contact/pair_table.hpp"
 #include "sim/force_kernel.hpp"
 
@@ -100,17 +101,22 @@ class ForceKernelImpl final : public ForceKernel {
     const int size = s.blocks.block_size;
     const int blocks = (n + size - 1) / size;
     const int lanes = pair_lanes();
-#pragma omp parallel for schedule(dynamic, 1) if (blocks > 1)
-    for (int b = 0; b < blocks; ++b) {
+    auto block = [&](int b) {
       const int begin = b * size, end = std::min(n, begin + size);
 #if DEM_HAS_AVX2_LANES
       if (lanes == 4) {
         pairs_of_block_avx2<kRecord>(s, table, begin, end);
-        continue;
+        return;
       }
 #endif
       pairs_of_block<1, kRecord>(s, table, begin, end);
+    };
+    if (blocks == 1) {  // no OpenMP region: even a team of one costs a malloc and futex calls (core/parallel.hpp)
+      block(0);
+      return;
     }
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int b = 0; b < blocks; ++b) block(b);
   }
 
 #if DEM_HAS_AVX2_LANES
@@ -299,55 +305,58 @@ class ForceKernelImpl final : public ForceKernel {
     const double half_dt = 0.5 * s.dt;
     const Vec3 g = s.gravity;
     const double alpha = s.local_damping;
-    // Raw pointers: through the std::vectors the compiler reloaded their data pointers after every
-    // store and called Eigen's assignment loops out of line.
-    const Vec3* __restrict f_next = s.f_next.data();
-    BodySums* __restrict sums = s.blocks.sums.data();  // the particles', then the deferred slots
-    BodySums* __restrict deferred = sums + n;
-    const int* __restrict deferred_start = plan.deferred_start.data();
-    const double* __restrict mass = p.mass.data();
-    const double* __restrict inv_mass = p.inv_mass.data();
-    const double* __restrict inv_inertia = p.inv_inertia.data();
-    Vec3* __restrict force = p.f.data();
-    Vec3* __restrict torque = p.t.data();
-    Vec3* __restrict v = p.v.data();
-    Vec3* __restrict w = p.w.data();
-    const Vec3* __restrict x = p.x.data();
-    bool bad = false;
-#pragma omp parallel for schedule(static) reduction(|| : bad) if (n >= kParallelMinParticles)
-    for (int i = 0; i < n; ++i) {
-      Vec3 f = as_vec3(sums[i].f), t = as_vec3(sums[i].t);
-      sums[i] = BodySums{};  // zero for the next step's pair loop (while the line is in cache)
-      if (bonded) {
-        f = f + f_next[i];
-        t = t + torque[i];
-      }
-      for (int a = deferred_start[i]; a < deferred_start[i + 1]; ++a) {
-        f = f + as_vec3(deferred[a].f);
-        t = t + as_vec3(deferred[a].t);
-        deferred[a] = BodySums{};  // zero for the next step's pair loop
-      }
-      if constexpr (kWalls) {
-        if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) add_wall_forces(s, table, i, f, t);
-        if (!s.meshes.empty()) add_mesh_forces(s, table, i, f, t);
-      }
-      f = f + mass[i] * g;
-      if (!p.external.empty()) f = f + p.external[i];
-      if (alpha > 0) {  // local damping: each component loses alpha |F| against its velocity
-        for (int d = 0; d < 3; ++d) {
-          if (v[i][d] != 0) f[d] -= alpha * std::abs(f[d]) * (v[i][d] > 0 ? 1 : -1);
-          if (w[i][d] != 0) t[d] -= alpha * std::abs(t[d]) * (w[i][d] > 0 ? 1 : -1);
+    // true: some particle's end-of-step state is not finite
+    auto kick_range = [&](int begin, int end) {
+      // Raw pointers: through the std::vectors the compiler reloaded their data pointers after every
+      // store and called Eigen's assignment loops out of line.
+      const Vec3* __restrict f_next = s.f_next.data();
+      BodySums* __restrict sums = s.blocks.sums.data();  // the particles', then the deferred slots
+      BodySums* __restrict deferred = sums + n;
+      const int* __restrict deferred_start = plan.deferred_start.data();
+      const double* __restrict mass = p.mass.data();
+      const double* __restrict inv_mass = p.inv_mass.data();
+      const double* __restrict inv_inertia = p.inv_inertia.data();
+      Vec3* __restrict force = p.f.data();
+      Vec3* __restrict torque = p.t.data();
+      Vec3* __restrict v = p.v.data();
+      Vec3* __restrict w = p.w.data();
+      const Vec3* __restrict x = p.x.data();
+      bool bad = false;
+      for (int i = begin; i < end; ++i) {
+        Vec3 f = as_vec3(sums[i].f), t = as_vec3(sums[i].t);
+        sums[i] = BodySums{};  // zero for the next step's pair loop (while the line is in cache)
+        if (bonded) {
+          f = f + f_next[i];
+          t = t + torque[i];
         }
+        for (int a = deferred_start[i]; a < deferred_start[i + 1]; ++a) {
+          f = f + as_vec3(deferred[a].f);
+          t = t + as_vec3(deferred[a].t);
+          deferred[a] = BodySums{};  // zero for the next step's pair loop
+        }
+        if constexpr (kWalls) {
+          if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) add_wall_forces(s, table, i, f, t);
+          if (!s.meshes.empty()) add_mesh_forces(s, table, i, f, t);
+        }
+        f = f + mass[i] * g;
+        if (!p.external.empty()) f = f + p.external[i];
+        if (alpha > 0) {  // local damping: each component loses alpha |F| against its velocity
+          for (int d = 0; d < 3; ++d) {
+            if (v[i][d] != 0) f[d] -= alpha * std::abs(f[d]) * (v[i][d] > 0 ? 1 : -1);
+            if (w[i][d] != 0) t[d] -= alpha * std::abs(t[d]) * (w[i][d] > 0 ? 1 : -1);
+          }
+        }
+        force[i] = f;
+        torque[i] = t;
+        const Vec3 vi = v[i] + (half_dt * inv_mass[i]) * f, wi = w[i] + (half_dt * inv_inertia[i]) * t;
+        v[i] = vi;
+        w[i] = wi;
+        // the end-of-step state, checked every step so that a blow-up is caught where it starts
+        bad = bad || !state_is_finite(x[i], vi, wi, mass[i]);
       }
-      force[i] = f;
-      torque[i] = t;
-      const Vec3 vi = v[i] + (half_dt * inv_mass[i]) * f, wi = w[i] + (half_dt * inv_inertia[i]) * t;
-      v[i] = vi;
-      w[i] = wi;
-      // the end-of-step state, checked every step so that a blow-up is caught where it starts
-      bad = bad || !state_is_finite(x[i], vi, wi, mass[i]);
-    }
-    s.non_finite = bad;
+      return bad;
+    };
+    s.non_finite = reduce_ranges(n, kParallelMinParticles, false, kick_range, [](bool a, bool b) { return a || b; });
   }
 
   // One sphere against a boundary (plane, plate or mesh) that moves with `pose`: the law with the

@@ -11,6 +11,7 @@
 #endif
 
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 #include "core/rotation.hpp"
 
 namespace dem {
@@ -392,45 +393,55 @@ double Simulation::half_kick_and_drift() {
   Particles& p = state_.particles;
   const int n = static_cast<int>(p.size());
   const double dt = state_.dt, half_dt = 0.5 * dt;
-  double moved2 = 0;
-  // Raw pointers and whole-vector expressions: through the std::vectors the compiler kept
-  // reloading their data pointers and called Eigen's assignment loops out of line (9% of a step).
-  Vec3* __restrict kick = state_.half_kick.data();
-  Vec3* __restrict x = p.x.data();
-  Vec3* __restrict v = p.v.data();
-  Vec3* __restrict w = p.w.data();
-  const Vec3* __restrict f = p.f.data();
-  const Vec3* __restrict t = p.t.data();
-  const Vec3* __restrict x0 = x_at_build_.data();
-  const double* __restrict inv_mass = p.inv_mass.data();
-  const double* __restrict inv_inertia = p.inv_inertia.data();
-  Quat* __restrict q = p.q.empty() ? nullptr : p.q.data();
-  const Vec3* __restrict external = p.external.empty() ? nullptr : p.external.data();
-  double external_work = 0;  // of the constant external forces over this drift
-  const double* __restrict radius = p.radius.data();
   // a particle may move at most this share of its radius in a step (TooFast)
   const double reach = 0.5 * scene_.numerics.max_overlap_fraction;
   const double reach2_over_dt2 = reach * reach / (dt * dt);
-  bool too_fast = false;
-#pragma omp parallel for schedule(static) reduction(max : moved2) reduction(+ : external_work) reduction(|| : too_fast) if (n >= kParallelMinParticles)
-  for (int i = 0; i < n; ++i) {
-    const Vec3 k = (half_dt * inv_mass[i]) * f[i];
-    kick[i] = k;
-    const Vec3 vi = v[i] + k;
-    v[i] = vi;
-    const Vec3 wi = w[i] + (half_dt * inv_inertia[i]) * t[i];
-    w[i] = wi;
-    const Vec3 xi = x[i] + dt * vi;
-    x[i] = xi;
-    // the orientation turns with the half-step spin, as the position moves with the half-step velocity
-    if (q) q[i] = (rotation_by(dt * wi) * q[i]).normalized();
-    if (external && inv_mass[i] > 0) external_work += dt * external[i].dot(vi);
-    moved2 = std::max(moved2, (xi - x0[i]).squaredNorm());
-    too_fast = too_fast || vi.squaredNorm() > reach2_over_dt2 * radius[i] * radius[i];
-  }
-  moved_too_far_ = too_fast;
-  if (external) add_work(ledger_.external, external_work);
-  return moved2;
+  struct Drift {
+    double moved2 = 0;         // the largest squared move since the neighbour build
+    double external_work = 0;  // of the constant external forces over this drift
+    bool too_fast = false;
+  };
+  const Drift d = reduce_ranges(
+      n, kParallelMinParticles, Drift{},
+      [&](int begin, int end) {
+        // Raw pointers and whole-vector expressions: through the std::vectors the compiler kept
+        // reloading their data pointers and called Eigen's assignment loops out of line (9% of a step).
+        Vec3* __restrict kick = state_.half_kick.data();
+        Vec3* __restrict x = p.x.data();
+        Vec3* __restrict v = p.v.data();
+        Vec3* __restrict w = p.w.data();
+        const Vec3* __restrict f = p.f.data();
+        const Vec3* __restrict t = p.t.data();
+        const Vec3* __restrict x0 = x_at_build_.data();
+        const double* __restrict inv_mass = p.inv_mass.data();
+        const double* __restrict inv_inertia = p.inv_inertia.data();
+        Quat* __restrict q = p.q.empty() ? nullptr : p.q.data();
+        const Vec3* __restrict external = p.external.empty() ? nullptr : p.external.data();
+        const double* __restrict radius = p.radius.data();
+        Drift out;
+        for (int i = begin; i < end; ++i) {
+          const Vec3 k = (half_dt * inv_mass[i]) * f[i];
+          kick[i] = k;
+          const Vec3 vi = v[i] + k;
+          v[i] = vi;
+          const Vec3 wi = w[i] + (half_dt * inv_inertia[i]) * t[i];
+          w[i] = wi;
+          const Vec3 xi = x[i] + dt * vi;
+          x[i] = xi;
+          // the orientation turns with the half-step spin, as the position moves with the half-step velocity
+          if (q) q[i] = (rotation_by(dt * wi) * q[i]).normalized();
+          if (external && inv_mass[i] > 0) out.external_work += dt * external[i].dot(vi);
+          out.moved2 = std::max(out.moved2, (xi - x0[i]).squaredNorm());
+          out.too_fast = out.too_fast || vi.squaredNorm() > reach2_over_dt2 * radius[i] * radius[i];
+        }
+        return out;
+      },
+      [](const Drift& a, const Drift& b) {
+        return Drift{std::max(a.moved2, b.moved2), a.external_work + b.external_work, a.too_fast || b.too_fast};
+      });
+  moved_too_far_ = d.too_fast;
+  if (!p.external.empty()) add_work(ledger_.external, d.external_work);
+  return d.moved2;
 }
 
 void Simulation::build_neighbors() {
