@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace dem {
 
@@ -69,6 +70,23 @@ MeshWall MeshWall::from(const WallInit& init, int boundary) {
   m.topology = MeshTopology(TriangleMesh{shape.vertices, shape.triangles});
   m.vertices = shape.vertices;
   m.update_planes();
+  // how far the neighbour across each edge rises out of the triangle's plane (a rigid motion keeps it)
+  m.fold.assign(m.triangles.size(), {0, 0, 0});
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int j = 0; j < 3; ++j) {
+      const int e = m.topology.triangle_edges[t][j];
+      const int first = m.topology.edge_triangle_start[e], count = m.topology.edge_triangle_start[e + 1] - first;
+      if (count != 2) continue;  // an open edge, or one of more than two triangles: no valley
+      const int u = m.topology.edge_triangles[first] == static_cast<int>(t) ? m.topology.edge_triangles[first + 1]
+                                                                             : m.topology.edge_triangles[first];
+      const auto& edge = m.topology.edges[e];
+      int far = m.triangles[u][0];
+      for (int v : m.triangles[u])
+        if (v != edge[0] && v != edge[1]) far = v;
+      const Vec3 p0 = m.vertices[edge[0]];
+      const double rise = m.normals[t].dot(m.vertices[far] - p0) / (m.vertices[edge[1]] - p0).norm();
+      m.fold[t][j] = std::abs(rise) > 1e-12 ? rise : 0;  // flat within rounding: a seam
+    }
   return m;
 }
 
@@ -141,7 +159,127 @@ bool triangle_has_vertex(const MeshWall& mesh, int t, int v) {
   return tri[0] == v || tri[1] == v || tri[2] == v;
 }
 
+// In-plane unit normal of triangle t's edge j pointing into t.
+Vec3 inward_normal(const MeshWall& mesh, int t, int j) {
+  const auto& tri = mesh.triangles[t];
+  const Vec3 p0 = mesh.vertices[tri[j]], p1 = mesh.vertices[tri[(j + 1) % 3]], opposite = mesh.vertices[tri[(j + 2) % 3]];
+  Vec3 m = mesh.normals[t].cross(p1 - p0).normalized();
+  return m.dot(opposite - p0) < 0 ? Vec3(-m) : m;
+}
+
+// How far point p (in t's plane) lies inside t across its edge j (negative: outside).
+double inside_by(const MeshWall& mesh, int t, int j, const Vec3& p) {
+  return inward_normal(mesh, t, j).dot(p - mesh.vertices[mesh.triangles[t][j]]);
+}
+
+struct Point2 {
+  double x, y;
+};
+double cross2(const Point2& a, const Point2& b) { return a.x * b.y - a.y * b.x; }
+double dot2(const Point2& a, const Point2& b) { return a.x * b.x + a.y * b.y; }
+
+// The disc |q| <= a (about the origin) inside the triangle (0, b, c), signed as the triangle: the
+// part of the segment bc inside the circle gives a triangle, the parts outside circular sectors.
+// Also the length of bc inside the circle and the angle of the sectors (the arc inside).
+struct DiscPart {
+  double area = 0, chord = 0, angle = 0;
+};
+DiscPart disc_in_triangle(const Point2& b, const Point2& c, double a) {
+  const Point2 d{c.x - b.x, c.y - b.y};
+  const double qa = dot2(d, d), qb = 2 * dot2(b, d), qc = dot2(b, b) - a * a;
+  DiscPart out;
+  auto sector = [&](const Point2& p, const Point2& q) {
+    const double angle = std::atan2(cross2(p, q), dot2(p, q));
+    out.area += 0.5 * a * a * angle;
+    out.angle += angle;
+  };
+  const double disc = qb * qb - 4 * qa * qc;
+  const double root = disc > 0 ? std::sqrt(disc) : 0;
+  const double s1 = qa > 0 ? std::clamp((-qb - root) / (2 * qa), 0.0, 1.0) : 0;
+  const double s2 = qa > 0 ? std::clamp((-qb + root) / (2 * qa), 0.0, 1.0) : 0;
+  if (!(qa > 0) || disc <= 0 || s1 >= s2) {  // the segment misses the circle
+    sector(b, c);
+    return out;
+  }
+  const Point2 p{b.x + s1 * d.x, b.y + s1 * d.y}, q{b.x + s2 * d.x, b.y + s2 * d.y};
+  sector(b, p);
+  out.area += 0.5 * cross2(p, q);
+  out.chord = (s2 - s1) * std::sqrt(qa);
+  sector(q, c);
+  return out;
+}
+
 }  // namespace
+
+DiscShare disc_share(const MeshWall& mesh, int t, const Vec3& p, double a, const int* edges, int edge_count) {
+  DiscShare out;
+  if (!(a > 0)) return out;
+  const auto& tri = mesh.triangles[t];
+  const Vec3 n = mesh.normals[t];
+  const Vec3 e1 = (mesh.vertices[tri[1]] - mesh.vertices[tri[0]]).normalized(), e2 = n.cross(e1);
+  // each edge's half-plane m . q + h >= 0, q in the plane's coordinates about p
+  Vec3 inward[3];
+  Point2 m[3];
+  double h[3];
+  for (int k = 0; k < edge_count; ++k) {
+    inward[k] = inward_normal(mesh, t, edges[k]);
+    m[k] = {inward[k].dot(e1), inward[k].dot(e2)};
+    h[k] = inward[k].dot(p - mesh.vertices[tri[edges[k]]]);
+  }
+  if (edge_count == 1) {  // a disc cut by one chord: its segment in closed form
+    const double u = std::clamp(h[0] / a, -1.0, 1.0), root = std::sqrt(1 - u * u);
+    out.share = 0.5 + (u * root + std::asin(u)) / std::numbers::pi;
+    const double slope = 2 / std::numbers::pi * root;  // d share / d u
+    out.d_centre = (slope / a) * inward[0];
+    out.d_radius = -slope * u / a;
+    return out;
+  }
+  // The square about the disc clipped by each half-plane (Sutherland-Hodgman), every polygon edge
+  // labelled with the line it lies on (-1: the square's, outside the disc); then the disc's area
+  // inside that convex polygon, fan by fan from the centre. Its derivatives: moving the disc along
+  // a line's inward normal gains that line's chord inside the disc; growing it gains the arc inside.
+  Point2 poly[8] = {{-a, -a}, {a, -a}, {a, a}, {-a, a}}, next[8];
+  int line[8] = {-1, -1, -1, -1}, next_line[8];
+  int count = 4;
+  for (int k = 0; k < edge_count && count > 0; ++k) {
+    int kept = 0;
+    for (int i = 0; i < count; ++i) {
+      const Point2 &u = poly[i], &w = poly[(i + 1) % count];
+      const double fu = dot2(m[k], u) + h[k], fw = dot2(m[k], w) + h[k];
+      auto cut = [&] {
+        const double s = fu / (fu - fw);
+        return Point2{u.x + s * (w.x - u.x), u.y + s * (w.y - u.y)};
+      };
+      if (fu >= 0) {
+        next[kept] = u;
+        next_line[kept++] = line[i];
+        if (fw < 0) {  // leaving: the polygon follows line k from here
+          next[kept] = cut();
+          next_line[kept++] = k;
+        }
+      } else if (fw >= 0) {  // entering: the rest of this edge
+        next[kept] = cut();
+        next_line[kept++] = line[i];
+      }
+    }
+    count = kept;
+    std::copy(next, next + count, poly);
+    std::copy(next_line, next_line + count, line);
+  }
+  double area = 0, angle = 0;
+  Vec3 d_centre = Vec3::Zero();
+  for (int i = 0; i < count; ++i) {
+    const DiscPart part = disc_in_triangle(poly[i], poly[(i + 1) % count], a);
+    area += part.area;
+    angle += part.angle;
+    if (line[i] >= 0) d_centre += part.chord * inward[line[i]];
+  }
+  const double full = std::numbers::pi * a * a;
+  out.share = std::clamp(area / full, 0.0, 1.0);
+  out.d_centre = d_centre / full;
+  out.d_radius = (angle / std::numbers::pi - 2 * out.share) / a;  // (arc a) / (pi a^2) - 2 share / a
+  return out;
+}
 
 int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_count, const Vec3& x, double r,
                  MeshTouch* out, int out_capacity) {
@@ -178,7 +316,7 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
     if (cp.feature == Feature::Face && planes < kPlanes) face_tri[planes++] = t;
   }
   int written = 0;
-  auto accept = [&](const Near& n, int key) {
+  auto accept = [&](const Near& n, int key, double weight = 1, const Vec3& weight_gradient = Vec3::Zero()) {
     for (int k = 0; k < written; ++k)  // the same point reached through another triangle
       if ((out[k].point - n.cp.point).squaredNorm() <= kSlack * kSlack * r * r) return;
     if (written == out_capacity) return;
@@ -195,9 +333,47 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
       touch.normal = (mesh.vertices[tri[1]] - mesh.vertices[tri[0]]).cross(mesh.vertices[tri[2]] - mesh.vertices[tri[0]]).normalized();
     }
     touch.delta = r - dist;
+    touch.weight = weight;
+    touch.weight_gradient = weight_gradient;
   };
-  for (int k = 0; k < near_count; ++k)
-    if (near[k].cp.feature == Feature::Face) accept(near[k], near[k].triangle);
+  // Faces: the centre's projection inside the triangle, or beyond valley edges only with some of
+  // the contact disc still on the triangle's side; weighted where a valley edge crosses the disc.
+  for (int k = 0; k < near_count; ++k) {
+    const int t = near[k].triangle;
+    const bool inside = near[k].cp.feature == Feature::Face;
+    const double signed_d = mesh.normals[t].dot(x) - mesh.offsets[t];
+    const double side = signed_d >= 0 ? 1 : -1;
+    const Vec3 p = x - signed_d * mesh.normals[t];
+    const double a2 = r * r - signed_d * signed_d;
+    if (!(a2 > 0)) continue;
+    const double a = std::sqrt(a2);
+    int valleys[3], valley_count = 0;
+    bool beyond_other_edge = false;
+    for (int j = 0; j < 3; ++j) {
+      const bool valley = side * mesh.fold[t][j] > 0;
+      if (inside && !valley) continue;  // inside: only valley edges can cut the disc's share
+      const double h = inside_by(mesh, t, j, p);
+      if (valley && h < a) {
+        if (h <= -a) beyond_other_edge = true;  // the disc lies wholly beyond this valley edge
+        valleys[valley_count++] = j;
+      } else if (!valley && h < 0) {
+        beyond_other_edge = true;  // past a ridge, a seam or an open edge: its edge or vertex rules
+      }
+    }
+    if (beyond_other_edge || (!inside && valley_count == 0)) continue;
+    DiscShare share;
+    if (valley_count) {
+      share = disc_share(mesh, t, p, a, valleys, valley_count);
+      if (share.share <= 0) continue;
+    }
+    Near face = near[k];
+    face.cp = {p, Feature::Face, 0};
+    face.d2 = signed_d * signed_d;
+    // the share's gradient in the centre: through the projection p (in the plane) and through the
+    // disc's radius a = sqrt(r^2 - d^2), which shrinks as the centre moves off the plane
+    const Vec3 gradient = share.d_centre - share.d_radius * (std::abs(signed_d) / a) * side * mesh.normals[t];
+    accept(face, t, share.share, gradient);
+  }
   for (int k = 0; k < near_count; ++k) {
     if (near[k].cp.feature != Feature::Edge) continue;
     const int e = mesh.topology.triangle_edges[near[k].triangle][near[k].cp.index];

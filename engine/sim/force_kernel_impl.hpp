@@ -87,7 +87,8 @@ class ForceKernelImpl final : public ForceKernel {
           const MeshSlot& slot = mc.slot(i, k);
           const double delta = slot.delta + (ri - p.radius[i]);
           if (delta <= 0) continue;
-          note(i, -1, delta, ri, Normal::elastic_energy(table_(p.material[i], s.meshes[slot.mesh].material).normal, delta, ri));
+          note(i, -1, delta, ri,
+               slot.weight * Normal::elastic_energy(table_(p.material[i], s.meshes[slot.mesh].material).normal, delta, ri));
         }
       }
     }
@@ -361,12 +362,13 @@ class ForceKernelImpl final : public ForceKernel {
 
   // One sphere against a boundary (plane, plate or mesh) that moves with `pose`: the law with the
   // wall's velocity at the contact point; returns the force on the sphere and adds it and its
-  // torque to f and t. shear and roll are the contact's springs, updated in place.
+  // torque to f and t. shear and roll are the contact's springs, updated in place. `weight` (a mesh
+  // face's share at a valley, mesh/mesh_wall.hpp) scales what the contact applies, not its springs.
   DEM_HOT static ContactOutput<double> wall_contact(SimState& s, const PairTable<Pair>& table, int i,
                                                     const Vec3& normal, double delta,
                                                     const Vec3& point, const WallPose& pose, int wall_material,
                                                     const PairConstants& pc, Vec3& shear, Vec3& roll, Vec3& f,
-                                                    Vec3& t) {
+                                                    Vec3& t, double weight = 1) {
     const Particles& p = s.particles;
     if (delta > s.overlap_limit * p.radius[i]) s.deep_overlap.store(true, std::memory_order_relaxed);
     const double li = p.radius[i] - 0.5 * delta;  // to the contact point, as for a pair
@@ -387,9 +389,15 @@ class ForceKernelImpl final : public ForceKernel {
     V3<double> spring = to_v3(shear), roll_spring = V3<double>::zero();
     if constexpr (Law::kRollingSpring) roll_spring = to_v3(roll);
     const auto params = Law::template Lanes<double>::all(table(p.material[i], wall_material));
-    const ContactOutput<double> r = Law::evaluate(params, c, spring, roll_spring);
+    ContactOutput<double> r = Law::evaluate(params, c, spring, roll_spring);
     shear = spring.get(0);
     if constexpr (Law::kRollingSpring) roll = roll_spring.get(0);
+    if (weight != 1) {
+      r.force = weight * r.force;
+      r.shear_force = weight * r.shear_force;
+      r.fn *= weight;
+      if constexpr (Law::kRolling) r.roll_moment = weight * r.roll_moment;
+    }
     f += r.force.get(0);
     t -= li * cross(c.n, r.shear_force).get(0);
     if constexpr (Law::kRolling) t += r.roll_moment.get(0);
@@ -480,13 +488,20 @@ class ForceKernelImpl final : public ForceKernel {
         }
         const Vec3 point = p.x[i] - (ri - 0.5 * touch.delta) * touch.normal;  // the middle of the overlap
         const ContactOutput<double> r = wall_contact(s, table, i, touch.normal, touch.delta, point, s.meshes[m].pose,
-                                                     s.meshes[m].material, pc, slot.shear, slot.roll, f, t);
+                                                     s.meshes[m].material, pc, slot.shear, slot.roll, f, t, touch.weight);
         slot.normal = touch.normal;
         slot.force = r.force.get(0);
+        if (touch.weight != 1) {  // a face shared at a valley: the pull of its weight, through the centre
+          const double stored = Normal::elastic_energy(table(p.material[i], s.meshes[m].material).normal, touch.delta, ri);
+          const Vec3 pull = -stored * touch.weight_gradient;
+          f += pull;
+          slot.force += pull;
+        }
         slot.point = point;
         slot.fn = r.fn;
         if (s.record_contacts) slot.ft = std::sqrt(squared_norm(r.shear_force));
         slot.delta = touch.delta;
+        slot.weight = touch.weight;
         if (filled < kSlots) now[filled++] = slot;
       }
       a = b;

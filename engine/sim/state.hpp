@@ -39,6 +39,7 @@ struct MeshSlot {
   Vec3 force = Vec3::Zero();  // on the particle
   Vec3 point = Vec3::Zero();  // the contact point (the middle of the overlap)
   double fn = 0, ft = 0, delta = 0;
+  double weight = 1;  // the face's share at a valley (mesh/mesh_wall.hpp): fn and force include it
 };
 
 // Particle-mesh candidates (triangles within reach, rebuilt with the neighbour list, grouped by

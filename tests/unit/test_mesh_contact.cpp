@@ -108,6 +108,84 @@ TEST(MeshTouches, OpenBoundaryEdgeAndCorner) {
   EXPECT_EQ(corner[0].feature, Feature::Vertex);
 }
 
+// The share of a contact disc on a triangle's side of its edges, against counting points of a fine
+// grid over the disc, and its derivatives against finite differences.
+TEST(DiscShare, MatchesAGridCountAndItsDerivatives) {
+  MeshShape one;
+  one.vertices = {{0, 0, 0}, {1, 0, 0}, {0.3, 0.8, 0}};
+  one.triangles = {{0, 1, 2}};
+  const MeshWall mesh = wall_of(one);
+  auto counted = [&](const Vec3& p, double a, const std::vector<int>& edges) {
+    // inward normals and offsets of the listed edges, the same way the share defines them
+    const int n = 801;
+    int in = 0, all = 0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const Vec3 q = p + Vec3(a * (2.0 * (i + 0.5) / n - 1), a * (2.0 * (j + 0.5) / n - 1), 0);
+        if ((q - p).squaredNorm() > a * a) continue;
+        ++all;
+        bool ok = true;
+        for (int e : edges) {
+          const Vec3 a0 = mesh.vertices[mesh.triangles[0][e]], a1 = mesh.vertices[mesh.triangles[0][(e + 1) % 3]];
+          const Vec3 opposite = mesh.vertices[mesh.triangles[0][(e + 2) % 3]];
+          Vec3 m = Vec3::UnitZ().cross(a1 - a0);
+          if (m.dot(opposite - a0) < 0) m = -m;
+          ok = ok && m.dot(q - a0) >= 0;
+        }
+        in += ok;
+      }
+    return static_cast<double>(in) / all;
+  };
+  const std::vector<std::vector<int>> edge_sets = {{0}, {0, 1}, {0, 1, 2}, {2, 1}};
+  const Vec3 spots[] = {{0.4, 0.05, 0}, {0.9, 0.05, 0}, {0.35, 0.3, 0}, {0.4, -0.03, 0}, {0.3, 0.75, 0}};
+  for (const auto& edges : edge_sets)
+    for (const Vec3& p : spots)
+      for (double a : {0.04, 0.2, 0.6}) {
+        const DiscShare got = disc_share(mesh, 0, p, a, edges.data(), static_cast<int>(edges.size()));
+        EXPECT_NEAR(got.share, counted(p, a, edges), 4e-3) << p.transpose() << " a " << a << " edges " << edges.size();
+        const double h = 1e-6;
+        for (int d = 0; d < 2; ++d) {
+          const Vec3 step = h * Vec3::Unit(d);
+          const double plus = disc_share(mesh, 0, p + step, a, edges.data(), static_cast<int>(edges.size())).share;
+          const double minus = disc_share(mesh, 0, p - step, a, edges.data(), static_cast<int>(edges.size())).share;
+          EXPECT_NEAR(got.d_centre[d], (plus - minus) / (2 * h), 1e-5 / a) << p.transpose() << " a " << a;
+        }
+        const double grown = disc_share(mesh, 0, p, a + 1e-7, edges.data(), static_cast<int>(edges.size())).share;
+        const double shrunk = disc_share(mesh, 0, p, a - 1e-7, edges.data(), static_cast<int>(edges.size())).share;
+        EXPECT_NEAR(got.d_radius, (grown - shrunk) / 2e-7, 1e-4 / a) << p.transpose() << " a " << a;
+      }
+}
+
+// A valley so shallow it is almost flat weighs one contact between its two faces, a sharp one two.
+TEST(MeshTouches, AValleysFacesShareOneContactWhenShallowAndCountTwiceWhenSharp) {
+  for (double slope : {1e-4, 0.01, 0.05}) {
+    MeshShape v;
+    const double h = 2 * slope;
+    v.vertices = {{-2, 0, h}, {-2, 4, h}, {0, 0, 0}, {0, 4, 0}, {2, 0, h}, {2, 4, h}};
+    v.triangles = {{0, 2, 1}, {1, 2, 3}, {2, 4, 3}, {3, 4, 5}};
+    const MeshWall mesh = wall_of(v);
+    for (double x : {-0.05, -0.01, 0.0, 0.02, 0.07}) {
+      const auto found = touches(mesh, {x, 2, 0.28}, 0.3);
+      double total = 0;
+      for (const MeshTouch& t : found) {
+        EXPECT_EQ(t.feature, Feature::Face);
+        total += t.weight;
+      }
+      // the two discs' shares: about half a disc each side of the fold; each face's projection
+      // lies d tan(slope) past the fold, which adds about (4 / pi) (d / a) slope in all
+      EXPECT_NEAR(total, 1.0, 5 * slope) << "slope " << slope << " at x " << x;
+    }
+  }
+  // 45 degrees, an overlap of 3% of the radius: two contacts at full weight (the disc of radius
+  // 0.077 lies 0.29 from the fold)
+  MeshShape sharp;
+  sharp.vertices = {{-2, 0, 2}, {-2, 4, 2}, {0, 0, 0}, {0, 4, 0}, {2, 0, 2}, {2, 4, 2}};
+  sharp.triangles = {{0, 2, 1}, {1, 2, 3}, {2, 4, 3}, {3, 4, 5}};
+  const auto both = touches(wall_of(sharp), {0, 2, 0.29 * std::sqrt(2.0)}, 0.3);
+  ASSERT_EQ(both.size(), 2u);
+  for (const MeshTouch& t : both) EXPECT_DOUBLE_EQ(t.weight, 1.0);
+}
+
 TEST(TriangleGrid, FindsTheTrianglesNearAPoint) {
   MeshWall mesh = wall_of(grid_rectangle({0, 0, 0}, {100, 0, 0}, {0, 100, 0}, 100, 100));
   mesh.grid.build(mesh.vertices, mesh.triangles, 0.5);
