@@ -3,8 +3,18 @@
 // Writes the CSV rows of SCENARIOS.md to stdout. The stepping loop is timed in-process; a short
 // scenario is repeated until it has run for 20 ms, and its time divided.
 //
-// usage: bench_accuracy [--quick] [--only NAME,...]
+// The many-body scenes are chaotic: a nudge of 1e-9 m to one sphere of the collapse changes its
+// quantities at 0.15 s as much as going from dt = t_c/800 to t_c/50 does. So they run as ensembles
+// of `--seeds` scenes that differ only in their random details (the collapse's nudges, the block's
+// bond strengths), each at every dt and at the reference N = 800; their rows (one per run, the
+// measured values themselves) go to `--runs FILE` in the format of SCENARIOS.md, and
+// bench/accuracy/run compares the ensembles' means against the reference ensemble's, with the
+// scatter of the means as the floor below which no error can be seen.
+//
+// usage: bench_accuracy [--quick] [--only NAME,...] [--seeds K] [--runs FILE]
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -28,8 +38,8 @@ constexpr double kPi = std::numbers::pi;
 
 enum Kind { kNormal, kTangential, kRotational };
 
-// One measured quantity of a run, of a kind, with its closed-form value (0 for the many-body
-// scenes, which compare with their own run at N = 800).
+// One measured quantity of a run, of a kind, with its closed-form value (0 where there is none:
+// the many-body scenes, compared with their own ensemble at N = 800, and the clump's turn).
 struct Q {
   Kind kind;
   double value;
@@ -46,9 +56,9 @@ struct Errors {
 struct Scenario {
   std::string name;
   double contact_time;                          // the reference t_c of the sweep, s
-  std::function<Scene()> scene;                 // at the engine's automatic step
+  std::function<Scene(int seed)> scene;         // at the engine's automatic step; seed: many-body only
   std::function<Quantities(Simulation&)> measure;  // runs the simulation and measures
-  bool many_body = false;                       // against its own run at N = 800
+  bool many_body = false;                       // an ensemble against its own ensemble at N = 800
 };
 
 double sphere_mass(double rho, double r) { return rho * 4.0 / 3.0 * kPi * r * r * r; }
@@ -129,7 +139,7 @@ Scenario normal_pair() {
   const double alpha = std::pow(15 * m_eff * v * v / (16 * std::sqrt(r_eff) * e_star), 0.4);
   const double force = 4.0 / 3.0 * e_star * std::sqrt(r_eff) * std::pow(alpha, 1.5), t_c = 2.9432 * alpha / v;
   return {"normal-pair", t_c,
-          [=] {
+          [=](int) {
             Scene s = base(HertzNormal::kName, rho, e, nu, 1.0, 0.0);
             s.particles = {sphere({-r * 1.0001, 0, 0}, r, {10, 0, 0}), sphere({r * 1.0001, 0, 0}, r, {-10, 0, 0})};
             return s;
@@ -146,7 +156,7 @@ Scenario normal_plane() {
   const double alpha = std::pow(15 * m * v * v / (16 * std::sqrt(r) * e_star), 0.4);
   const double force = 4.0 / 3.0 * e_star * std::sqrt(r) * std::pow(alpha, 1.5), t_c = 2.9432 * alpha / v;
   return {"normal-plane", t_c,
-          [=] {
+          [=](int) {
             Scene s = base(HertzNormal::kName, rho, e, nu, 1.0, 0.0);
             s.particles = {sphere({0, 0, r * 1.00001}, r, {0, 0, -v})};
             s.walls = {plane()};
@@ -164,7 +174,7 @@ Scenario restitution(std::string_view law) {
   const double m = sphere_mass(rho, r);
   const double t_c = law == HertzNormal::kName ? hertz_time(m, r, e / (1 - nu * nu), v) : kPi * std::sqrt(m / (2 * kn));
   return {"restitution-" + std::string(law == HertzNormal::kName ? "hertz" : "linear"), t_c,
-          [=] {
+          [=](int) {
             Scene s = base(law, rho, e, nu, 0.5, 0.0, kn);
             s.particles = {sphere({0, 0, r * 1.0001}, r, {0, 0, -v})};
             s.walls = {plane()};
@@ -185,7 +195,7 @@ Scenario oblique(std::string_view law) {
   const double vt_after = vt - mu * (1 + e) * vn, spin = 5 * mu * (1 + e) * vn / (2 * r);
   const double angle = std::atan((std::tan(th) - 3.5 * mu * (1 + e)) / e);
   return {"oblique-" + std::string(law == HertzNormal::kName ? "hertz" : "linear"), t_c,
-          [=] {
+          [=](int) {
             Scene s = base(law, rho, e_mod, nu, e, mu, kn);
             s.particles = {sphere({0, 0, r * 1.0001}, r, {vt, 0, -vn})};
             s.walls = {plane()};
@@ -211,7 +221,7 @@ Scenario sliding(std::string_view law, bool pair) {
   const double t_c = law == HertzNormal::kName ? hertz_time(m_eff, r_eff, e_star, vn) : kPi * std::sqrt(m_eff / (pair ? kn : 2 * kn));
   const double pn = (1 + e) * m_eff * vn;
   return {std::string(pair ? "sliding-pair-" : "sliding-plane-") + (law == HertzNormal::kName ? "hertz" : "linear"), t_c,
-          [=] {
+          [=](int) {
             Scene s = base(law, rho, e_mod, nu, e, mu, kn);
             if (pair) {
               s.particles = {sphere({0, 0, -r * 1.00001}, r, {vt / 2, 0, vn / 2}),
@@ -240,7 +250,7 @@ Scenario rolling(std::string_view model) {
   const double t_c = hertz_time(m, r, 5e9 / (1 - 0.25 * 0.25), 0.1);
   const double want = 7 * v0 * v0 / (10 * mu_r * g);
   return {"rolling-" + std::string(model == CdtRolling::kName ? "cdt" : "epsd"), t_c,
-          [=] {
+          [=](int) {
             Scene s = base(HertzNormal::kName, rho, 5e9, 0.25, 0.5, 0.5);
             s.contact.rolling = std::string(model);
             for (Interaction& in : s.interactions) in.rolling_friction = mu_r;
@@ -261,7 +271,7 @@ Scenario incline_mesh() {
   const double m = sphere_mass(rho, r);
   const double t_c = kPi * std::sqrt(m / (2 * 1e5));
   return {"incline-mesh", t_c,
-          [=] {
+          [=](int) {
             Scene s = base(LinearNormal::kName, rho, 0, 0, 0.5, 0.5, 1e5);
             s.gravity = {g * std::sin(th), 0, -g * std::cos(th)};  // the incline: tilted gravity
             MeshShape mesh;
@@ -298,7 +308,7 @@ Scenario bond_pair() {
   const double period = 2 * kPi * std::sqrt(m / k);
   // a swing of 1e-5 m/s / omega = 8e-10 m, far inside the gap of 1e-6 m
   return {"bond-axial", period / 2,
-          [=] {
+          [=](int) {
             Scene s = base(LinearNormal::kName, rho, 0, 0, 0.5, 0.0, 1e4);
             // bonded across a gap of 1e-4 r: only the bond acts, the contact never touches
             s.particles = {sphere({0, 0, 0}, r), sphere({2 * r * 1.00005, 0, 0}, r, {1e-5, 0, 0})};
@@ -332,7 +342,7 @@ Scenario clump_rotation() {
   const Scene scene = spec::to_scene(spec::parse_json(json));
   // the body's fastest turn sets the step: 1 / |w| s per radian
   const double t_c = 1.0 / 40;
-  return {"clump-rotation", t_c, [=] { return scene; },
+  return {"clump-rotation", t_c, [=](int) { return scene; },
           [=](Simulation& sim) {
             const double e0 = sim.kinetic_energy();
             while (sim.time() < 0.5) sim.step();
@@ -342,20 +352,22 @@ Scenario clump_rotation() {
           }};
 }
 
-// The many-body scenes: quantities at the end, against the same scene at N = 800.
+// The many-body scenes: quantities at the end, as ensembles against the same ensemble at N = 800.
 // 2,000 spheres on a 10 x 10 x 20 cubic lattice fall and spread on a floor (SCENARIOS.md, 6).
 Scenario collapse(double duration) {
   const double r = 0.002, rho = 2500, kn = 1e4;
   const double m = sphere_mass(rho, r), t_c = kPi * std::sqrt(m / 2 / kn);
   Scenario s{"collapse", t_c,
-             [=] {
+             [=](int seed) {
                Scene s = base(LinearNormal::kName, rho, 0, 0, 0.5, 0.5, kn);
                s.gravity = {0, 0, -9.81};
+               // nudged sideways by 10 um (a perfect lattice never spreads), in a pattern the seed shifts
+               const double a = 1.37 * seed, b = 2.11 * seed;
                for (int k = 0; k < 20; ++k)
                  for (int j = 0; j < 10; ++j)
-                     for (int i = 0; i < 10; ++i)  // nudged sideways by 10 um: a perfect lattice never spreads
-                     s.particles.push_back(sphere({(i - 4.5) * 2.02 * r + 1e-5 * std::sin(1.7 * i + 2.3 * j + 3.1 * k),
-                                                   (j - 4.5) * 2.02 * r + 1e-5 * std::cos(2.9 * i + 1.3 * j + 0.7 * k),
+                   for (int i = 0; i < 10; ++i)
+                     s.particles.push_back(sphere({(i - 4.5) * 2.02 * r + 1e-5 * std::sin(1.7 * i + 2.3 * j + 3.1 * k + a),
+                                                   (j - 4.5) * 2.02 * r + 1e-5 * std::cos(2.9 * i + 1.3 * j + 0.7 * k + b),
                                                    r + 2e-5 + k * 2.02 * r},
                                                   r));
                s.walls = {plane()};
@@ -381,7 +393,7 @@ Scenario bonded_block() {
   const double r = 0.005, rho = 2600, kn = 1e5;
   const double m = sphere_mass(rho, r), t_c = kPi * std::sqrt(m / 2 / kn);
   return {"bonded-block", t_c,
-          [=] {
+          [=](int seed) {
             Scene s = base(LinearNormal::kName, rho, 0, 0, 0.5, 0.5, kn);
             for (int k = 0; k < 13; ++k)
               for (int j = 0; j < 13; ++j)
@@ -391,6 +403,7 @@ Scenario bonded_block() {
             b.youngs_modulus = 2e7;
             b.tensile_strength = b.shear_strength = 1.5e5;
             b.strength_spread = 0.3;
+            b.seed = 11 + seed;  // the bonds' strengths
             s.bonds = b;
             s.numerics.threads = 1;
             return s;
@@ -414,25 +427,37 @@ struct Timed {
   double dt = 0;
 };
 
-// One run at dt (0: the engine's automatic step), repeated until 20 ms have passed.
-Timed timed_run(const Scenario& sc, double dt) {
+// One run at dt (0: the engine's automatic step). A many-body run is measured and timed at once
+// (its measurement is a pass at the end). A single-body run's measurement looks at every step, so
+// it is timed apart, as the peers' are: fresh runs of the same number of steps with nothing but
+// the steps, repeated until 20 ms have passed.
+Timed timed_run(const Scenario& sc, double dt, int seed = 0) {
   using Clock = std::chrono::steady_clock;
-  Timed out;
-  int repeats = 0;
-  double total = 0;
-  do {
-    Scene s = sc.scene();
+  auto make = [&] {
+    Scene s = sc.scene(seed);
     if (dt > 0) {
       s.time.dt = dt;
       s.time.allow_unstable_dt = true;
     }
-    Simulation sim(std::move(s));
-    out.dt = sim.dt();
-    const auto start = Clock::now();
-    out.q = sc.measure(sim);
+    return Simulation(std::move(s));
+  };
+  Timed out;
+  Simulation measured = make();
+  out.dt = measured.dt();
+  auto start = Clock::now();
+  out.q = sc.measure(measured);
+  out.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (sc.many_body) return out;
+  const std::int64_t steps = measured.step_count();
+  int repeats = 0;
+  double total = 0;
+  do {
+    Simulation sim = make();
+    start = Clock::now();
+    for (std::int64_t k = 0; k < steps; ++k) sim.step();
     total += std::chrono::duration<double>(Clock::now() - start).count();
     ++repeats;
-  } while (total < 0.02 && !sc.many_body);
+  } while (total < 0.02);
   out.seconds = total / repeats;
   return out;
 }
@@ -457,9 +482,9 @@ std::string cell(double e) {
   return buf;
 }
 
-// `code` dem: the error against the closed form (the many-body scenes: their run at N = 800);
-// dem-self: against this engine's own run at N = 3200 (the discretisation error alone, for the
-// orders of convergence); dem-default: the automatic step.
+// `code` dem: the error against the closed form; dem-self: against this engine's own run at
+// N = 3200 (the discretisation error alone, for the orders of convergence); dem-default: the
+// automatic step.
 void print_row(const std::string& code, const Scenario& sc, const Timed& t, const Errors& e) {
   const double worst = std::max({e.normal, e.tangential, e.rotational});
   std::printf("%s,%s,%.6e,%.4g,%.6e,%s,%s,%s,%s\n", sc.name.c_str(), code.c_str(), t.dt, sc.contact_time / t.dt,
@@ -467,8 +492,23 @@ void print_row(const std::string& code, const Scenario& sc, const Timed& t, cons
   std::fflush(stdout);
 }
 
+// A many-body run's row for --runs: the values themselves, by kind (one quantity of each kind).
+void print_run(std::FILE* out, const std::string& code, const Scenario& sc, int seed, const Timed& t) {
+  std::string values[3];
+  for (const Q& q : t.q) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10e", q.value);
+    values[q.kind] = buf;
+  }
+  std::fprintf(out, "%s,%s,%d,%.6e,%.4g,%.6e,%s,%s,%s\n", sc.name.c_str(), code.c_str(), seed, t.dt, sc.contact_time / t.dt,
+               t.seconds, values[0].c_str(), values[1].c_str(), values[2].c_str());
+  std::fflush(out);
+}
+
 int main(int argc, char** argv) {
   bool quick = false;
+  int seeds = 6;
+  std::string runs_path;
   std::set<std::string> only;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -476,8 +516,12 @@ int main(int argc, char** argv) {
     else if (arg == "--only" && a + 1 < argc) {
       std::stringstream list(argv[++a]);
       for (std::string name; std::getline(list, name, ',');) only.insert(name);
+    } else if (arg == "--seeds" && a + 1 < argc) {
+      seeds = std::max(1, std::atoi(argv[++a]));
+    } else if (arg == "--runs" && a + 1 < argc) {
+      runs_path = argv[++a];
     } else {
-      std::fprintf(stderr, "usage: bench_accuracy [--quick] [--only NAME,...]\n");
+      std::fprintf(stderr, "usage: bench_accuracy [--quick] [--only NAME,...] [--seeds K] [--runs FILE]\n");
       return 2;
     }
   }
@@ -496,19 +540,36 @@ int main(int argc, char** argv) {
   all.push_back(collapse(quick ? 0.02 : 0.15));
   all.push_back(bonded_block());
   const std::vector<double> sweep = quick ? std::vector<double>{20, 50} : std::vector<double>{10, 20, 50, 100, 200, 400};
+  std::FILE* runs = nullptr;
+  if (!runs_path.empty() && !(runs = std::fopen(runs_path.c_str(), "w"))) {
+    std::fprintf(stderr, "bench_accuracy: cannot write %s\n", runs_path.c_str());
+    return 1;
+  }
+  if (runs) std::fprintf(runs, "scenario,code,seed,dt,steps_per_contact,seconds,value_normal,value_tangential,value_rotational\n");
   std::printf("scenario,code,dt,steps_per_contact,seconds,error_normal,error_tangential,error_rotational,error\n");
   for (const Scenario& sc : all) {
     if (!only.empty() && !only.count(sc.name)) continue;
     std::fprintf(stderr, "%s\n", sc.name.c_str());
-    const Timed self = timed_run(sc, sc.contact_time / (sc.many_body ? (quick ? 100 : 800) : (quick ? 200 : 3200)));
+    if (sc.many_body) {
+      if (!runs) continue;  // their rows are runs, not errors
+      std::vector<double> steps_per_contact = sweep;
+      steps_per_contact.push_back(quick ? 100 : 800);  // the reference ensemble
+      steps_per_contact.push_back(0);                  // the automatic step
+      for (double n : steps_per_contact)
+        for (int seed = 0; seed < seeds; ++seed)
+          print_run(runs, n > 0 ? "dem" : "dem-default", sc, seed, timed_run(sc, n > 0 ? sc.contact_time / n : 0, seed));
+      continue;
+    }
+    const Timed self = timed_run(sc, sc.contact_time / (quick ? 200 : 3200));
     for (double n : sweep) {
       const Timed t = timed_run(sc, sc.contact_time / n);
-      print_row("dem", sc, t, errors_of(t.q, sc.many_body ? &self.q : nullptr));
-      if (!sc.many_body) print_row("dem-self", sc, t, errors_of(t.q, &self.q));
+      print_row("dem", sc, t, errors_of(t.q, nullptr));
+      print_row("dem-self", sc, t, errors_of(t.q, &self.q));
     }
     const Timed d = timed_run(sc, 0);
-    print_row("dem-default", sc, d, errors_of(d.q, sc.many_body ? &self.q : nullptr));
+    print_row("dem-default", sc, d, errors_of(d.q, nullptr));
   }
+  if (runs) std::fclose(runs);
   return 0;
 }
 
