@@ -22,20 +22,68 @@ struct Smallest {
   double radius = kInf;
 };
 
-// A characteristic impact speed: twice the fastest initial particle, or a free fall from the top of
-// the particle cloud to the lowest body below it (a particle or a wall).
+// The corners of a plate or the vertices of a mesh (none for a plane).
+std::vector<Vec3> wall_points(const WallInit& w) {
+  if (const auto* plate = std::get_if<PlateShape>(&w.shape)) return {plate->corners.begin(), plate->corners.end()};
+  if (const auto* mesh = std::get_if<MeshShape>(&w.shape)) return mesh->vertices;
+  return {};
+}
+
+// The fastest a wall's prescribed motion moves a point of it or the point where it meets a
+// particle: the centre's speed plus the spin times the farthest of those from the rotation centre.
+double wall_speed(const Scene& scene, const WallInit& w) {
+  const PrescribedMotion& m = *w.motion;
+  double speed = m.velocity.norm() + m.amplitude.norm();
+  const double spin = m.angular_velocity.norm();
+  if (spin > 0) {
+    const std::vector<Vec3> points = wall_points(w);
+    Vec3 centre = Vec3::Zero();
+    if (m.center) centre = *m.center;
+    else if (!points.empty()) {
+      for (const Vec3& x : points) centre += x;
+      centre /= static_cast<double>(points.size());
+    } else if (const auto* plane = std::get_if<PlaneShape>(&w.shape)) {
+      centre = plane->point;
+    }
+    double reach = 0;
+    for (const Vec3& x : points) reach = std::max(reach, (x - centre).norm());
+    for (const ParticleInit& p : scene.particles) reach = std::max(reach, (p.position - centre).norm() + p.radius);
+    speed += spin * reach;
+  }
+  if (w.load && w.load->kind == LoadControl::Kind::Servo) speed = std::max(speed, w.load->max_speed);
+  return speed;
+}
+
+// A characteristic impact speed: twice the fastest initial particle or wall, or a free fall from
+// the top of the particle cloud to the lowest body below it (a particle or a wall), or what a
+// particle's constant force (with gravity) gives it from rest across the whole scene.
 double reference_speed(const Scene& scene) {
   double v0 = 0;
   const double g = scene.gravity.norm();
   const Vec3 down = g > 0 ? Vec3(scene.gravity / g) : Vec3::Zero();
   double top = -kInf, bottom = kInf;
+  Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);  // the scene's extent
   for (const ParticleInit& p : scene.particles) {
     v0 = std::max(v0, p.velocity.norm());
     top = std::max(top, -p.position.dot(down));
     bottom = std::min(bottom, -p.position.dot(down));
+    lo = lo.cwiseMin(p.position - Vec3::Constant(p.radius));
+    hi = hi.cwiseMax(p.position + Vec3::Constant(p.radius));
+  }
+  for (const WallInit& w : scene.walls)
+    for (const Vec3& x : wall_points(w)) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+  const double extent = (hi - lo).allFinite() ? (hi - lo).norm() : 0;
+  double pushed = 0;
+  for (const ParticleInit& p : scene.particles) {
+    if (p.force.isZero(0) || p.fixed) continue;
+    const double mass = scene.materials[p.material].density * 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
+    pushed = std::max(pushed, std::sqrt(2 * (scene.gravity + p.force / mass).norm() * extent));
   }
   for (const WallInit& w : scene.walls) {
-    if (w.motion) v0 = std::max(v0, w.motion->velocity.norm() + w.motion->amplitude.norm());
+    if (w.motion || w.load) v0 = std::max(v0, wall_speed(scene, w));
     if (const auto* plate = std::get_if<PlateShape>(&w.shape)) {
       for (const Vec3& c : plate->corners) bottom = std::min(bottom, -c.dot(down));
     } else if (const auto* mesh = std::get_if<MeshShape>(&w.shape)) {
@@ -50,7 +98,7 @@ double reference_speed(const Scene& scene) {
   }
   double fall = 0;
   if (g > 0 && top > bottom) fall = std::sqrt(2 * g * (top - bottom));
-  return std::max({2 * v0, fall, 0.1});
+  return std::max({2 * v0, fall, pushed, 0.1});
 }
 
 }  // namespace
