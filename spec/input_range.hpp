@@ -24,5 +24,10 @@ inline constexpr Quantity kDensity{1e-3, 1e12, "kg/m^3"};       // room for dens
 inline constexpr Quantity kModulus{1e-3, 1e15, "Pa"};           // Young's moduli, strengths
 inline constexpr Quantity kStiffness{1e-6, 1e18, "N/m"};
 inline constexpr Quantity kRatio{1e-3, 1e3, ""};           // bonds.radiusMultiplier: the disc's radius / the sphere's
+inline constexpr Quantity kCoefficient{1e-12, 1e3, ""};    // friction, stiffness and strength ratios, spreads, tolerances
+inline constexpr Quantity kMass{1e-30, 1e15, "kg"};        // a nanometre grain of light foam to a mountain
+inline constexpr Quantity kInertia{1e-50, 1e30, "kg m^2"};
+inline constexpr Quantity kFrequency{1e-9, 1e9, "Hz"};
+inline constexpr Quantity kGain{1e-15, 1e6, "m/(N s)"};     // a servo's speed per newton of force error
 
 }  // namespace dem::spec

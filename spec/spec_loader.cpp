@@ -95,6 +95,11 @@ class Checker {
       fail(path, "must be finite (got (" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "))");
     else if (largest > q.max) fail(path, beyond(largest, q));
   }
+  // A quantity >= 0 within its range's largest value (0 switches a feature off).
+  void non_negative(const std::string& path, double v, const Quantity& q) {
+    if (!(v >= 0) || !std::isfinite(v)) fail(path, "must be >= 0 (got " + num(v) + ")");
+    else if (v > q.max) fail(path, beyond(v, q));
+  }
   // A positive quantity within its range.
   void positive(const std::string& path, double v, const Quantity& q) {
     if (!(v > 0) || !std::isfinite(v)) fail(path, "must be a positive number (got " + num(v) + ")");
@@ -170,7 +175,7 @@ PrescribedMotion motion(const api::Motion& in, const std::string& path, Checker&
   check.vector(path + ".velocity", in.velocity(), kSpeed);
   check.vector(path + ".amplitude", in.amplitude(), kSpeed);
   check.vector(path + ".angularVelocity", in.angular_velocity(), kAngularSpeed);
-  check.non_negative(path + ".frequency", in.frequency());
+  check.non_negative(path + ".frequency", in.frequency(), kFrequency);
   if (!std::isfinite(in.phase_degrees())) check.fail(path + ".phaseDegrees", "must be finite");
   PrescribedMotion m;
   m.velocity = vec(in.velocity());
@@ -198,11 +203,11 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
   if (in.has_cyclic()) {
     const auto& c = in.cyclic();
     l.kind = LoadControl::Kind::Cyclic;
-    check.positive(path + ".mass", in.mass());
-    check.non_negative(path + ".cyclic.fMin", c.f_min());
-    check.non_negative(path + ".cyclic.fMax", c.f_max());
+    check.positive(path + ".mass", in.mass(), kMass);
+    check.non_negative(path + ".cyclic.fMin", c.f_min(), kForce);
+    check.non_negative(path + ".cyclic.fMax", c.f_max(), kForce);
     if (c.f_max() < c.f_min()) check.fail(path + ".cyclic.fMax", "must be >= fMin (got " + num(c.f_max()) + " < " + num(c.f_min()) + ")");
-    check.positive(path + ".cyclic.frequency", c.frequency());
+    check.positive(path + ".cyclic.frequency", c.frequency(), kFrequency);
     if (c.cycles() < 1) check.fail(path + ".cyclic.cycles", "must be >= 1 (got " + std::to_string(c.cycles()) + ")");
     l.mass = in.mass();
     l.f_min = c.f_min();
@@ -212,9 +217,10 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
   } else if (in.has_servo()) {
     const auto& sv = in.servo();
     l.kind = LoadControl::Kind::Servo;
-    check.non_negative(path + ".servo.target", sv.target());
-    check.positive(path + ".servo.gain", sv.gain());
-    check.positive(path + ".servo.maxSpeed", sv.max_speed());
+    check.non_negative(path + ".servo.target", sv.target(), kForce);
+    check.positive(path + ".servo.gain", sv.gain(), kGain);
+    check.positive(path + ".servo.maxSpeed", sv.max_speed(), kSpeed);
+    if (in.mass() != 0) check.positive(path + ".mass", in.mass(), kMass);
     l.target = sv.target();
     l.gain = sv.gain();
     l.max_speed = sv.max_speed();
@@ -319,13 +325,17 @@ struct ClumpBody {
 // A user's inertia tensor: symmetric positive definite with each principal moment at most the
 // sum of the other two (true of every real body); its principal moments and axes.
 void given_body(const api::GivenMassProperties& in, const std::string& path, Checker& check, ClumpBody& body) {
-  check.positive(path + ".mass", in.mass());
+  check.positive(path + ".mass", in.mass(), kMass);
   check.vector(path + ".centroid", in.centroid(), kLength);
   const api::Inertia& t = in.inertia();
   Eigen::Matrix3d inertia;
   inertia << t.xx(), t.xy(), t.xz(), t.xy(), t.yy(), t.yz(), t.xz(), t.yz(), t.zz();
   if (!inertia.allFinite()) {
     check.fail(path + ".inertia", "must be finite");
+    return;
+  }
+  if (inertia.cwiseAbs().maxCoeff() > kInertia.max) {
+    check.fail(path + ".inertia", Checker::beyond(inertia.cwiseAbs().maxCoeff(), kInertia));
     return;
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia);
@@ -741,8 +751,10 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
     const std::string path = at("interactions", k);
     const int a = material(in.a(), path + ".a"), b = material(in.b(), path + ".b");
     check.in_range(path + ".restitution", in.restitution(), 0, 1, true, false);
-    check.non_negative(path + ".friction", in.friction());
-    check.non_negative(path + ".rollingFriction", in.rolling_friction());
+    check.non_negative(path + ".friction", in.friction(), kCoefficient);
+    // mu_r is the rolling moment's lever over the radius: past 1 it would act outside the sphere
+    // (and EPSD's rolling spring, 2.25 k_n mu_r^2 R^2, would outrun the step chosen for k_n)
+    check.in_range(path + ".rollingFriction", in.rolling_friction(), 0, 1, false, false);
     if (in.rolling_friction() > 0 && scene.contact.rolling == NoRolling::kName)
       check.fail(path + ".rollingFriction", "is " + num(in.rolling_friction()) +
                                                 " but contact.rolling is NONE: choose CDT or EPSD, or set it to 0");
@@ -886,16 +898,16 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
     check.positive("bonds.youngsModulus", in.youngs_modulus(), kModulus);
     b.youngs_modulus = in.youngs_modulus();
     b.shear_stiffness_ratio = in.shear_stiffness_ratio() == 0 ? 1.0 : in.shear_stiffness_ratio();
-    check.positive("bonds.shearStiffnessRatio", b.shear_stiffness_ratio);
-    check.non_negative("bonds.tensileStrength", in.tensile_strength());
-    check.non_negative("bonds.shearStrength", in.shear_strength());
-    check.non_negative("bonds.strengthSpread", in.strength_spread());
+    check.positive("bonds.shearStiffnessRatio", b.shear_stiffness_ratio, kCoefficient);
+    check.non_negative("bonds.tensileStrength", in.tensile_strength(), kModulus);
+    check.non_negative("bonds.shearStrength", in.shear_strength(), kModulus);
+    check.non_negative("bonds.strengthSpread", in.strength_spread(), kCoefficient);
     b.tensile_strength = in.tensile_strength();
     b.shear_strength = in.shear_strength();
     b.strength_spread = in.strength_spread();
     b.seed = in.seed() == 0 ? 1u : in.seed();
     b.gap_tolerance = in.gap_tolerance() == 0 ? 1e-3 : in.gap_tolerance();
-    check.positive("bonds.gapTolerance", b.gap_tolerance);
+    check.positive("bonds.gapTolerance", b.gap_tolerance, kCoefficient);
     if (in.has_region()) {
       check.vector("bonds.region.min", in.region().min(), kLength);
       check.vector("bonds.region.max", in.region().max(), kLength);
@@ -907,7 +919,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
       const std::string path = at("bonds.zones", k);
       check.vector(path + ".min", z.min(), kLength);
       check.vector(path + ".max", z.max(), kLength);
-      check.non_negative(path + ".strengthRatio", z.strength_ratio());
+      check.non_negative(path + ".strengthRatio", z.strength_ratio(), kCoefficient);
       b.zones.push_back({Box{vec(z.min()), vec(z.max())}, z.strength_ratio()});
     }
     scene.bonds = b;

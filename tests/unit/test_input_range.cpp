@@ -3,6 +3,7 @@
 // at the stable limit, however it was computed, is accepted.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
 
 #include "sim/runner.hpp"
@@ -154,6 +155,73 @@ TEST(InputRange, BondsThatGlueNothingDoNotShortenTheStep) {
   const Simulation b(spec::to_scene(spec::parse_json(bonded)));
   EXPECT_EQ(b.bonds().bonds().size(), 0u);
   EXPECT_EQ(a.dt(), b.dt());
+}
+
+// Every free number of a spec has a bound far beyond any scene: loads, bonds, friction, given mass
+// properties, motions. Unbounded, a cyclic load's mass of 1e-300 sent the plate 5e294 m away, a
+// servo of 1e300 drove it through the bed, a bond's shear ratio of 1e300 made a non-finite number at
+// step 0, a rolling friction of 1e160 one at step 2062, and a clump's given mass of 1e-300 was
+// blamed on time.duration; each "succeeded" or failed at run time instead of naming its field.
+TEST(InputRange, EveryFreeNumberHasABound) {
+  const std::string base = R"({
+  "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}, {"name": "steel", "rigid": true}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5, "friction": FRICTION, "rollingFriction": ROLLING},
+                   {"a": "rock", "b": "steel", "restitution": 0.5, "friction": 0.5}],
+  "contact": {"rolling": "EPSD"},
+  "clumpShapes": [{"name": "pair", "spheres": [{"radius": 0.01}, {"center": {"x": 0.01}, "radius": 0.01}],
+                   "given": {"mass": GIVENMASS, "inertia": {"xx": INERTIA, "yy": 2e-6, "zz": 2e-6}}}],
+  "clumps": [{"shape": "pair", "material": "rock", "position": {"z": 0.5}}],
+  "particles": [{"position": {"z": 0.05}, "radius": 0.01, "material": "rock"}, {"position": {"z": 0.071}, "radius": 0.01, "material": "rock"}],
+  "bonds": {"youngsModulus": 1e8, "tensileStrength": TENSILE, "shearStrength": 1e6, "shearStiffnessRatio": SHEARRATIO,
+            "strengthSpread": SPREAD, "gapTolerance": GAP, "zones": [{"min": {}, "max": {"x": 1}, "strengthRatio": ZONE}]},
+  "walls": [{"material": "steel", "plane": {"normal": {"z": 1}}},
+            {"material": "steel", "plate": {"c1": {"z": 0.2}, "c2": {"x": 1, "z": 0.2}, "c3": {"x": 1, "y": 1, "z": 0.2}, "c4": {"y": 1, "z": 0.2}},
+             "load": {"mass": LOADMASS, "cyclic": {"fMin": 1, "fMax": FMAX, "frequency": FREQ, "cycles": 2}}},
+            {"material": "steel", "plate": {"c1": {"z": 0.3}, "c2": {"x": 1, "z": 0.3}, "c3": {"x": 1, "y": 1, "z": 0.3}, "c4": {"y": 1, "z": 0.3}},
+             "load": {"servo": {"target": TARGET, "gain": GAIN, "maxSpeed": MAXSPEED}}},
+            {"material": "steel", "plate": {"c1": {"z": 0.4}, "c2": {"x": 1, "z": 0.4}, "c3": {"x": 1, "y": 1, "z": 0.4}, "c4": {"y": 1, "z": 0.4}},
+             "motion": {"amplitude": {"z": 0.1}, "frequency": MOTIONFREQ}}],
+  "gravity": {"z": -9.81},
+  "time": {"duration": 0.01}
+})";
+  const std::map<std::string, std::string> fine = {
+      {"FRICTION", "0.5"}, {"ROLLING", "0.1"}, {"GIVENMASS", "0.01"}, {"INERTIA", "2e-6"}, {"TENSILE", "1e6"},
+      {"SHEARRATIO", "1"}, {"SPREAD", "0.2"}, {"GAP", "0.001"}, {"ZONE", "1"}, {"LOADMASS", "10"}, {"FMAX", "100"},
+      {"FREQ", "3"}, {"TARGET", "100"}, {"GAIN", "1e-4"}, {"MAXSPEED", "0.1"}, {"MOTIONFREQ", "5"}};
+  auto spec_with = [&](const std::string& field, const std::string& value) {
+    std::string json = base;
+    for (const auto& [key, v] : fine) {
+      const std::size_t at = json.find(key);
+      json.replace(at, key.size(), key == field ? value : v);
+    }
+    return json;
+  };
+  ASSERT_EQ(spec_problems(spec_with("", "")), "");
+  const std::pair<const char*, std::pair<const char*, const char*>> cases[] = {
+      {"FRICTION", {"1e300", "interactions[0].friction: must be at most 1000"}},
+      {"ROLLING", {"1e160", "interactions[0].rollingFriction: must be in [0, 1]"}},
+      {"ROLLING", {"1.5", "interactions[0].rollingFriction: must be in [0, 1]"}},
+      {"GIVENMASS", {"1e-300", "clumpShapes[0].given.mass: must be at least 1e-30 kg"}},
+      {"GIVENMASS", {"1e300", "clumpShapes[0].given.mass: must be at most 1e+15 kg"}},
+      {"INERTIA", {"1e300", "clumpShapes[0].given.inertia: must be at most 1e+30 kg m^2"}},
+      {"TENSILE", {"1e300", "bonds.tensileStrength: must be at most 1e+15 Pa"}},
+      {"SHEARRATIO", {"1e300", "bonds.shearStiffnessRatio: must be at most 1000"}},
+      {"SPREAD", {"1e300", "bonds.strengthSpread: must be at most 1000"}},
+      {"GAP", {"1e300", "bonds.gapTolerance: must be at most 1000"}},
+      {"ZONE", {"1e300", "bonds.zones[0].strengthRatio: must be at most 1000"}},
+      {"LOADMASS", {"1e-300", "walls[1].load.mass: must be at least 1e-30 kg"}},
+      {"LOADMASS", {"1e300", "walls[1].load.mass: must be at most 1e+15 kg"}},
+      {"FMAX", {"1e300", "walls[1].load.cyclic.fMax: must be at most 1e+15 N"}},
+      {"FREQ", {"1e300", "walls[1].load.cyclic.frequency: must be at most 1e+09 Hz"}},
+      {"TARGET", {"1e300", "walls[2].load.servo.target: must be at most 1e+15 N"}},
+      {"GAIN", {"1e300", "walls[2].load.servo.gain: must be at most 1e+06 m/(N s)"}},
+      {"MAXSPEED", {"1e300", "walls[2].load.servo.maxSpeed: must be at most 3e+08 m/s"}},
+      {"MOTIONFREQ", {"1e300", "walls[3].motion.frequency: must be at most 1e+09 Hz"}},
+  };
+  for (const auto& [field, expect] : cases) {
+    const std::string p = spec_problems(spec_with(field, expect.first));
+    EXPECT_NE(p.find(expect.second), std::string::npos) << field << " = " << expect.first << ":\n" << p;
+  }
 }
 
 }  // namespace
