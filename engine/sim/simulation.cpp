@@ -78,6 +78,8 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   state_.overlap_limit = scene_.numerics.max_overlap_fraction;
   state_.local_damping = scene_.numerics.local_damping;
   for (const ParticleInit& init : scene_.particles) largest_given_radius_ = std::max(largest_given_radius_, init.radius);
+  smallest_given_radius_ = largest_given_radius_;
+  for (const ParticleInit& init : scene_.particles) smallest_given_radius_ = std::min(smallest_given_radius_, init.radius);
   const int boundaries = static_cast<int>(scene_.walls.size());
   plane_index_.assign(boundaries, -1);
   mesh_index_.assign(boundaries, -1);
@@ -100,6 +102,9 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
       for (const Vec3& v : state_.meshes.back().vertices0) wall_extent_[k] = std::max(wall_extent_[k], (v - c0).norm());
     } else if (state_.walls.back().kind == Wall::Kind::Plate) {
       for (const Vec3& v : state_.walls.back().corners) wall_extent_[k] = std::max(wall_extent_[k], (v - c0).norm());
+    } else {  // a plane is as wide as the particles' reach from its centre
+      for (const ParticleInit& p : scene_.particles)
+        wall_extent_[k] = std::max(wall_extent_[k], (p.position - c0).norm() + p.radius);
     }
   }
   boundary_loads_.assign(boundaries, BoundaryLoad{});
@@ -118,6 +123,21 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   // the step knows whether any bond was made (a bonds block that glued nothing does not shorten it)
   time_step_ = choose_time_step(scene_, *kernel_, !state_.bonds.empty());
   state_.dt = time_step_.dt;
+  // A prescribed motion must not carry a wall through a particle between two force evaluations.
+  const double wall_reach = 0.5 * scene_.numerics.max_overlap_fraction * smallest_given_radius_;
+  for (int k = 0; k < boundaries && !scene_.particles.empty(); ++k) {
+    if (!scene_.walls[k].motion) continue;
+    const double move = fastest_wall_speed(scene_, scene_.walls[k]) * state_.dt;
+    if (move <= wall_reach) continue;
+    char buf[480];
+    std::snprintf(buf, sizeof buf,
+                  "walls[%d] (%s): its motion moves it up to %.3e m in one step of %.6e s, more than %.3g of the smallest "
+                  "particle radius (%.3e m): it would pass through particles unseen; make it slower, or the step smaller "
+                  "(time.dt or time.dtFraction)",
+                  k, scene_.walls[k].name.c_str(), move, state_.dt, 0.5 * scene_.numerics.max_overlap_fraction,
+                  smallest_given_radius_);
+    throw SceneError(buf);
+  }
   // Step counts are int64 and times step * dt: past 2^53 steps neither is exact any more.
   constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
   if (scene_.time.steps > 0) {
@@ -237,6 +257,25 @@ double Simulation::wall_shift_since_build() const {
   return shift;
 }
 
+// A wall (a load drives it; a prescribed motion was checked at the set-up) that moved so far in
+// this step that it could pass through a particle unseen: the first such step is kept (TooFast).
+void Simulation::check_wall_moves(const std::vector<WallPose>& before) {
+  if (first_too_fast_) return;
+  const double reach = 0.5 * scene_.numerics.max_overlap_fraction * smallest_given_radius_;
+  for (std::size_t k = 0; k < drivers_.size(); ++k) {
+    if (!drivers_[k].moves()) continue;
+    const WallPose& now = drivers_[k].pose();
+    const Eigen::Matrix3d turn = before[k].rotation.transpose() * now.rotation;
+    const double angle = std::acos(std::clamp((turn.trace() - 1) / 2, -1.0, 1.0));
+    const double moved = (now.displacement - before[k].displacement).norm() + angle * wall_extent_[k];
+    if (moved > reach) {
+      first_too_fast_ = TooFast{step_ + 1, static_cast<double>(step_ + 1) * state_.dt, -1, moved, smallest_given_radius_,
+                               static_cast<int>(k)};
+      return;
+    }
+  }
+}
+
 void Simulation::add_work(double& account, double work) {
   account += work;
   ledger_.magnitude += std::abs(work);
@@ -284,7 +323,10 @@ void Simulation::step() {
   kernel_->compute_and_kick(state_);
   if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, state_.dt);
   settle_walls(t_new, state_.dt);
-  if (walls_move) add_wall_work(poses_before, loads_before);
+  if (walls_move) {
+    add_wall_work(poses_before, loads_before);
+    check_wall_moves(poses_before);
+  }
   contacts_recorded_ = state_.record_contacts;
   ++step_;
   if (moved_too_far_ && !first_too_fast_) {

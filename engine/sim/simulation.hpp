@@ -54,7 +54,8 @@ struct TooFast {
   double time = 0;
   int particle_id = 0;
   double distance = 0;  // moved in that step, m
-  double radius = 0;
+  double radius = 0;    // the particle's; for a wall, the smallest particle's
+  int wall = -1;        // a wall (its index in Scene::walls) that moved so far, instead of a particle
 };
 
 // The work done on the particles since the start by what feeds energy in, J: moving and loaded
@@ -138,6 +139,7 @@ class Simulation {
 
   double half_kick_and_drift();  // returns the largest squared displacement since the last build
   void add_wall_work(const std::vector<WallPose>& before, const std::vector<BoundaryLoad>& loads_before);
+  void check_wall_moves(const std::vector<WallPose>& before);
   void add_work(double& account, double work);
   void build_neighbors();
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);
@@ -176,6 +178,7 @@ class Simulation {
   std::vector<double> wall_extent_;         // largest distance of a wall's points from its centre
   std::vector<BoundaryLoad> boundary_loads_;
   double largest_given_radius_ = 0;         // of the scene's particles (growth scales it)
+  double smallest_given_radius_ = 0;        // of the scene's particles
   double growth_scale_ = 1;                 // radii now over their given sizes (Scene::growth)
   double growth_at_build_ = 1;              // the same at the last build
   std::optional<NonFinite> first_non_finite_;

@@ -42,6 +42,17 @@ double StabilityGuard::mechanical_energy(const Simulation& sim, const ContactSum
 }
 
 void StabilityGuard::check_finite(const Simulation& sim) const {
+  if (const std::optional<TooFast>& fast = sim.first_too_fast(); fast && fast->wall >= 0) {
+    char buf[480];
+    std::snprintf(buf, sizeof buf,
+                  "unstable: wall %d (%s) moved %.3e m in one step at step %lld (t = %.6e s), more than %.3g of the "
+                  "smallest particle radius (%.3e m): it could pass through particles unseen; likely cause: its load "
+                  "drives it faster than the time step resolves (a servo's maxSpeed, or a cyclic load on a light wall; ",
+                  fast->wall + 1, sim.scene().walls[fast->wall].name.c_str(), fast->distance,
+                  static_cast<long long>(fast->step), fast->time, 0.5 * sim.scene().numerics.max_overlap_fraction,
+                  fast->radius);
+    throw InstabilityError(buf + sim.time_step().describe() + ")");
+  }
   if (const std::optional<TooFast>& fast = sim.first_too_fast()) {
     char buf[400];
     std::snprintf(buf, sizeof buf,

@@ -29,31 +29,6 @@ std::vector<Vec3> wall_points(const WallInit& w) {
   return {};
 }
 
-// The fastest a wall's prescribed motion moves a point of it or the point where it meets a
-// particle: the centre's speed plus the spin times the farthest of those from the rotation centre.
-double wall_speed(const Scene& scene, const WallInit& w) {
-  const PrescribedMotion& m = *w.motion;
-  double speed = m.velocity.norm() + m.amplitude.norm();
-  const double spin = m.angular_velocity.norm();
-  if (spin > 0) {
-    const std::vector<Vec3> points = wall_points(w);
-    Vec3 centre = Vec3::Zero();
-    if (m.center) centre = *m.center;
-    else if (!points.empty()) {
-      for (const Vec3& x : points) centre += x;
-      centre /= static_cast<double>(points.size());
-    } else if (const auto* plane = std::get_if<PlaneShape>(&w.shape)) {
-      centre = plane->point;
-    }
-    double reach = 0;
-    for (const Vec3& x : points) reach = std::max(reach, (x - centre).norm());
-    for (const ParticleInit& p : scene.particles) reach = std::max(reach, (p.position - centre).norm() + p.radius);
-    speed += spin * reach;
-  }
-  if (w.load && w.load->kind == LoadControl::Kind::Servo) speed = std::max(speed, w.load->max_speed);
-  return speed;
-}
-
 // A characteristic impact speed: twice the fastest initial particle or wall, or a free fall from
 // the top of the particle cloud to the lowest body below it (a particle or a wall), or what a
 // particle's constant force (with gravity) gives it from rest across the whole scene.
@@ -83,7 +58,7 @@ double reference_speed(const Scene& scene) {
     pushed = std::max(pushed, std::sqrt(2 * (scene.gravity + p.force / mass).norm() * extent));
   }
   for (const WallInit& w : scene.walls) {
-    if (w.motion || w.load) v0 = std::max(v0, wall_speed(scene, w));
+    if (w.motion || w.load) v0 = std::max(v0, fastest_wall_speed(scene, w));
     if (const auto* plate = std::get_if<PlateShape>(&w.shape)) {
       for (const Vec3& c : plate->corners) bottom = std::min(bottom, -c.dot(down));
     } else if (const auto* mesh = std::get_if<MeshShape>(&w.shape)) {
@@ -102,6 +77,32 @@ double reference_speed(const Scene& scene) {
 }
 
 }  // namespace
+
+double fastest_wall_speed(const Scene& scene, const WallInit& w) {
+  double speed = 0;
+  if (w.motion) {
+    const PrescribedMotion& m = *w.motion;
+    speed = m.velocity.norm() + m.amplitude.norm();
+    const double spin = m.angular_velocity.norm();
+    if (spin > 0) {
+      const std::vector<Vec3> points = wall_points(w);
+      Vec3 centre = Vec3::Zero();
+      if (m.center) centre = *m.center;
+      else if (!points.empty()) {
+        for (const Vec3& x : points) centre += x;
+        centre /= static_cast<double>(points.size());
+      } else if (const auto* plane = std::get_if<PlaneShape>(&w.shape)) {
+        centre = plane->point;
+      }
+      double reach = 0;
+      for (const Vec3& x : points) reach = std::max(reach, (x - centre).norm());
+      for (const ParticleInit& p : scene.particles) reach = std::max(reach, (p.position - centre).norm() + p.radius);
+      speed += spin * reach;
+    }
+  }
+  if (w.load && w.load->kind == LoadControl::Kind::Servo) speed = std::max(speed, w.load->max_speed);
+  return speed;
+}
 
 std::string TimeStepReport::describe() const {
   char buf[320];

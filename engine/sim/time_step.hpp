@@ -24,4 +24,9 @@ struct TimeStepReport {
 // count when `bonded` (some bond was made).
 TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel, bool bonded = true);
 
+// The fastest a wall's prescribed motion (or servo load) moves a point of it, or the point where it
+// meets a particle: its centre's speed plus its spin times the farthest of its corners, vertices
+// and the particles from its rotation centre; at least a servo's speed limit.
+double fastest_wall_speed(const Scene& scene, const WallInit& wall);
+
 }  // namespace dem
