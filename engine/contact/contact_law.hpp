@@ -31,6 +31,15 @@ struct ContactLaw {
     return {Normal::mix(a, b, in, c), Tangential::mix(a, b, in, c), Rolling::mix(a, b, in, c)};
   }
 
+  // The energy a contact holds: its normal spring's, and its tangential spring's (displacement
+  // `shear`: k_t |shear|^2 / 2) and rolling spring's (moment `roll`), where the law has them.
+  static double stored_energy(const Pair& p, double delta, double r_eff, const Vec3& shear, const Vec3& roll) {
+    double e = Normal::elastic_energy(p.normal, delta, r_eff);
+    if constexpr (kFriction) e += 0.5 * Normal::tangential_stiffness(p.normal, delta, r_eff) * shear.squaredNorm();
+    if constexpr (kRollingSpring) e += Rolling::spring_energy(p.rolling, Normal::normal_stiffness(p.normal, delta, r_eff), r_eff, roll);
+    return e;
+  }
+
   // The same, one material pair per lane.
   template <class T>
   struct Lanes {

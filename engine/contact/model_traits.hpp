@@ -10,7 +10,9 @@
 //   Pair           its coefficients for one pair of materials, and `mix` that makes them
 //   Lanes<T>       the same coefficients, one per lane of the force loop
 //   evaluate       the law itself
-// and, by kind, the contact time, the stored energy or the rolling moment (see each kind's file).
+// and, by kind: a normal model its contact and wave times, its stored energy and its normal and
+// tangential stiffnesses at an overlap (for the energy the tangential and rolling springs hold); a
+// rolling model with a spring that spring's energy (see each kind's file).
 #pragma once
 
 #include <array>

@@ -66,6 +66,9 @@ struct HertzNormal {
   static double elastic_energy(const Pair& p, double delta, double r_eff) {
     return (8.0 / 15.0) * p.e_star * std::sqrt(r_eff) * delta * delta * std::sqrt(delta);
   }
+  // The stiffnesses evaluate() gives at this overlap: dF_n/d(delta) and the tangential spring's.
+  static double normal_stiffness(const Pair& p, double delta, double r_eff) { return 2.0 * p.e_star * std::sqrt(r_eff * delta); }
+  static double tangential_stiffness(const Pair& p, double delta, double r_eff) { return 8.0 * p.g_star * std::sqrt(r_eff * delta); }
 
   // t_c = 2.9432 alpha_max / V, alpha_max = (15 m* V^2 / (16 sqrt(R*) E*))^(2/5) (docs/validation.md).
   // A damping number eta > 1 (e < 0.4 without tension) makes the dashpot the faster process: the

@@ -56,6 +56,9 @@ struct LinearNormal {
   }
 
   static double elastic_energy(const Pair& p, double delta, double /*r_eff*/) { return 0.5 * p.kn * delta * delta; }
+  // The stiffnesses evaluate() gives at this overlap: dF_n/d(delta) and the tangential spring's.
+  static double normal_stiffness(const Pair& p, double /*delta*/, double /*r_eff*/) { return p.kn; }
+  static double tangential_stiffness(const Pair& p, double /*delta*/, double /*r_eff*/) { return p.kt_ratio * p.kn; }
 
   // T = pi / sqrt(K_n/m* (1 - zeta^2)) (eq. 7 with m* the reduced mass). Past zeta = 0.5 (e < 0.2
   // with tension; the no-tension fit reaches zeta > 1) the dashpot, not the spring, sets the time

@@ -36,6 +36,12 @@ struct EpsdRolling {
     }
   };
 
+  // The energy the rolling spring (its moment mk) holds: |mk|^2 / (2 k_r).
+  static double spring_energy(const Pair& p, double kn_tangent, double r_eff, const Vec3& mk) {
+    const double kr = 2.25 * kn_tangent * p.mu_r * p.mu_r * r_eff * r_eff;
+    return kr > 0 ? 0.5 * mk.squaredNorm() / kr : 0.0;
+  }
+
   // mk: the contact's rolling spring, updated in place.
   template <class T>
   DEM_HOT static V3<T> evaluate(const Lanes<T>& p, const NormalResponse<T>& nr, T fn, const ContactInput<T>& c,

@@ -50,9 +50,10 @@ class ForceKernelImpl final : public ForceKernel {
   }
 
  private:
-  // The contacts the particles at their positions make with these radii.
+  // The contacts the particles at their positions make with these radii, and the energy they hold.
   ContactSummary survey(const SimState& s, const std::vector<double>& radius) const {
     const Particles& p = s.particles;
+    static const Vec3 kNone = Vec3::Zero();  // the rolling spring of a law without one
     ContactSummary sum;
     auto note = [&](int i, int j, double delta, double r_min, double elastic) {
       ++sum.contacts;
@@ -72,7 +73,8 @@ class ForceKernelImpl final : public ForceKernel {
         const double dist = (p.x[i] - p.x[j]).norm();
         if (dist >= rs) continue;
         note(i, j, rs - dist, std::min(ri, rj),
-             Normal::elastic_energy(table_(p.material[i], p.material[j]).normal, rs - dist, ri * rj / rs));
+             Law::stored_energy(table_(p.material[i], p.material[j]), rs - dist, ri * rj / rs, s.neighbors.shear[k],
+                                Law::kRollingSpring ? s.neighbors.roll[k] : kNone));
       }
       if constexpr (kWalls) {
         for (int e = s.wall_contacts.row_start[i]; e < s.wall_contacts.row_start[i + 1]; ++e) {
@@ -80,7 +82,9 @@ class ForceKernelImpl final : public ForceKernel {
           Vec3 normal;
           double delta;
           if (!wall.contact(p.x[i], ri, normal, delta)) continue;
-          note(i, -1, delta, ri, Normal::elastic_energy(table_(p.material[i], wall.material).normal, delta, ri));
+          note(i, -1, delta, ri,
+               Law::stored_energy(table_(p.material[i], wall.material), delta, ri, s.wall_contacts.shear[e],
+                                  Law::kRollingSpring ? s.wall_contacts.roll[e] : kNone));
         }
         const MeshContacts& mc = s.mesh_contacts;
         for (int k = 0, used = mc.count(i); k < used; ++k) {
@@ -88,7 +92,8 @@ class ForceKernelImpl final : public ForceKernel {
           const double delta = slot.delta + (ri - p.radius[i]);
           if (delta <= 0) continue;
           note(i, -1, delta, ri,
-               slot.weight * Normal::elastic_energy(table_(p.material[i], s.meshes[slot.mesh].material).normal, delta, ri));
+               slot.weight * Law::stored_energy(table_(p.material[i], s.meshes[slot.mesh].material), delta, ri, slot.shear,
+                                                slot.roll));
         }
       }
     }

@@ -45,6 +45,8 @@ struct ToyNormal {
     return {stiffness * c.delta * c.delta, 2.0 * stiffness * c.delta, T{}, T{}};
   }
   static double elastic_energy(const Pair& p, double delta, double r_eff) { return p.k / r_eff * delta * delta * delta / 3; }
+  static double normal_stiffness(const Pair& p, double delta, double r_eff) { return 2 * p.k / r_eff * delta; }
+  static double tangential_stiffness(const Pair&, double, double) { return 0; }
   // t_c = 2 (delta_max / V) integral_0^1 du / sqrt(1 - u^3), delta_max = (3 m* V^2 / (2 c))^(1/3)
   static double contact_time(const Pair& p, double m_eff, double r_eff, double v) {
     return 2 * kToyIntegral * std::cbrt(3 * m_eff * v * v * r_eff / (2 * p.k)) / v;

@@ -162,5 +162,44 @@ TEST(EnergyBalance, FullPrecisionGivesTheDoublesBack) {
   std::filesystem::remove_all(folder);
 }
 
+// Energy held in the tangential and rolling springs is stored, not dissipated: a sphere stuck to a
+// plane, rocking on its tangential spring (restitution 1: no dashpot; friction high enough never to
+// slide), and one rocking on EPSD's rolling spring, keep their mechanical energy. Without the
+// springs' energy the "dissipated" column swung between 0 and all of the kinetic energy.
+TEST(EnergyBalance, TangentialAndRollingSpringsStoreTheirEnergy) {
+  for (std::string_view law : {LinearNormal::kName, HertzNormal::kName})
+    for (bool rolling : {false, true}) {
+      Scene s = base_scene(law, 2600, 1e8, 0.25, 1.0, 5.0, 1e5);
+      if (rolling) {
+        set_rolling(s, EpsdRolling::kName, 0.3);
+        s.contact.parameters.set(EpsdRolling::kDampingRatio.field, 0.0);
+      }
+      s.gravity = {0, 0, -9.81};
+      const double r = 0.005;
+      // resting in its static overlap, nudged sideways (a stuck contact rocks on its spring) or
+      // given a small spin (the rolling spring takes it back)
+      const double m = sphere_mass(2600, r);
+      const double e_star = 1e8 / (1 - 0.25 * 0.25);  // against a rigid wall
+      const double z = law == LinearNormal::kName ? r - m * 9.81 / (2 * 1e5)
+                                                  : r - std::pow(m * 9.81 / (4.0 / 3.0 * e_star * std::sqrt(r)), 2.0 / 3.0);
+      s.particles.push_back(sphere({0, 0, z}, r, {rolling ? 0.0 : 1e-4, 0, 0}, {0, rolling ? 0.02 : 0.0, 0}));
+      s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+      s.time.steps = 100000000;
+      Simulation sim(s);
+      for (int k = 0; k < 2000; ++k) sim.step();  // the normal oscillation of the start, if any, is what it is
+      const double e0 = sim.mechanical_energy();
+      const double kinetic = sim.kinetic_energy();
+      double worst = 0, swing = 0;
+      for (int k = 0; k < 20000; ++k) {
+        sim.step();
+        worst = std::max(worst, std::abs(sim.mechanical_energy() - e0));
+        swing = std::max(swing, std::abs(sim.kinetic_energy() - kinetic));
+      }
+      report(std::string(law) + (rolling ? " rolling" : " tangential") + " spring: energy change / kinetic swing", worst / swing, 0.0);
+      ASSERT_GT(swing, 0) << "nothing rocked";
+      EXPECT_LT(worst, 0.01 * swing) << law << (rolling ? " rolling" : " tangential");
+    }
+}
+
 }  // namespace
 }  // namespace dem::test
