@@ -114,6 +114,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   skin_ = scene_.numerics.skin_fraction * mean_diameter(state_.particles.radius);
   move_walls(0, 0);
   build_neighbors();
+  refuse_coincident_particles();
   if (scene_.bonds) {
     state_.particles.q.assign(state_.particles.size(), Quat::Identity());  // the bonds measure turns from here
     std::vector<int> stone;  // breakable stones glue only inside themselves
@@ -274,6 +275,25 @@ void Simulation::check_wall_moves(const std::vector<WallPose>& before) {
       return;
     }
   }
+}
+
+// Two particles with one centre: the contact between them has no direction (its normal is 0/0).
+void Simulation::refuse_coincident_particles() const {
+  const Particles& p = state_.particles;
+  const NeighborList& nl = state_.neighbors;
+  for (int i = 0; i < static_cast<int>(p.size()); ++i)
+    for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+      const int j = nl.partner[k];
+      const double close = 1e-9 * (p.radius[i] + p.radius[j]);
+      if ((p.x[i] - p.x[j]).squaredNorm() > close * close) continue;
+      const int a = std::min(p.id[i], p.id[j]) + 1, b = std::max(p.id[i], p.id[j]) + 1;
+      char buf[300];
+      std::snprintf(buf, sizeof buf,
+                    "particles: particles %d and %d are at the same place (centres %.3e m apart, radii %.3e and %.3e m): "
+                    "a contact between them has no direction; move one of them",
+                    a, b, (p.x[i] - p.x[j]).norm(), p.radius[i], p.radius[j]);
+      throw SceneError(buf);
+    }
 }
 
 void Simulation::add_work(double& account, double work) {

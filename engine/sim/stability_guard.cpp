@@ -1,5 +1,6 @@
 #include "sim/stability_guard.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -21,6 +22,7 @@ std::string where(const Simulation& sim, int index) {
 StabilityGuard::StabilityGuard(const Simulation& sim) {
   const ContactSummary contacts = sim.contact_summary();
   initial_energy_ = mechanical_energy(sim, contacts);
+  lowest_balance_ = initial_energy_;
   // What could legitimately move around: the kinetic and elastic energy now, and the potential
   // energy of a fall across the whole particle cloud.
   const Particles& p = sim.particles();
@@ -121,6 +123,10 @@ void StabilityGuard::check(const Simulation& sim) const {
     const std::string partner = contacts.worst_partner >= 0
                                     ? " (its contact with particle " + std::to_string(p.id[contacts.worst_partner] + 1) + ")"
                                     : " (its contact with a wall)";
+    if (sim.step_count() == 0)  // before any step: the overlap is where the particles were put
+      throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner +
+                             " as placed, before the first step; likely cause: the scene's initial positions (move "
+                             "them apart or make them smaller, or let them grow into place with growth)");
     throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner +
                            "; likely cause: the contact stiffness is too low for the load, or the time step "
                            "too large (" + sim.time_step().describe() + ")");
@@ -132,14 +138,17 @@ void StabilityGuard::check(const Simulation& sim) const {
   const double fed = input.total() - input_at_start_.total();
   const double slack = 0.05 * (energy_scale_ + input.magnitude - input_at_start_.magnitude);
   const double energy = mechanical_energy(sim, contacts);
-  if (energy > initial_energy_ + fed + slack + 1e-300) {
+  lowest_balance_ = std::min(lowest_balance_, energy - fed);
+  if (energy - fed > lowest_balance_ + slack + 1e-300) {
     // name the fastest particle: that is where the energy went
     std::size_t fastest = 0;
     for (std::size_t i = 1; i < p.size(); ++i)
       if (p.v[i].squaredNorm() > p.v[fastest].squaredNorm()) fastest = i;
     char buf[300];
-    std::snprintf(buf, sizeof buf, "unstable: mechanical energy grew from %.6e J to %.6e J, more than the %.6e J its sources fed in, ",
-                  initial_energy_, energy, fed);
+    std::snprintf(buf, sizeof buf,
+                  "unstable: mechanical energy grew from %.6e J to %.6e J, more than the %.6e J its sources fed in "
+                  "(less that work it rose from its lowest, %.6e J, to %.6e J), ",
+                  initial_energy_, energy, fed, lowest_balance_, energy - fed);
     throw InstabilityError(buf + where(sim, static_cast<int>(fastest)) +
                            " (the fastest); likely cause: the time step is too large for the contact stiffness (" +
                            sim.time_step().describe() + ")");

@@ -24,6 +24,9 @@ class StabilityGuard {
   double initial_energy_ = 0;
   double energy_scale_ = 0;
   EnergyLedger input_at_start_;
+  // The lowest the energy less the work its sources fed in has been at a check: energy made after
+  // much was lost is made all the same.
+  mutable double lowest_balance_ = 0;
 };
 
 }  // namespace dem

@@ -8,6 +8,7 @@
 #include "legacy/legacy_formats.hpp"
 #include "output/legacy_output.hpp"
 #include "output/run_writers.hpp"
+#include "sim/stability_guard.hpp"
 #include "support/scenes.hpp"
 
 namespace dem::test {
@@ -261,6 +262,64 @@ TEST(StabilityGuard, AWallFastEnoughToPassThroughParticlesIsRefusedOrStopped) {
   ASSERT_FALSE(outcome.ok);
   EXPECT_NE(outcome.error.find("wall 1 (press) moved"), std::string::npos) << outcome.error;
   EXPECT_LE(outcome.steps, 2) << outcome.error;
+}
+
+// Causes named for what they are. Two particles at one point were "not a finite number at step 0
+// ... likely cause: the time step is too large"; particles placed overlapping were blamed on the
+// stiffness and the time step.
+TEST(StabilityGuard, ParticlesAtOnePointAreASceneErrorNamingBoth) {
+  Scene s = pressed_pair();
+  s.particles[1].position = s.particles[0].position;
+  try {
+    Simulation sim(s);
+    ADD_FAILURE() << "two particles at one point were accepted";
+  } catch (const SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("particles 1 and 2"), std::string::npos) << m;
+    EXPECT_NE(m.find("same place"), std::string::npos) << m;
+  }
+}
+
+TEST(StabilityGuard, AnOverlapAsPlacedIsBlamedOnThePlacement) {
+  Scene s = pressed_pair();
+  s.particles[1].position = {-0.0099 + 0.01, 0, 0};  // 50% of the radius
+  Simulation sim(s);
+  const RunOutcome outcome = run(sim, {});
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_EQ(outcome.steps, 0);
+  EXPECT_NE(outcome.error.find("as placed"), std::string::npos) << outcome.error;
+  EXPECT_EQ(outcome.error.find("stiffness is too low"), std::string::npos) << outcome.error;
+}
+
+// Energy made after much was lost is still made: the guard compares with the lowest the balance
+// has been, not only with the start (a stiff rolling dashpot once made 1.65 times the initial
+// energy after the pile had settled, and the run ended "ok").
+TEST(StabilityGuard, EnergyMadeAfterLossesStopsTheRun) {
+  // a damped drop loses most of its energy; then the contact's step goes unstable
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0.25, 0.1, 0.0, 1e4);
+  s.particles.push_back(sphere({0, 0, 0.0105}, 0.01, {0, 0, -1}));
+  s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
+  s.gravity = {0, 0, -9.81};
+  s.time.steps = 400000;
+  s.numerics.check_interval = 10;
+  s.numerics.max_overlap_fraction = 1.0;
+  Simulation sim(s);
+  StabilityGuard guard(sim);
+  for (int k = 0; k < 20000; ++k) sim.step();
+  ASSERT_LT(sim.mechanical_energy(), 0.5 * sim.energy_input().initial_energy) << "it did not lose much";
+  EXPECT_NO_THROW(guard.check(sim));
+  // now feed energy from nothing: kick the sphere up to a quarter of what it started with
+  const double m = sphere_mass(2500, 0.01);
+  const double lost_to = sim.mechanical_energy();
+  const_cast<Vec3&>(sim.particles().v[0]) += Vec3(0, 0, std::sqrt(2 * 0.25 * sim.energy_input().initial_energy / m));
+  ASSERT_LT(sim.mechanical_energy(), sim.energy_input().initial_energy);
+  ASSERT_GT(sim.mechanical_energy(), lost_to + 0.2 * sim.energy_input().initial_energy);
+  try {
+    guard.check(sim);
+    ADD_FAILURE() << "energy made after losses went unseen";
+  } catch (const InstabilityError& e) {
+    EXPECT_NE(std::string(e.what()).find("lowest"), std::string::npos) << e.what();
+  }
 }
 
 TEST(StabilityGuard, AStableRunIsLeftAlone) {
