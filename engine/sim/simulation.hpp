@@ -141,6 +141,7 @@ class Simulation {
   void add_wall_work(const std::vector<WallPose>& before, const std::vector<BoundaryLoad>& loads_before);
   void check_wall_moves(const std::vector<WallPose>& before);
   void refuse_coincident_particles() const;
+  void refuse_positions_past_precision() const;
   void add_work(double& account, double work);
   void build_neighbors();
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);

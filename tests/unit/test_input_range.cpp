@@ -224,5 +224,37 @@ TEST(InputRange, EveryFreeNumberHasABound) {
   }
 }
 
+// Far from the origin a double resolves too little of a small sphere: two 1 mm spheres meeting at
+// x = 9.9e8 m rebounded with e = 0.844 for 0.8 (a coordinate there is resolved to 1e-7 m, a tenth
+// of their overlap). Positions past 1e9 smallest radii from the origin are refused, naming them;
+// 1e8 radii away the same impact is right.
+TEST(InputRange, PositionsTooFarFromTheOriginForTheSphereSizeAreRefused) {
+  auto pair_at = [](double x) {
+    Scene s;
+    s.materials.push_back({"p", 2500, 0, 0, 1e3, false});
+    s.interactions.assign(1, Interaction{0.8, 0, 0});
+    s.contact.normal = LinearNormal::kName;
+    s.time.steps = 100000000;
+    s.outputs.animation = false;
+    for (double side : {-1.0, 1.0}) {
+      ParticleInit p;
+      p.position = {x + side * 1.1e-3, 0, 0};
+      p.velocity = {-side * 0.1, 0, 0};
+      p.radius = 1e-3;
+      s.particles.push_back(p);
+    }
+    return s;
+  };
+  try {
+    Simulation sim(pair_at(9.9e8));
+    ADD_FAILURE() << "spheres of 1 mm at 9.9e8 m were accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("from the origin"), std::string::npos) << e.what();
+  }
+  Simulation near(pair_at(1e5));  // 1e8 radii out
+  while (near.time() < 0.05) near.step();
+  EXPECT_NEAR(near.particles().v[1].x() / 0.1, 0.8, 0.01);
+}
+
 }  // namespace
 }  // namespace dem::test
