@@ -24,6 +24,7 @@
 #include "spec/ballast_stones.hpp"
 #include "spec/clump_template.hpp"
 #include "spec/input_range.hpp"
+#include "spec/json_keys.hpp"
 #include "spec/inside_mesh.hpp"
 #include "spec/packing.hpp"
 #include "spec/referenced_files.hpp"
@@ -47,6 +48,12 @@ std::string num(double v) {
 std::string at(const std::string& path, int index) { return path + "[" + std::to_string(index) + "]"; }
 
 Vec3 vec(const api::Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+// A direction of any length (1e-300 too, whose square underflows): scaled by its largest component first.
+Vec3 unit(const Vec3& d) {
+  const Vec3 scaled = d / d.cwiseAbs().maxCoeff();
+  return scaled.normalized();
+}
 
 // Collects problems, each "path: what is wrong (got value; allowed range)"; past the limits' count
 // they are only counted (a spec of 20,000 bad particles once got a 121 MB list).
@@ -197,8 +204,8 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
   if (in.has_direction()) {
     check.vector(path + ".direction", in.direction(), kDirection);
     const Vec3 d = vec(in.direction());
-    if (!(d.norm() > 0)) check.fail(path + ".direction", "must not be zero");
-    else l.direction = d.normalized();
+    if (!(d.stableNorm() > 0)) check.fail(path + ".direction", "must not be zero");
+    else l.direction = unit(d);
   }
   if (in.has_cyclic()) {
     const auto& c = in.cyclic();
@@ -672,6 +679,11 @@ api::JobSpec parse_json(const std::string& text) {
   } catch (const nlohmann::json::exception& e) {  // a number too large for a double (1e999)
     throw SpecError({std::string("spec: malformed JSON: ") + e.what()});
   }
+  std::vector<std::string> repeated = repeated_keys(text);
+  if (!repeated.empty()) {
+    for (std::string& path : repeated) path += ": is given twice in its object (the parser would keep the last one)";
+    throw SpecError(repeated);
+  }
   api::JobSpec spec;
   google::protobuf::util::JsonParseOptions options;
   options.ignore_unknown_fields = false;
@@ -858,8 +870,8 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
       check.vector(path + ".plane.point", in.plane().point(), kLength);
       check.vector(path + ".plane.normal", in.plane().normal(), kDirection);
       const Vec3 n = vec(in.plane().normal());
-      if (!(n.norm() > 0)) check.fail(path + ".plane.normal", "must not be zero");
-      w.shape = PlaneShape{vec(in.plane().point()), n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitZ()};
+      if (!(n.stableNorm() > 0)) check.fail(path + ".plane.normal", "must not be zero");
+      w.shape = PlaneShape{vec(in.plane().point()), n.stableNorm() > 0 ? unit(n) : Vec3::UnitZ()};
     } else if (in.has_plate()) {
       const auto& pl = in.plate();
       PlateShape plate{{vec(pl.c1()), vec(pl.c2()), vec(pl.c3()), vec(pl.c4())}};

@@ -190,6 +190,27 @@ TEST(SpecLoader, GivenOptionsOverrideTheDefaults) {
   EXPECT_EQ(s.domain->max, Vec3(1, 1, 2));
 }
 
+// A key given twice in one object is named, not settled silently by keeping the last (the docs say
+// nothing is ignored): also when its two spellings, camelCase and the proto's, are mixed.
+TEST(SpecLoader, AKeyGivenTwiceIsNamed) {
+  const auto twice = problems_of(good_with(R"("restitution": 0.8,)", R"("restitution": 0.8, "restitution": 0.9,)"));
+  EXPECT_TRUE(has_problem(twice, "interactions[1].restitution", "given twice")) << listing(twice);
+  const auto spelled = problems_of(good_with(R"("normalStiffness": 1e5,)", R"("normalStiffness": 1e5, "normal_stiffness": 2e5,)"));
+  EXPECT_TRUE(has_problem(spelled, "materials[0].normal_stiffness", "given twice")) << listing(spelled);
+  const auto top = problems_of(std::string(kGoodSpec).replace(1, 0, R"("name": "first",)"));
+  EXPECT_TRUE(has_problem(top, "name", "given twice")) << listing(top);
+  // the same key in different objects is fine
+  EXPECT_NO_THROW(to_scene(parse_json(kGoodSpec)));
+}
+
+// A normal of any length is made unit, a tiny one too (its square underflowed: refused as zero).
+TEST(SpecLoader, ATinyNormalIsADirection) {
+  const Scene s = to_scene(parse_json(good_with(R"("normal": {"z": 2})", R"("normal": {"z": 1e-300})")));
+  EXPECT_EQ(std::get<PlaneShape>(s.walls[0].shape).normal, Vec3::UnitZ());
+  const auto zero = problems_of(good_with(R"("normal": {"z": 2})", R"("normal": {"z": 0})"));
+  EXPECT_TRUE(has_problem(zero, "walls[0].plane.normal", "must not be zero")) << listing(zero);
+}
+
 TEST(SpecLoader, ProtoFieldNamesAreAcceptedAsWellAsCamelCase) {
   // The canonical JSON mapping accepts both spellings (dem.proto header).
   const Scene s = to_scene(parse_json(good_with(R"("normalStiffness": 1e5)", R"("normal_stiffness": 2e5)")));
