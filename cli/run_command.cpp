@@ -109,7 +109,10 @@ int run_command(const std::vector<std::string>& args) {
     if (a.threads >= 0) scene.numerics.threads = a.threads;
     Simulation sim(std::move(scene));
     const bool append = !a.restart.empty();
-    if (append) StateIO::read_file(sim, a.restart);
+    if (append) {
+      StateIO::read_file(sim, a.restart);
+      StateIO::require_within_run(sim);
+    }
     const std::int64_t first_step = sim.step_count();  // a continued run starts at its saved step
     std::filesystem::create_directories(a.out);
     std::printf("%s: %zu particles, %zu walls, %lld steps; %s\n", a.spec.c_str(), sim.particles().size(),

@@ -58,6 +58,7 @@ void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, c
   }
   in.get();  // the newline before the state
   StateIO::read(sim, in);  // first: a state that does not fit leaves the files as they are
+  StateIO::require_within_run(sim);
 
   for (const fs::directory_entry& e : fs::directory_iterator(output_folder)) {
     if (!e.is_regular_file()) continue;

@@ -1,114 +1,198 @@
 #include "sim/state_io.hpp"
 
+#include <boost/crc.hpp>
+#include <cmath>
 #include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
 
 namespace dem {
 namespace {
 
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '4'};  // 4: orientations, bonds' bonded states
+// 5: a CRC-32 of everything before it as the last four bytes; 4: orientations, bonds' bonded states
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '5'};
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
 // the build that wrote them.
-template <class T>
-void put(std::ostream& out, const T& value) {
-  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
-}
+class Writer {
+ public:
+  explicit Writer(std::ostream& out) : out_(out) {}
 
-template <class T>
-void put(std::ostream& out, const std::vector<T>& values) {
-  const std::uint64_t n = values.size();
-  put(out, n);
-  if (n > 0) out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(n * sizeof(T)));
-}
+  void bytes(const void* data, std::size_t size) {
+    out_.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
+    crc_.process_bytes(data, size);
+  }
+  template <class T>
+  void put(const T& value) { bytes(&value, sizeof(T)); }
+  template <class T>
+  void put(const std::vector<T>& values) {
+    const std::uint64_t n = values.size();
+    put(n);
+    if (n > 0) bytes(values.data(), n * sizeof(T));
+  }
+  void seal() {
+    const std::uint32_t sum = crc_.checksum();
+    out_.write(reinterpret_cast<const char*>(&sum), sizeof sum);
+  }
 
+ private:
+  std::ostream& out_;
+  boost::crc_32_type crc_;
+};
+
+// Reads the values of a state whose checksum has been verified, from memory.
 class Reader {
  public:
-  explicit Reader(std::istream& in) : in_(in) {}
+  Reader(const char* data, std::size_t size) : at_(data), end_(data + size) {}
 
   template <class T>
   void get(T& value, const char* what) {
-    if (!in_.read(reinterpret_cast<char*>(&value), sizeof(T))) fail(what);
+    if (static_cast<std::size_t>(end_ - at_) < sizeof(T)) fail(what);
+    std::memcpy(reinterpret_cast<char*>(&value), at_, sizeof(T));
+    at_ += sizeof(T);
   }
 
   template <class T>
   void get(std::vector<T>& values, const char* what) {
     std::uint64_t n = 0;
     get(n, what);
-    if (n > (std::uint64_t{1} << 34) / sizeof(T)) fail(what);
+    if (n > static_cast<std::uint64_t>(end_ - at_) / sizeof(T)) fail(what);
     values.resize(n);
-    if (n > 0 && !in_.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(n * sizeof(T)))) fail(what);
+    if (n > 0) std::memcpy(reinterpret_cast<char*>(values.data()), at_, n * sizeof(T));
+    at_ += n * sizeof(T);
   }
+
+  bool at_end() const { return at_ == end_; }
 
   [[noreturn]] void fail(const char* what) {
     throw std::runtime_error(std::string("the saved state ends inside ") + what + " (truncated or not a state file)");
   }
 
  private:
-  std::istream& in_;
+  const char* at_;
+  const char* end_;
 };
+
+// A state that passed its checksum but does not fit the job (written by hand, or by a bug): refused
+// before any index in it is followed.
+[[noreturn]] void inconsistent(const std::string& what) {
+  throw std::runtime_error("the saved state does not hold together: " + what);
+}
+
+template <class T>
+void expect_size(const std::vector<T>& values, std::size_t size, const char* what) {
+  if (values.size() != size)
+    inconsistent(std::string(what) + " has " + std::to_string(values.size()) + " entries where " + std::to_string(size) +
+                 " belong");
+}
+
+// Compressed rows over n particles: n + 1 starts from 0, never decreasing, ending at `entries`.
+void expect_rows(const std::vector<int>& row_start, std::size_t n, std::size_t entries, const char* what) {
+  expect_size(row_start, n + 1, what);
+  if (row_start[0] != 0 || static_cast<std::size_t>(row_start[n]) != entries) inconsistent(std::string(what) + " do not span its entries");
+  for (std::size_t i = 0; i < n; ++i)
+    if (row_start[i + 1] < row_start[i]) inconsistent(std::string(what) + " go backwards at particle " + std::to_string(i));
+}
+
+void expect_indices(const std::vector<int>& index, int lo, int hi, const char* what) {
+  for (std::size_t k = 0; k < index.size(); ++k)
+    if (index[k] < lo || index[k] >= hi)
+      inconsistent(std::string(what) + " " + std::to_string(k) + " is " + std::to_string(index[k]) + ", outside " +
+                   std::to_string(lo) + ".." + std::to_string(hi - 1));
+}
+
+template <class T>
+void expect_finite(const std::vector<T>& values, const char* what) {
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    bool finite;
+    if constexpr (std::is_floating_point_v<T>) finite = std::isfinite(values[k]);
+    else finite = values[k].allFinite();
+    if (!finite) inconsistent(std::string(what) + " " + std::to_string(k) + " is not finite");
+  }
+}
 
 }  // namespace
 
 void StateIO::write(const Simulation& sim, std::ostream& out) {
   const SimState& s = sim.state_;
-  out.write(kMagic, sizeof kMagic);
-  put(out, static_cast<std::uint64_t>(s.particles.size()));
-  put(out, static_cast<std::uint64_t>(sim.drivers_.size()));
-  put(out, static_cast<std::uint64_t>(s.bonds.bonds().size()));
-  put(out, s.dt);
-  put(out, sim.step_);
-  put(out, sim.builds_);
-  put(out, sim.last_build_step_);
-  put(out, sim.contacts_recorded_);
-  put(out, s.time);
+  Writer w(out);
+  w.bytes(kMagic, sizeof kMagic);
+  w.put(static_cast<std::uint64_t>(s.particles.size()));
+  w.put(static_cast<std::uint64_t>(sim.drivers_.size()));
+  w.put(static_cast<std::uint64_t>(s.bonds.bonds().size()));
+  w.put(s.dt);
+  w.put(sim.step_);
+  w.put(sim.builds_);
+  w.put(sim.last_build_step_);
+  w.put(sim.contacts_recorded_);
+  w.put(s.time);
   const Particles& p = s.particles;
-  put(out, p.x); put(out, p.v); put(out, p.w); put(out, p.f); put(out, p.t);
-  put(out, p.radius); put(out, p.mass); put(out, p.inv_mass); put(out, p.inv_inertia);
-  put(out, p.material); put(out, p.id); put(out, p.external);
-  put(out, s.half_kick);
-  put(out, sim.x_at_build_);
+  w.put(p.x); w.put(p.v); w.put(p.w); w.put(p.f); w.put(p.t);
+  w.put(p.radius); w.put(p.mass); w.put(p.inv_mass); w.put(p.inv_inertia);
+  w.put(p.material); w.put(p.id); w.put(p.external);
+  w.put(s.half_kick);
+  w.put(sim.x_at_build_);
   const NeighborList& nl = s.neighbors;
-  put(out, nl.row_start); put(out, nl.partner); put(out, nl.shear); put(out, nl.roll);
-  put(out, nl.sqrt_m_eff); put(out, nl.r_eff); put(out, nl.i_roll);
-  put(out, s.pairs.fn); put(out, s.pairs.ft_squared); put(out, s.pairs.touching);
+  w.put(nl.row_start); w.put(nl.partner); w.put(nl.shear); w.put(nl.roll);
+  w.put(nl.sqrt_m_eff); w.put(nl.r_eff); w.put(nl.i_roll);
+  w.put(s.pairs.fn); w.put(s.pairs.ft_squared); w.put(s.pairs.touching);
   const BlockPlan& b = s.blocks;
-  put(out, b.block_size);  // the rest of the plan follows from the neighbour list (read: plan_blocks)
+  w.put(b.block_size);  // the rest of the plan follows from the neighbour list (read: plan_blocks)
   const WallContacts& wc = s.wall_contacts;
-  put(out, wc.row_start); put(out, wc.wall); put(out, wc.shear); put(out, wc.roll); put(out, wc.constants);
-  put(out, wc.fn); put(out, wc.ft); put(out, wc.touching); put(out, wc.force); put(out, wc.point);
+  w.put(wc.row_start); w.put(wc.wall); w.put(wc.shear); w.put(wc.roll); w.put(wc.constants);
+  w.put(wc.fn); w.put(wc.ft); w.put(wc.touching); w.put(wc.force); w.put(wc.point);
   const MeshContacts& mc = s.mesh_contacts;
-  put(out, mc.row_start); put(out, mc.mesh); put(out, mc.triangle); put(out, mc.slots); put(out, mc.used); put(out, mc.constants);
-  put(out, s.walls);
-  for (const MeshWall& m : s.meshes) put(out, m.pose);
-  for (const WallDriver& d : sim.drivers_) put(out, d);
-  put(out, sim.pose_at_build_);
-  put(out, sim.boundary_loads_);
-  put(out, sim.growth_at_build_);
-  put(out, sim.growth_scale_);
-  put(out, s.bonds.bonds());
-  put(out, p.body); put(out, p.body_offset); put(out, p.q);
-  put(out, sim.ledger_);
+  w.put(mc.row_start); w.put(mc.mesh); w.put(mc.triangle); w.put(mc.slots); w.put(mc.used); w.put(mc.constants);
+  w.put(s.walls);
+  for (const MeshWall& m : s.meshes) w.put(m.pose);
+  for (const WallDriver& d : sim.drivers_) w.put(d);
+  w.put(sim.pose_at_build_);
+  w.put(sim.boundary_loads_);
+  w.put(sim.growth_at_build_);
+  w.put(sim.growth_scale_);
+  w.put(s.bonds.bonds());
+  w.put(p.body); w.put(p.body_offset); w.put(p.q);
+  w.put(sim.ledger_);
   const ClumpBodies& cb = s.bodies;
-  put(out, cb.x); put(out, cb.v); put(out, cb.rotation); put(out, cb.force); put(out, cb.torque);
+  w.put(cb.x); w.put(cb.v); w.put(cb.rotation); w.put(cb.force); w.put(cb.torque);
+  w.seal();
   if (!out) throw std::runtime_error("cannot write the saved state");
 }
 
 void StateIO::read(Simulation& sim, std::istream& in) {
-  SimState& s = sim.state_;
-  Reader r(in);
-  char magic[sizeof kMagic];
-  if (!in.read(magic, sizeof magic)) throw std::runtime_error("not a saved state of this engine (too short)");
-  if (std::memcmp(magic, kMagic, sizeof kMagic - 1) == 0 && magic[7] != kMagic[7])
-    throw std::runtime_error(std::string("a saved state of another version of this engine (format ") + magic[7] +
+  const std::string data{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (data.size() < sizeof kMagic) throw std::runtime_error("not a saved state of this engine (too short)");
+  if (std::memcmp(data.data(), kMagic, sizeof kMagic - 1) == 0 && data[7] != kMagic[7])
+    throw std::runtime_error(std::string("a saved state of another version of this engine (format ") + data[7] +
                              ", this one reads " + kMagic[7] + "): run the job again from its start");
-  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+  if (std::memcmp(data.data(), kMagic, sizeof kMagic) != 0)
     throw std::runtime_error("not a saved state of this engine (wrong first bytes)");
+  if (data.size() < sizeof kMagic + 4) throw std::runtime_error("the saved state ends inside the header (truncated)");
+  const std::size_t body = data.size() - 4;
+  boost::crc_32_type crc;
+  crc.process_bytes(data.data(), body);
+  std::uint32_t sum = 0;
+  std::memcpy(&sum, data.data() + body, sizeof sum);
+  if (sum != crc.checksum())
+    throw std::runtime_error("the saved state's checksum does not match its contents: the file was changed, damaged or "
+                             "cut short after it was written");
+
+  SimState& s = sim.state_;
+  // What the job itself fixes, to hold the saved state against.
+  const std::size_t n = s.particles.size();
+  const std::size_t bodies = s.bodies.size();
+  const std::vector<Wall> spec_walls = s.walls;
+  const Particles spec = s.particles;
+  const bool rolling_spring = sim.kernel_->has_rolling_spring();
+
+  Reader r(data.data() + sizeof kMagic, body - sizeof kMagic);
   std::uint64_t particles = 0, walls = 0, bonds = 0;
   double dt = 0;
   r.get(particles, "the header");
@@ -120,7 +204,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     std::snprintf(buf, sizeof buf, "%s %.17g there, %.17g in this spec", what.c_str(), saved, now);
     throw std::runtime_error(std::string("the saved state was written for another job: ") + buf);
   };
-  if (particles != s.particles.size()) mismatch("particles", static_cast<double>(particles), static_cast<double>(s.particles.size()));
+  if (particles != n) mismatch("particles", static_cast<double>(particles), static_cast<double>(n));
   if (walls != sim.drivers_.size()) mismatch("walls", static_cast<double>(walls), static_cast<double>(sim.drivers_.size()));
   if (bonds != s.bonds.bonds().size()) mismatch("bonds", static_cast<double>(bonds), static_cast<double>(s.bonds.bonds().size()));
   if (dt != s.dt) mismatch("time step", dt, s.dt);
@@ -129,6 +213,12 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(sim.last_build_step_, "the step count");
   r.get(sim.contacts_recorded_, "the step count");
   r.get(s.time, "the step count");
+  if (sim.step_ < 0) inconsistent("its step count is " + std::to_string(sim.step_));
+  if (sim.last_build_step_ < 0 || sim.last_build_step_ > sim.step_ || sim.builds_ < 0)
+    inconsistent("the last neighbour build, step " + std::to_string(sim.last_build_step_) + ", is not before step " +
+                 std::to_string(sim.step_));
+  if (!std::isfinite(s.time)) inconsistent("the time is not finite");
+
   Particles& p = s.particles;
   r.get(p.x, "the particles"); r.get(p.v, "the particles"); r.get(p.w, "the particles");
   r.get(p.f, "the particles"); r.get(p.t, "the particles");
@@ -137,23 +227,99 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(p.external, "the particles");
   r.get(s.half_kick, "the particles");
   r.get(sim.x_at_build_, "the particles");
+  for (const auto* v : {&p.x, &p.v, &p.w, &p.f, &p.t, &s.half_kick, &sim.x_at_build_}) expect_size(*v, n, "a particle array");
+  for (const auto* v : {&p.radius, &p.mass, &p.inv_mass, &p.inv_inertia}) expect_size(*v, n, "a particle array");
+  expect_size(p.material, n, "the particles' materials");
+  expect_size(p.id, n, "the particles' ids");
+  expect_size(p.external, spec.external.size(), "the particles' external forces");
+  expect_finite(p.x, "the position of particle");
+  expect_finite(sim.x_at_build_, "the position at the last build of particle");
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(p.radius[i] > 0) || !std::isfinite(p.radius[i]) || !(p.mass[i] > 0) || !std::isfinite(p.mass[i]) ||
+        !(p.inv_mass[i] >= 0) || !std::isfinite(p.inv_mass[i]) || !(p.inv_inertia[i] >= 0) || !std::isfinite(p.inv_inertia[i]))
+      inconsistent("particle " + std::to_string(i) + " has a radius, mass or inertia that is not a positive number");
+  expect_indices(p.id, 0, static_cast<int>(n), "the id of particle");
+  {
+    std::vector<int> index_of_id(n, -1);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (index_of_id[p.id[i]] >= 0) inconsistent("two particles have the id " + std::to_string(p.id[i]));
+      index_of_id[p.id[i]] = static_cast<int>(i);
+    }
+    for (std::size_t k = 0; k < n; ++k) {  // what the spec fixes of each particle (its index may have moved)
+      const int i = index_of_id[spec.id[k]];
+      if (p.material[i] != spec.material[k]) inconsistent("particle id " + std::to_string(spec.id[k]) + " has another material");
+    }
+  }
+
   NeighborList& nl = s.neighbors;
   r.get(nl.row_start, "the neighbour list"); r.get(nl.partner, "the neighbour list"); r.get(nl.shear, "the neighbour list");
   r.get(nl.roll, "the neighbour list"); r.get(nl.sqrt_m_eff, "the neighbour list"); r.get(nl.r_eff, "the neighbour list");
   r.get(nl.i_roll, "the neighbour list");
   r.get(s.pairs.fn, "the contacts"); r.get(s.pairs.ft_squared, "the contacts"); r.get(s.pairs.touching, "the contacts");
+  const std::size_t pairs = nl.partner.size();
+  expect_rows(nl.row_start, n, pairs, "the neighbour list's rows");
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k)
+      if (nl.partner[k] <= static_cast<int>(i) || nl.partner[k] >= static_cast<int>(n) ||
+          (k > nl.row_start[i] && nl.partner[k] <= nl.partner[k - 1]))
+        inconsistent("the neighbour list's pair " + std::to_string(k) + " of particle " + std::to_string(i) +
+                     " has partner " + std::to_string(nl.partner[k]));
+  expect_size(nl.shear, pairs, "the neighbour list's springs");
+  expect_size(nl.roll, rolling_spring ? pairs : 0, "the neighbour list's rolling springs");
+  for (const auto* v : {&nl.sqrt_m_eff, &nl.r_eff, &nl.i_roll, &s.pairs.fn, &s.pairs.ft_squared})
+    expect_size(*v, pairs, "the neighbour list's pair values");
+  expect_size(s.pairs.touching, pairs, "the neighbour list's pair values");
+
   BlockPlan& b = s.blocks;
   r.get(b.block_size, "the block plan");
+  if (b.block_size < 1) inconsistent("the block size is " + std::to_string(b.block_size));
   sim.plan_blocks();
+
   WallContacts& wc = s.wall_contacts;
   r.get(wc.row_start, "the wall contacts"); r.get(wc.wall, "the wall contacts"); r.get(wc.shear, "the wall contacts");
   r.get(wc.roll, "the wall contacts"); r.get(wc.constants, "the wall contacts"); r.get(wc.fn, "the wall contacts");
   r.get(wc.ft, "the wall contacts"); r.get(wc.touching, "the wall contacts"); r.get(wc.force, "the wall contacts");
   r.get(wc.point, "the wall contacts");
+  const std::size_t entries = wc.wall.size();
+  expect_rows(wc.row_start, n, entries, "the wall contacts' rows");
+  expect_indices(wc.wall, 0, static_cast<int>(spec_walls.size()), "the wall of wall contact");
+  for (const auto* v : {&wc.shear, &wc.force, &wc.point}) expect_size(*v, entries, "the wall contacts' values");
+  expect_size(wc.roll, rolling_spring ? entries : 0, "the wall contacts' rolling springs");
+  expect_size(wc.constants, entries, "the wall contacts' constants");
+  for (const auto* v : {&wc.fn, &wc.ft}) expect_size(*v, entries, "the wall contacts' values");
+  expect_size(wc.touching, entries, "the wall contacts' values");
+
   MeshContacts& mc = s.mesh_contacts;
   r.get(mc.row_start, "the mesh contacts"); r.get(mc.mesh, "the mesh contacts"); r.get(mc.triangle, "the mesh contacts");
   r.get(mc.slots, "the mesh contacts"); r.get(mc.used, "the mesh contacts"); r.get(mc.constants, "the mesh contacts");
-  r.get(s.walls, "the walls");
+  if (!s.meshes.empty()) {
+    const std::size_t candidates = mc.mesh.size();
+    expect_rows(mc.row_start, n, candidates, "the mesh contacts' rows");
+    expect_size(mc.triangle, candidates, "the mesh contacts' triangles");
+    expect_indices(mc.mesh, 0, static_cast<int>(s.meshes.size()), "the mesh of mesh contact");
+    for (std::size_t k = 0; k < candidates; ++k)
+      if (mc.triangle[k] < 0 || static_cast<std::size_t>(mc.triangle[k]) >= s.meshes[mc.mesh[k]].triangles.size())
+        inconsistent("mesh contact " + std::to_string(k) + " names triangle " + std::to_string(mc.triangle[k]) +
+                     " of a mesh of " + std::to_string(s.meshes[mc.mesh[k]].triangles.size()));
+    expect_size(mc.slots, n * MeshContacts::kSlots, "the mesh contacts' slots");
+    for (std::size_t k = 0; k < mc.slots.size(); ++k)
+      if (mc.slots[k].mesh < -1 || mc.slots[k].mesh >= static_cast<int>(s.meshes.size()))
+        inconsistent("mesh contact slot " + std::to_string(k) + " names mesh " + std::to_string(mc.slots[k].mesh));
+    expect_size(mc.used, n, "the mesh contacts' flags");
+    expect_size(mc.constants, n, "the mesh contacts' constants");
+  } else {
+    for (const auto* v : {&mc.mesh, &mc.triangle}) expect_size(*v, 0, "the mesh contacts of a job without meshes");
+    expect_size(mc.slots, 0, "the mesh contacts of a job without meshes");
+  }
+
+  // The planes and plates: their shape is the spec's, only where they are now comes from the state.
+  std::vector<Wall> saved_walls;
+  r.get(saved_walls, "the walls");
+  expect_size(saved_walls, spec_walls.size(), "the planes and plates");
+  for (std::size_t k = 0; k < spec_walls.size(); ++k) {
+    s.walls[k] = spec_walls[k];
+    s.walls[k].move_to(saved_walls[k].pose);
+  }
   std::vector<WallPose> mesh_poses(s.meshes.size());
   for (WallPose& pose : mesh_poses) r.get(pose, "the walls");
   std::vector<WallDriver> saved_drivers(sim.drivers_.size());
@@ -174,6 +340,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   }
   r.get(sim.pose_at_build_, "the walls");
   r.get(sim.boundary_loads_, "the walls");
+  expect_size(sim.pose_at_build_, sim.drivers_.size(), "the walls' poses");
+  expect_size(sim.boundary_loads_, sim.drivers_.size(), "the walls' loads");
   for (int k : loads_starting) {  // a load that starts now feels the particles' push from the start, as at t = 0
     WallDriver& d = sim.drivers_[k];
     d.end_step(sim.time(), 0, sim.boundary_loads_[k].force);
@@ -182,14 +350,50 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   }
   r.get(sim.growth_at_build_, "the walls");
   r.get(sim.growth_scale_, "the walls");
+  if (!(sim.growth_scale_ > 0) || !std::isfinite(sim.growth_scale_) || !(sim.growth_at_build_ > 0) ||
+      !std::isfinite(sim.growth_at_build_))
+    inconsistent("the growth of the radii is not a positive number");
+
   std::vector<Bond> saved_bonds;
   r.get(saved_bonds, "the bonds");
+  expect_size(saved_bonds, s.bonds.bonds().size(), "the bonds");
+  for (std::size_t k = 0; k < saved_bonds.size(); ++k) {
+    const Bond& bond = saved_bonds[k];
+    std::uint8_t state = 0;
+    std::memcpy(&state, &bond.state, 1);  // its byte, not yet an enumerator
+    if (bond.i < 0 || bond.j < 0 || bond.i >= static_cast<int>(n) || bond.j >= static_cast<int>(n) || bond.i == bond.j ||
+        state > static_cast<std::uint8_t>(BondBreak::Shear))
+      inconsistent("bond " + std::to_string(k) + " joins particles " + std::to_string(bond.i) + " and " +
+                   std::to_string(bond.j) + " (state " + std::to_string(state) + ")");
+  }
   s.bonds.restore(std::move(saved_bonds));
+
   r.get(p.body, "the clumps"); r.get(p.body_offset, "the clumps"); r.get(p.q, "the orientations");
+  expect_size(p.body, spec.body.size(), "the clump of each particle");
+  expect_size(p.body_offset, spec.body_offset.size(), "the clump offsets");
+  expect_size(p.q, spec.q.size(), "the orientations");
+  expect_indices(p.body, -1, static_cast<int>(bodies), "the clump of particle");
+  if (!p.body.empty()) {
+    std::vector<int> index_of_id(n);
+    for (std::size_t i = 0; i < n; ++i) index_of_id[p.id[i]] = static_cast<int>(i);
+    for (std::size_t k = 0; k < n; ++k)
+      if (p.body[index_of_id[spec.id[k]]] != spec.body[k])
+        inconsistent("particle id " + std::to_string(spec.id[k]) + " is in another clump");
+  }
   r.get(sim.ledger_, "the energy ledger");
   ClumpBodies& cb = s.bodies;
   r.get(cb.x, "the clumps"); r.get(cb.v, "the clumps"); r.get(cb.rotation, "the clumps");
   r.get(cb.force, "the clumps"); r.get(cb.torque, "the clumps");
+  for (const auto* v : {&cb.x, &cb.v, &cb.force, &cb.torque}) expect_size(*v, bodies, "the clumps");
+  expect_size(cb.rotation, bodies, "the clumps' rotations");
+  if (!r.at_end()) inconsistent("bytes follow its last value");
+}
+
+void StateIO::require_within_run(const Simulation& sim) {
+  if (sim.step_count() > sim.total_steps())
+    throw std::runtime_error("the saved state is at step " + std::to_string(sim.step_count()) + " (t = " +
+                             std::to_string(sim.time()) + " s), past the end of this run at step " +
+                             std::to_string(sim.total_steps()) + ": it cannot be continued to this run's duration");
 }
 
 void StateIO::write_file(const Simulation& sim, const std::string& path) {

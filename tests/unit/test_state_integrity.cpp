@@ -1,0 +1,159 @@
+// A saved state (restart.dat, a server checkpoint) read back is either the state that was written
+// or an error naming what is wrong: a changed byte is caught by the checksum, and a state whose
+// bytes agree with their checksum but not with the job (written by hand, by another build, or by a
+// bug) is refused before any index in it is followed. Nothing read from a file may crash the reader
+// or the steps after it.
+#include <gtest/gtest.h>
+
+#include <boost/crc.hpp>
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+#include <string>
+
+#include "sim/state_io.hpp"
+#include "spec/spec_loader.hpp"
+
+namespace dem::test {
+namespace {
+
+// Everything a state holds, small: loose spheres and a two-sphere clump on a mesh floor, a bonded
+// pair, a loaded plate above them, rolling resistance (rolling springs), 60 steps in.
+const char* kSpec = R"({"name": "everything",
+  "materials": [{"name": "rock", "density": 2600, "youngsModulus": 1e7, "poissonRatio": 0.25}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5, "friction": 0.5, "rollingFriction": 0.05}],
+  "contact": {"normal": "HERTZ", "rolling": "EPSD"},
+  "gravity": {"z": -9.81},
+  "particles": [
+    {"material": "rock", "position": {"x": 0.0, "z": 0.0101}, "radius": 0.01},
+    {"material": "rock", "position": {"x": 0.0199, "z": 0.0101}, "radius": 0.01},
+    {"material": "rock", "position": {"x": 0.05, "z": 0.0102}, "radius": 0.01, "velocity": {"x": 0.1}},
+    {"material": "rock", "position": {"x": 0.0, "y": 0.03, "z": 0.012}, "radius": 0.012}],
+  "bonds": {"youngsModulus": 1e7, "tensileStrength": 1e6, "shearStrength": 1e6, "gapTolerance": 0.05},
+  "clumpShapes": [{"name": "pair", "spheres": [{"center": {"x": -0.006}, "radius": 0.01}, {"center": {"x": 0.006}, "radius": 0.01}]}],
+  "clumps": [{"shape": "pair", "material": "rock", "position": {"x": 0.05, "y": 0.04, "z": 0.0105}}],
+  "walls": [
+    {"name": "floor", "material": "rock", "mesh": {
+      "vertices": [{"x": -0.1, "y": -0.1}, {"x": 0.2, "y": -0.1}, {"x": 0.2, "y": 0.2}, {"x": -0.1, "y": 0.2}],
+      "triangles": [{"i": 1, "j": 2, "k": 3}, {"i": 1, "j": 3, "k": 4}]}},
+    {"name": "lid", "material": "rock", "plate": {"c1": {"x": -0.1, "y": -0.1, "z": 0.05}, "c2": {"x": 0.2, "y": -0.1, "z": 0.05}, "c3": {"x": 0.2, "y": 0.2, "z": 0.05}, "c4": {"x": -0.1, "y": 0.2, "z": 0.05}},
+     "load": {"mass": 0.1, "cyclic": {"fMin": 0.1, "fMax": 1, "frequency": 10, "cycles": 1}}}],
+  "time": {"duration": 0.02}
+})";
+
+// Loaded once: the clump's mass properties take a while to integrate, and thousands of reads follow.
+Simulation fresh() {
+  static const Scene scene = spec::to_scene(spec::parse_json(kSpec));
+  return Simulation(scene);
+}
+
+std::string saved_state(int steps) {
+  Simulation sim = fresh();
+  for (int k = 0; k < steps; ++k) sim.step();
+  std::ostringstream out;
+  StateIO::write(sim, out);
+  return std::move(out).str();
+}
+
+// The state's own checksum is its last four bytes: CRC-32 of all before them.
+void reseal(std::string& state) {
+  boost::crc_32_type crc;
+  crc.process_bytes(state.data(), state.size() - 4);
+  const std::uint32_t sum = crc.checksum();
+  std::memcpy(state.data() + state.size() - 4, &sum, 4);
+}
+
+// Reads `state` into a fresh simulation and, if it is accepted, steps on: either may refuse it with
+// an exception, neither may crash. Returns whether it was accepted.
+bool read_and_step(const std::string& state) {
+  Simulation sim = fresh();
+  std::istringstream in(state);
+  try {
+    StateIO::read(sim, in);
+  } catch (const std::runtime_error&) {
+    return false;
+  }
+  for (int k = 0; k < 5 && sim.step_count() < sim.total_steps(); ++k) sim.step();
+  return true;
+}
+
+TEST(StateIntegrity, TheSceneHasEverythingAStateHolds) {
+  Simulation sim = fresh();
+  for (int k = 0; k < 60; ++k) sim.step();
+  EXPECT_FALSE(sim.state().bodies.empty());
+  EXPECT_FALSE(sim.bonds().bonds().empty());
+  EXPECT_FALSE(sim.meshes().empty());
+  EXPECT_GT(sim.state().neighbors.pair_count(), 0u);
+}
+
+TEST(StateIntegrity, AChangedByteIsCaughtByTheChecksum) {
+  const std::string good = saved_state(60);
+  int caught = 0, tried = 0;
+  for (std::size_t at = 8; at + 4 < good.size(); at += 97) {
+    std::string bad = good;
+    bad[at] = static_cast<char>(bad[at] ^ 0x10);
+    Simulation sim = fresh();
+    std::istringstream in(bad);
+    ++tried;
+    try {
+      StateIO::read(sim, in);
+    } catch (const std::runtime_error& e) {
+      if (std::string(e.what()).find("checksum") != std::string::npos) ++caught;
+    }
+  }
+  EXPECT_EQ(caught, tried);
+}
+
+TEST(StateIntegrity, AnIntactStateIsStillReadAndContinued) {
+  const std::string good = saved_state(60);
+  Simulation sim = fresh();
+  std::istringstream in(good);
+  StateIO::read(sim, in);
+  EXPECT_EQ(sim.step_count(), 60);
+}
+
+TEST(StateIntegrity, ACutStateIsRefused) {
+  const std::string good = saved_state(60);
+  for (std::size_t keep : {std::size_t{0}, std::size_t{7}, std::size_t{40}, good.size() / 2, good.size() - 1}) {
+    Simulation sim = fresh();
+    std::istringstream in(good.substr(0, keep));
+    EXPECT_THROW(StateIO::read(sim, in), std::runtime_error) << keep << " bytes";
+  }
+}
+
+// Every 4-byte word of the state set to a hostile value (a huge index, -1), the checksum made to
+// agree: read and step must refuse or go on, never crash. (Today's crash: a partner index out of
+// range, followed by the first step.)
+TEST(StateIntegrity, NoWordOfASealedStateCrashesTheReaderOrTheSteps) {
+  const std::string good = saved_state(60);
+  int refused = 0;
+  for (std::int32_t hostile : {std::int32_t{0x7fffffff}, std::int32_t{-1}, std::int32_t{1000}}) {
+    for (std::size_t at = 8; at + 8 <= good.size(); at += 4) {
+      std::string bad = good;
+      std::memcpy(bad.data() + at, &hostile, 4);
+      reseal(bad);
+      if (!read_and_step(bad)) ++refused;
+    }
+  }
+  EXPECT_GT(refused, 0);
+}
+
+TEST(StateIntegrity, AStepPastTheEndOfTheRunIsRefused) {
+  std::string state = saved_state(60);
+  // the step count follows the magic (8 bytes), three counts (8 each) and dt (8)
+  const std::int64_t far = std::int64_t{1} << 62;
+  std::memcpy(state.data() + 8 + 3 * 8 + 8, &far, 8);
+  reseal(state);
+  Simulation sim = fresh();
+  std::istringstream in(state);
+  try {
+    StateIO::read(sim, in);
+    StateIO::require_within_run(sim);
+    FAIL() << "a step of 2^62 was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("step"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dem::test
