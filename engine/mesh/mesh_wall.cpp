@@ -72,6 +72,7 @@ MeshWall MeshWall::from(const WallInit& init, int boundary) {
   m.update_planes();
   // how far the neighbour across each edge rises out of the triangle's plane (a rigid motion keeps it)
   m.fold.assign(m.triangles.size(), {0, 0, 0});
+  m.across.assign(m.triangles.size(), {-1, -1, -1});
   for (std::size_t t = 0; t < m.triangles.size(); ++t)
     for (int j = 0; j < 3; ++j) {
       const int e = m.topology.triangle_edges[t][j];
@@ -86,6 +87,7 @@ MeshWall MeshWall::from(const WallInit& init, int boundary) {
       const Vec3 p0 = m.vertices[edge[0]];
       const double rise = m.normals[t].dot(m.vertices[far] - p0) / (m.vertices[edge[1]] - p0).norm();
       m.fold[t][j] = std::abs(rise) > 1e-12 ? rise : 0;  // flat within rounding: a seam
+      if (m.fold[t][j] != 0) m.across[t][j] = u;
     }
   return m;
 }
@@ -350,7 +352,15 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
     int valleys[3], valley_count = 0;
     bool beyond_other_edge = false;
     for (int j = 0; j < 3; ++j) {
-      const bool valley = side * mesh.fold[t][j] > 0;
+      // a valley only for a centre inside its wedge: on the side of t where the other face rises
+      // and on the side of the other face where t rises (a convex edge seen from behind t, with the
+      // centre above the other face, is no valley)
+      bool valley = side * mesh.fold[t][j] > 0;
+      if (valley) {
+        const int u = mesh.across[t][j];
+        const Vec3& t_far = mesh.vertices[mesh.triangles[t][(j + 2) % 3]];
+        valley = (mesh.normals[u].dot(x) - mesh.offsets[u]) * (mesh.normals[u].dot(t_far) - mesh.offsets[u]) > 0;
+      }
       if (inside && !valley) continue;  // inside: only valley edges can cut the disc's share
       const double h = inside_by(mesh, t, j, p);
       if (valley && h < a) {

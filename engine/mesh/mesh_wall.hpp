@@ -62,6 +62,7 @@ struct MeshWall {
   // length; a rigid motion keeps it). > 0: a valley seen from the normal's side, < 0: from the
   // other side; 0 for a flat seam, an open edge or one shared by more than two triangles.
   std::vector<std::array<double, 3>> fold;
+  std::vector<std::array<int, 3>> across;  // the other triangle on each edge where fold is not 0, else -1
   WallPose pose;
   TriangleGrid grid;            // of `vertices` when it was built
   bool grid_stale = true;       // the mesh moved since (a fixed mesh is binned once)

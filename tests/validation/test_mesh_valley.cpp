@@ -111,3 +111,48 @@ TEST(MeshValley, SlidingAcrossTheFoldKeepsTheMechanicalEnergy) {
 
 }  // namespace
 }  // namespace dem::test
+
+namespace dem::test {
+namespace {
+
+// A ridge (convex seen from above): two faces falling at `slope_deg` away from the y axis; at 90
+// degrees a table's edge. Seen from behind, a convex edge looks like a valley of the face beyond
+// it; a sphere crossing the ridge is in no valley, and that face must not count at its back side
+// (it did: a face whose plane passes just behind the centre was given the whole radius as its
+// overlap, 0.99 R, and the stability guard stopped every crossing of a ridge of 90 degrees or
+// more).
+MeshShape ridge(double slope_deg) {
+  const double drop = 0.05 * std::sin(slope_deg * std::numbers::pi / 180), run = 0.05 * std::cos(slope_deg * std::numbers::pi / 180);
+  MeshShape m;
+  m.vertices = {{-run, -0.05, -drop}, {0, -0.05, 0}, {0, 0.05, 0}, {-run, 0.05, -drop}, {run, -0.05, -drop}, {run, 0.05, -drop}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}, {1, 4, 5}, {1, 5, 2}};
+  m.source = "ridge";
+  return m;
+}
+
+TEST(MeshRidge, ASphereCrossingARidgeOverlapsOnlyWhatItPressesIn) {
+  for (std::string_view law : {LinearNormal::kName, HertzNormal::kName})
+    for (double slope : {30.0, 44.5, 45.0, 50.0, 60.0, 89.0}) {
+      Scene s = base_scene(law, 2600, 5e8, 0.25, 1.0, 0.0, 1e5);
+      s.walls.push_back(mesh_wall(ridge(slope)));
+      s.gravity = {0, 0, -9.81};
+      const double th = slope * std::numbers::pi / 180;
+      const double x0 = -0.01;  // on the left face, sliding to the ridge
+      s.particles.push_back(sphere({x0, 0, x0 * std::tan(th) + kR / std::cos(th) - 1e-7}, kR, {1.0, 0, 1.0 * std::tan(th)}));
+      s.time.steps = 100000000;
+      Simulation sim(s);
+      double deepest = 0;
+      while (sim.time() < 0.02) {
+        sim.step();
+        deepest = std::max(deepest, sim.contact_summary().max_overlap_fraction);
+        ASSERT_FALSE(sim.deep_overlap()) << law << ", faces at " << slope << " deg, t = " << sim.time();
+      }
+      report(std::string(law) + " crossing a ridge of faces at " + std::to_string(slope) + " deg: deepest overlap / R",
+             deepest, 0.0);
+      EXPECT_LT(deepest, 0.01) << law << ", faces at " << slope << " deg";
+      EXPECT_GT(sim.particles().x[0].x(), 0.005) << "it did not cross the ridge";
+    }
+}
+
+}  // namespace
+}  // namespace dem::test
