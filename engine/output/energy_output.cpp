@@ -2,7 +2,7 @@
 
 namespace dem {
 
-EnergyWriter::EnergyWriter(const std::string& path, bool append) : file_(open_for_writing(path, append)) {}
+EnergyWriter::EnergyWriter(const std::string& path, bool append) : file_(path, append) {}
 
 std::vector<double> EnergyWriter::make_row(const Simulation& sim) {
   const double kinetic = sim.kinetic_energy(), rotation = sim.rotational_energy();
@@ -17,7 +17,7 @@ std::vector<double> EnergyWriter::make_row(const Simulation& sim) {
 
 void EnergyWriter::frame(const Simulation& sim) {
   legacy::write_row(file_.get(), make_row(sim), counts_format(sim));
-  std::fflush(file_.get());
+  file_.flush();
 }
 
 }  // namespace dem

@@ -24,7 +24,7 @@ class EnergyWriter final : public Observer {
   static std::vector<double> make_row(const Simulation& sim);
 
  private:
-  FilePtr file_;
+  OutputFile file_;
 };
 
 }  // namespace dem

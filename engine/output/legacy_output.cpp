@@ -29,6 +29,16 @@ FilePtr open_for_writing(const std::string& path, bool append) {
   return f;
 }
 
+void OutputFile::flush() {
+  if (!file_) return;
+  errno = 0;
+  const bool flushed = std::fflush(file_.get()) == 0;
+  const int reason = errno;
+  if (!flushed || std::ferror(file_.get()))
+    throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(reason != 0 ? reason : EIO) +
+                             " (the file holds what was written before this frame)");
+}
+
 std::array<double, 6> frame_domain(const Simulation& sim) {
   // From the scene as given (the start), not the particles now: a continued run writes the same box.
   const double unit = sim.scene().outputs.length_unit;
@@ -59,7 +69,7 @@ std::array<double, 6> frame_domain(const Simulation& sim) {
 }
 
 AnimationWriter::AnimationWriter(const std::string& path, const Simulation& sim, bool append)
-    : file_(open_for_writing(path, append)), domain_(frame_domain(sim)) {}
+    : file_(path, append), domain_(frame_domain(sim)) {}
 
 legacy::AnimationFrame AnimationWriter::make_frame(const Simulation& sim, const std::array<double, 6>& domain) {
   const double unit = sim.scene().outputs.length_unit;
@@ -102,11 +112,11 @@ WallWriter::WallWriter(const std::string& folder, const Simulation& sim, bool ap
       all.vertices.insert(all.vertices.end(), m.vertices.begin(), m.vertices.end());
       for (const auto& t : m.triangles) all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
     }
-    FilePtr mesh_file = open_for_writing(folder + "/Wall.dat");
+    OutputFile mesh_file(folder + "/Wall.dat", false);
     write_legacy_mesh(mesh_file.get(), all, unit);
-    if (std::ferror(mesh_file.get())) throw std::runtime_error("cannot write " + folder + "/Wall.dat");
+    mesh_file.flush();
   }
-  if (sim.has_moving_walls()) animation_ = open_for_writing(folder + "/Wall_Animation_3D.dat", append);
+  if (sim.has_moving_walls()) animation_ = OutputFile(folder + "/Wall_Animation_3D.dat", append);
 }
 
 // Every plate (numbered 1.. in scene order among plates), then the triangles of moving meshes
@@ -139,10 +149,10 @@ legacy::WallFrame WallWriter::make_frame(const Simulation& sim) {
 void WallWriter::frame(const Simulation& sim) {
   if (!animation_) return;
   legacy::write_wall_frame(animation_.get(), make_frame(sim), file_format(sim));
-  std::fflush(animation_.get());
+  animation_.flush();
 }
 
-WallForceChainWriter::WallForceChainWriter(const std::string& path, bool append) : file_(open_for_writing(path, append)) {}
+WallForceChainWriter::WallForceChainWriter(const std::string& path, bool append) : file_(path, append) {}
 
 legacy::WallForceChainFrame WallForceChainWriter::make_frame(const Simulation& sim) {
   const std::vector<int>& id = sim.particles().id;
@@ -157,11 +167,11 @@ legacy::WallForceChainFrame WallForceChainWriter::make_frame(const Simulation& s
 
 void WallForceChainWriter::frame(const Simulation& sim) {
   legacy::write_wall_force_chain_frame(file_.get(), make_frame(sim), file_format(sim));
-  std::fflush(file_.get());
+  file_.flush();
 }
 
 ForceDisplacementWriter::ForceDisplacementWriter(const std::string& path, bool append)
-    : file_(open_for_writing(path, append)) {}
+    : file_(path, append) {}
 
 int ForceDisplacementWriter::loading_wall(const Simulation& sim) {
   for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k)
@@ -176,15 +186,15 @@ void ForceDisplacementWriter::frame(const Simulation& sim) {
   legacy::write_force_displacement_row(
       file_.get(), {sim.time(), sim.wall_driver(k).load_displacement() / unit, sim.wall_driver(k).applied_force()},
       file_format(sim));
-  std::fflush(file_.get());
+  file_.flush();
 }
 
 void AnimationWriter::frame(const Simulation& sim) {
   legacy::write_animation_frame(file_.get(), make_frame(sim, domain_), file_format(sim));
-  std::fflush(file_.get());
+  file_.flush();
 }
 
-ForceChainWriter::ForceChainWriter(const std::string& path, bool append) : file_(open_for_writing(path, append)) {}
+ForceChainWriter::ForceChainWriter(const std::string& path, bool append) : file_(path, append) {}
 
 void StateWriter::frame(const Simulation& sim) { StateIO::write_file(sim, path_); }
 
@@ -203,7 +213,7 @@ legacy::ForceChainFrame ForceChainWriter::make_frame(const Simulation& sim) {
 
 void ForceChainWriter::frame(const Simulation& sim) {
   legacy::write_force_chain_frame(file_.get(), make_frame(sim), file_format(sim));
-  std::fflush(file_.get());
+  file_.flush();
 }
 
 }  // namespace dem

@@ -26,6 +26,23 @@ legacy::NumberFormat counts_format(const Simulation& sim);
 // throws std::runtime_error naming the path and the system's reason.
 FilePtr open_for_writing(const std::string& path, bool append = false);
 
+// An output file of a run: flush() (after each frame) throws std::runtime_error naming the file and
+// the system's reason when anything written since it was opened did not reach the system (a full
+// disk, a quota, an I/O error), so that a run never ends "succeeded" with files cut short. What was
+// flushed before stays readable.
+class OutputFile {
+ public:
+  OutputFile() = default;
+  OutputFile(const std::string& path, bool append) : file_(open_for_writing(path, append)), path_(path) {}
+  std::FILE* get() const { return file_.get(); }
+  explicit operator bool() const { return file_ != nullptr; }
+  void flush();
+
+ private:
+  FilePtr file_;
+  std::string path_;
+};
+
 // ANIMATION_3D.dat: particles (and plates) in the scene's file length unit.
 class AnimationWriter final : public Observer {
  public:
@@ -36,7 +53,7 @@ class AnimationWriter final : public Observer {
   static legacy::AnimationFrame make_frame(const Simulation& sim, const std::array<double, 6>& domain);
 
  private:
-  FilePtr file_;
+  OutputFile file_;
   std::array<double, 6> domain_{};
 };
 
@@ -49,7 +66,7 @@ class ForceChainWriter final : public Observer {
   static legacy::ForceChainFrame make_frame(const Simulation& sim);
 
  private:
-  FilePtr file_;
+  OutputFile file_;
 };
 
 // Wall.dat (the meshes at the start, merged into one, in the file length unit), written once, and
@@ -65,7 +82,7 @@ class WallWriter final : public Observer {
   static bool wanted(const Simulation& sim);  // the scene has meshes or moving walls
 
  private:
-  FilePtr animation_;
+  OutputFile animation_;
 };
 
 // Wall_ForceChain_3D.dat: particle-wall contacts of each frame.
@@ -76,7 +93,7 @@ class WallForceChainWriter final : public Observer {
   static legacy::WallForceChainFrame make_frame(const Simulation& sim);
 
  private:
-  FilePtr file_;
+  OutputFile file_;
 };
 
 // Force_Displacement.dat: time, displacement and force of the loading plate (the first
@@ -88,7 +105,7 @@ class ForceDisplacementWriter final : public Observer {
   static int loading_wall(const Simulation& sim);  // index in Scene::walls, or -1
 
  private:
-  FilePtr file_;
+  OutputFile file_;
 };
 
 // restart.dat: the whole state at each frame (sim/state_io.hpp), replaced atomically, so that a run

@@ -7,13 +7,13 @@
 namespace dem {
 
 StatisticsWriter::StatisticsWriter(const std::string& folder, const Simulation& sim, bool append)
-    : mass_centre_(open_for_writing(folder + "/Masscenter.dat", append)),
-      max_displacement_(open_for_writing(folder + "/Disp_Max.dat", append)),
-      coordination_(open_for_writing(folder + "/Coord_OL.dat", append)) {
+    : mass_centre_(folder + "/Masscenter.dat", append),
+      max_displacement_(folder + "/Disp_Max.dat", append),
+      coordination_(folder + "/Coord_OL.dat", append) {
   if (!sim.bonds().empty()) {
-    fragments_ = open_for_writing(folder + "/Fragments.dat", append);
-    fragment_sizes_ = open_for_writing(folder + "/Fragment_Sizes.dat", append);
-    breaks_ = open_for_writing(folder + "/Bond_Breaks.dat", append);
+    fragments_ = OutputFile(folder + "/Fragments.dat", append);
+    fragment_sizes_ = OutputFile(folder + "/Fragment_Sizes.dat", append);
+    breaks_ = OutputFile(folder + "/Bond_Breaks.dat", append);
     // a continued run has written the breaks before its saved state already
     const std::vector<int>& id = sim.particles().id;
     if (append)
@@ -59,9 +59,9 @@ void StatisticsWriter::frame(const Simulation& sim) {
                     {t, n > 0 ? coordination / static_cast<double>(n) : 0.0,
                      pairs.empty() ? 0.0 : overlap / static_cast<double>(pairs.size())},
                     format);
-  std::fflush(mass_centre_.get());
-  std::fflush(max_displacement_.get());
-  std::fflush(coordination_.get());
+  mass_centre_.flush();
+  max_displacement_.flush();
+  coordination_.flush();
 
   if (fragments_) {
     const std::vector<int> part = sim.fragments();
@@ -74,12 +74,12 @@ void StatisticsWriter::frame(const Simulation& sim) {
                       {t, static_cast<double>(size.size()), static_cast<double>(biggest), static_cast<double>(c.intact),
                        static_cast<double>(c.tension), static_cast<double>(c.shear)},
                       counts);
-    std::fflush(fragments_.get());
+    fragments_.flush();
     std::map<int, int> by_size;  // fragment size -> how many
     for (const auto& [f, count] : size) ++by_size[count];
     for (const auto& [s, count] : by_size)
       legacy::write_row(fragment_sizes_.get(), {t, static_cast<double>(s), static_cast<double>(count)}, counts);
-    std::fflush(fragment_sizes_.get());
+    fragment_sizes_.flush();
     struct Break {
       double time;
       int i, j, mode;
@@ -98,7 +98,7 @@ void StatisticsWriter::frame(const Simulation& sim) {
     for (const Break& b : fresh)
       legacy::write_row(breaks_.get(), {b.time, static_cast<double>(b.i), static_cast<double>(b.j), static_cast<double>(b.mode)},
                         counts);
-    std::fflush(breaks_.get());
+    breaks_.flush();
   }
 }
 

@@ -26,7 +26,7 @@ class StatisticsWriter final : public Observer {
   void frame(const Simulation& sim) override;
 
  private:
-  FilePtr mass_centre_, max_displacement_, coordination_, fragments_, fragment_sizes_, breaks_;
+  OutputFile mass_centre_, max_displacement_, coordination_, fragments_, fragment_sizes_, breaks_;
   std::set<std::pair<int, int>> break_written_;  // broken bonds already written, by their particles' ids
 };
 

@@ -121,6 +121,21 @@ TEST_F(Cli, RunWritesTheAnimationFrames) {
   EXPECT_FALSE(fs::exists(out / "ForceChain_3D.dat"));
 }
 
+// An output file on a full disk (the file a symlink to /dev/full, which refuses every write with
+// ENOSPC): the run fails naming the file and the reason. Every write used to go unchecked and the
+// run ended "done" with the file empty.
+TEST_F(Cli, RunWhoseOutputFileCannotBeWrittenFailsNamingIt) {
+  for (const char* name : {"ANIMATION_3D.dat", "Energy.dat", "Masscenter.dat"}) {
+    const fs::path out = dir_ / (std::string("full_") + name);
+    fs::create_directories(out);
+    fs::create_symlink("/dev/full", out / name);
+    const Result r = dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --quiet");
+    EXPECT_EQ(r.exit_code, 1) << name << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string("cannot write ") + (out / name).string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
+  }
+}
+
 // A bed of 8 spheres on a floor given as an STL file, pressed by a cyclic plate (the ballast box
 // in miniature): every wall file is written and reads back.
 TEST_F(Cli, RunWithAMeshFloorAndALoadedPlateWritesTheWallFiles) {
