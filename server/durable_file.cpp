@@ -29,7 +29,11 @@ void write_file_durably(const std::filesystem::path& path, const std::string& by
   if (!f) throw std::runtime_error("cannot write " + temporary);
   const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && sync_file(f);
   const bool closed = std::fclose(f) == 0;
-  if (!written || !closed) throw std::runtime_error("cannot write " + temporary + " (disk full?)");
+  if (!written || !closed) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);  // never left behind half written
+    throw std::runtime_error("cannot write " + temporary + " (disk full?)");
+  }
   std::filesystem::rename(temporary, path);
   sync_folder(path.parent_path());
 }

@@ -19,6 +19,25 @@ namespace {
 
 constexpr const char* kCancelled = "cancelled on request";
 
+// What a submission leaves when the server dies inside the transaction that inserts its row: the
+// spec (or part of it, or its temporary) and an empty outputs folder, nothing else.
+bool uncommitted_submission(const fs::path& folder) {
+  for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
+    const std::string name = e.path().filename().string();
+    if (e.is_directory() && name == "outputs" && fs::is_empty(e.path())) continue;
+    if (e.is_regular_file() && name.rfind("spec.pb", 0) == 0) continue;
+    return false;
+  }
+  return true;
+}
+
+// DATA/unaccounted/NAME, or NAME.2, NAME.3, ... when taken.
+fs::path unaccounted_place(const fs::path& data, const std::string& name) {
+  fs::path place = data / "unaccounted" / name;
+  for (int k = 2; fs::exists(place); ++k) place = data / "unaccounted" / (name + "." + std::to_string(k));
+  return place;
+}
+
 }  // namespace
 
 JobManager::JobManager(ManagerOptions options, FrameHub& frames) : options_(std::move(options)), frames_(frames) {
@@ -41,13 +60,30 @@ void JobManager::recover() {
       store_->update(job);
     }
     if (!job.idempotency_key.empty()) by_key_[job.idempotency_key] = job.id;
+    // half-written files of a crash (checkpoint.dat.tmp, outputs.tar.tmp): their whole versions
+    // were never renamed over the real ones
+    std::error_code ignored;
+    for (const std::string& temporary : {folder(job.id).checkpoint().string() + ".tmp", folder(job.id).archive().string() + ".tmp"})
+      fs::remove(temporary, ignored);
     jobs_[job.id] = std::move(job);
   }
-  // a folder without a row is a submission that crashed before it was committed
+  // A folder without a row: a submission that crashed before its row was committed holds its spec
+  // and an empty outputs folder, and goes. Anything else (outputs, a checkpoint, an archive: a job
+  // table lost or replaced) is never deleted: it is moved aside, out of the way of new jobs' ids.
   for (const fs::directory_entry& e : fs::directory_iterator(options_.data / "jobs")) {
     const std::string name = e.path().filename().string();
-    const bool numeric = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
-    if (e.is_directory() && numeric && !jobs_.count(std::stoll(name))) fs::remove_all(e.path());
+    const bool numeric = !name.empty() && name.size() < 19 &&
+                         std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!e.is_directory() || !numeric || jobs_.count(std::stoll(name))) continue;
+    if (uncommitted_submission(e.path())) {
+      fs::remove_all(e.path());
+      continue;
+    }
+    const fs::path aside = unaccounted_place(options_.data, name);
+    fs::create_directories(aside.parent_path());
+    fs::rename(e.path(), aside);
+    std::fprintf(stderr, "dem-server: %s holds a job's files but the job table (%s) has no row for it: moved to %s, "
+                 "nothing deleted\n", e.path().c_str(), (options_.data / "jobs.db").c_str(), aside.c_str());
   }
 }
 

@@ -80,5 +80,45 @@ TEST_F(ServerRecovery, ASubmissionCutShortByACrashLeavesNoTrace) {
   EXPECT_EQ(nlohmann::json::parse(client_->get("/api/jobs").body)["jobs"].size(), 0u);
 }
 
+// Half-written temporaries of a crash are removed at the next start (they were left for good).
+TEST_F(ServerRecovery, HalfWrittenTemporariesOfACrashAreRemovedAtTheNextStart) {
+  start_server();
+  const long id = submit_json(pouring_spec(0.015, 100, 50))["id"];
+  wait_for(id, "succeeded");
+  EXPECT_EQ(server_->stop(SIGKILL), 128 + SIGKILL);
+  const fs::path folder = dir_ / "data" / "jobs" / std::to_string(id);
+  std::ofstream(folder / "checkpoint.dat.tmp") << "half a checkpoint";
+  std::ofstream(folder / "outputs.tar.tmp") << "half an archive";
+  start_server();
+  EXPECT_EQ(job(id)["state"], "succeeded");
+  EXPECT_FALSE(fs::exists(folder / "checkpoint.dat.tmp"));
+  EXPECT_FALSE(fs::exists(folder / "outputs.tar.tmp"));
+  EXPECT_TRUE(fs::exists(folder / "outputs.tar"));
+}
+
+// The job table lost (deleted, or replaced by an empty one) while the jobs' folders remain: the
+// server starts, deletes nothing, and moves each folder with files aside (it deleted every one,
+// outputs included).
+TEST_F(ServerRecovery, AJobTableLostDeletesNoJobsFiles) {
+  start_server();
+  const long id = submit_json(pouring_spec(0.015, 100, 50))["id"];
+  wait_for(id, "succeeded");
+  EXPECT_EQ(server_->stop(SIGTERM), 0);
+  const fs::path jobs = dir_ / "data" / "jobs";
+  const std::string animation = read_bytes(jobs / std::to_string(id) / "outputs" / "ANIMATION_3D.dat");
+  ASSERT_FALSE(animation.empty());
+  fs::remove(dir_ / "data" / "jobs.db");
+
+  start_server();
+  const fs::path aside = dir_ / "data" / "unaccounted" / std::to_string(id);
+  EXPECT_EQ(read_bytes(aside / "outputs" / "ANIMATION_3D.dat"), animation);
+  EXPECT_TRUE(fs::exists(aside / "outputs.tar"));
+  EXPECT_FALSE(fs::exists(jobs / std::to_string(id)));  // out of the way of the next job with that id
+  const long next = submit_json(pouring_spec(0.015, 100, 50))["id"];
+  EXPECT_EQ(next, id);
+  wait_for(next, "succeeded");
+  EXPECT_EQ(read_bytes(aside / "outputs" / "ANIMATION_3D.dat"), animation);
+}
+
 }  // namespace
 }  // namespace dem::test
