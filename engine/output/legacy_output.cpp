@@ -31,7 +31,8 @@ FilePtr open_for_writing(const std::string& path, bool append) {
 
 void OutputFile::flush() {
   if (!file_) return;
-  errno = 0;
+  // errno is not cleared first: a frame larger than the buffer fails inside its writes, and their
+  // errno (ENOSPC) is the reason; the flush after them may then have nothing left to fail on
   const bool flushed = std::fflush(file_.get()) == 0;
   const int reason = errno;
   if (!flushed || std::ferror(file_.get()))

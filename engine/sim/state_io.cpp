@@ -1,6 +1,7 @@
 #include "sim/state_io.hpp"
 
 #include <boost/crc.hpp>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -170,8 +171,9 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   const std::string data{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (data.size() < sizeof kMagic) throw std::runtime_error("not a saved state of this engine (too short)");
   if (std::memcmp(data.data(), kMagic, sizeof kMagic - 1) == 0 && data[7] != kMagic[7])
-    throw std::runtime_error(std::string("a saved state of another version of this engine (format ") + data[7] +
-                             ", this one reads " + kMagic[7] + "): run the job again from its start");
+    throw std::runtime_error("a saved state of another version of this engine (format byte " +
+                             std::to_string(static_cast<unsigned char>(data[7])) + ", this one reads '" + kMagic[7] +
+                             "'): run the job again from its start");
   if (std::memcmp(data.data(), kMagic, sizeof kMagic) != 0)
     throw std::runtime_error("not a saved state of this engine (wrong first bytes)");
   if (data.size() < sizeof kMagic + 4) throw std::runtime_error("the saved state ends inside the header (truncated)");
@@ -398,12 +400,22 @@ void StateIO::require_within_run(const Simulation& sim) {
 
 void StateIO::write_file(const Simulation& sim, const std::string& path) {
   const std::string part = path + ".part";
+  auto refuse = [&](int reason) {
+    std::error_code ignored;
+    std::filesystem::remove(part, ignored);  // the last whole state stays at `path`
+    throw std::runtime_error("cannot write " + part + " (the saved state, renamed to " + path + " when whole): " +
+                             std::strerror(reason != 0 ? reason : EIO));
+  };
   {
     std::ofstream out(part, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + part);
-    write(sim, out);
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + part);
+    if (!out) refuse(errno);
+    try {
+      write(sim, out);
+      out.flush();
+    } catch (const std::runtime_error&) {
+      refuse(errno);
+    }
+    if (!out) refuse(errno);
   }
   std::filesystem::rename(part, path);
 }

@@ -136,6 +136,29 @@ TEST_F(Cli, RunWhoseOutputFileCannotBeWrittenFailsNamingIt) {
   }
 }
 
+// The same with frames larger than the file's buffer (the write fails inside the frame, not at its
+// flush: the reason was reported as an I/O error), and for the saved state (it said only "cannot
+// write the saved state").
+TEST_F(Cli, RunWhoseLargeFramesOrSavedStateCannotBeWrittenNamesTheFileAndTheReason) {
+  std::string particles;
+  for (int k = 0; k < 100; ++k)
+    particles += std::string(k ? ", " : "") + R"({"position": {"x": )" + std::to_string(0.03 * k) +
+                 R"(}, "radius": 0.01, "material": "glass"})";
+  const std::string spec = good_with(
+      R"({"position": {"x": 0}, "radius": 0.01, "material": "glass", "velocity": {"x": 1}},
+    {"position": {"x": 0.0201}, "radius": 0.01, "material": "glass", "velocity": {"x": -1}})",
+      particles);
+  for (const char* name : {"ANIMATION_3D.dat", "restart.dat.part"}) {
+    const fs::path out = dir_ / (std::string("full_") + name);
+    fs::create_directories(out);
+    fs::create_symlink("/dev/full", out / name);
+    const Result r = dem("run " + shell_quoted(write_spec("many.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
+    EXPECT_EQ(r.exit_code, 1) << name << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string("cannot write ") + (out / name).string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
+  }
+}
+
 // A bed of 8 spheres on a floor given as an STL file, pressed by a cyclic plate (the ballast box
 // in miniature): every wall file is written and reads back.
 TEST_F(Cli, RunWithAMeshFloorAndALoadedPlateWritesTheWallFiles) {

@@ -112,6 +112,20 @@ TEST(StateIntegrity, AnIntactStateIsStillReadAndContinued) {
   EXPECT_EQ(sim.step_count(), 60);
 }
 
+// The version byte is named as a number (a damaged one was printed raw: invalid text on a terminal).
+TEST(StateIntegrity, AStateOfAnotherVersionNamesItsVersionByte) {
+  std::string state = saved_state(10);
+  state[7] = static_cast<char>(0xCA);
+  Simulation sim = fresh();
+  std::istringstream in(state);
+  try {
+    StateIO::read(sim, in);
+    FAIL() << "another version was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("format byte 202"), std::string::npos) << e.what();
+  }
+}
+
 TEST(StateIntegrity, ACutStateIsRefused) {
   const std::string good = saved_state(60);
   for (std::size_t keep : {std::size_t{0}, std::size_t{7}, std::size_t{40}, good.size() / 2, good.size() - 1}) {
