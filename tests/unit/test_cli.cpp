@@ -121,42 +121,39 @@ TEST_F(Cli, RunWritesTheAnimationFrames) {
   EXPECT_FALSE(fs::exists(out / "ForceChain_3D.dat"));
 }
 
-// An output file on a full disk (the file a symlink to /dev/full, which refuses every write with
-// ENOSPC): the run fails naming the file and the reason. Every write used to go unchecked and the
-// run ended "done" with the file empty.
-TEST_F(Cli, RunWhoseOutputFileCannotBeWrittenFailsNamingIt) {
-  for (const char* name : {"ANIMATION_3D.dat", "Energy.dat", "Masscenter.dat"}) {
-    const fs::path out = dir_ / (std::string("full_") + name);
-    fs::create_directories(out);
-    fs::create_symlink("/dev/full", out / name);
-    const Result r = dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --quiet");
-    EXPECT_EQ(r.exit_code, 1) << name << ": " << r.output;
-    EXPECT_NE(r.output.find(std::string("cannot write ") + (out / name).string()), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
+// Runs `spec` with each of `names` in its own output folder made a symlink to /dev/full (which
+// refuses every write with ENOSPC): the run must fail naming that file and the reason.
+class CliFullDisk : public Cli {
+ protected:
+  void expect_each_fails(const std::string& spec, std::initializer_list<const char*> names) {
+    for (const char* name : names) {
+      const fs::path out = dir_ / (std::string("full_") + name);
+      fs::create_directories(out);
+      fs::create_symlink("/dev/full", out / name);
+      const Result r = dem("run " + shell_quoted(write_spec("spec.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
+      EXPECT_EQ(r.exit_code, 1) << name << ": " << r.output;
+      EXPECT_NE(r.output.find(std::string("cannot write ") + (out / name).string()), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
+    }
   }
+};
+
+// Every write used to go unchecked: the run ended "done" with the file empty.
+TEST_F(CliFullDisk, RunWhoseOutputFileCannotBeWrittenFailsNamingIt) {
+  expect_each_fails(kGoodSpec, {"ANIMATION_3D.dat", "Energy.dat", "Masscenter.dat"});
 }
 
-// The same with frames larger than the file's buffer (the write fails inside the frame, not at its
-// flush: the reason was reported as an I/O error), and for the saved state (it said only "cannot
-// write the saved state").
-TEST_F(Cli, RunWhoseLargeFramesOrSavedStateCannotBeWrittenNamesTheFileAndTheReason) {
+// Frames larger than the file's buffer fail inside the frame, not at its flush (the reason was
+// reported as an I/O error); the saved state said only "cannot write the saved state".
+TEST_F(CliFullDisk, RunWhoseLargeFramesOrSavedStateCannotBeWrittenNamesTheFileAndTheReason) {
   std::string particles;
   for (int k = 0; k < 100; ++k)
     particles += std::string(k ? ", " : "") + R"({"position": {"x": )" + std::to_string(0.03 * k) +
                  R"(}, "radius": 0.01, "material": "glass"})";
-  const std::string spec = good_with(
-      R"({"position": {"x": 0}, "radius": 0.01, "material": "glass", "velocity": {"x": 1}},
+  expect_each_fails(good_with(R"({"position": {"x": 0}, "radius": 0.01, "material": "glass", "velocity": {"x": 1}},
     {"position": {"x": 0.0201}, "radius": 0.01, "material": "glass", "velocity": {"x": -1}})",
-      particles);
-  for (const char* name : {"ANIMATION_3D.dat", "restart.dat.part"}) {
-    const fs::path out = dir_ / (std::string("full_") + name);
-    fs::create_directories(out);
-    fs::create_symlink("/dev/full", out / name);
-    const Result r = dem("run " + shell_quoted(write_spec("many.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
-    EXPECT_EQ(r.exit_code, 1) << name << ": " << r.output;
-    EXPECT_NE(r.output.find(std::string("cannot write ") + (out / name).string()), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
-  }
+                              particles),
+                    {"ANIMATION_3D.dat", "restart.dat.part"});
 }
 
 // A bed of 8 spheres on a floor given as an STL file, pressed by a cyclic plate (the ballast box
