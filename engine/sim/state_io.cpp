@@ -191,7 +191,15 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   const std::size_t n = s.particles.size();
   const std::size_t bodies = s.bodies.size();
   const std::vector<Wall> spec_walls = s.walls;
-  const Particles spec = s.particles;
+  // per particle id: its material and clump (-1: free), which the state must keep; and the sizes of
+  // the arrays that only some scenes have
+  std::vector<int> material_of_id(n), body_of_id(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    material_of_id[s.particles.id[i]] = s.particles.material[i];
+    if (!s.particles.body.empty()) body_of_id[s.particles.id[i]] = s.particles.body[i];
+  }
+  const std::size_t externals = s.particles.external.size(), members = s.particles.body.size(),
+                    offsets = s.particles.body_offset.size(), orientations = s.particles.q.size();
   const bool rolling_spring = sim.kernel_->has_rolling_spring();
 
   Reader r(data.data() + sizeof kMagic, body - sizeof kMagic);
@@ -233,7 +241,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   for (const auto* v : {&p.radius, &p.mass, &p.inv_mass, &p.inv_inertia}) expect_size(*v, n, "a particle array");
   expect_size(p.material, n, "the particles' materials");
   expect_size(p.id, n, "the particles' ids");
-  expect_size(p.external, spec.external.size(), "the particles' external forces");
+  expect_size(p.external, externals, "the particles' external forces");
   expect_finite(p.x, "the position of particle");
   expect_finite(sim.x_at_build_, "the position at the last build of particle");
   for (std::size_t i = 0; i < n; ++i)
@@ -242,14 +250,11 @@ void StateIO::read(Simulation& sim, std::istream& in) {
       inconsistent("particle " + std::to_string(i) + " has a radius, mass or inertia that is not a positive number");
   expect_indices(p.id, 0, static_cast<int>(n), "the id of particle");
   {
-    std::vector<int> index_of_id(n, -1);
+    std::vector<std::uint8_t> seen(n, 0);
     for (std::size_t i = 0; i < n; ++i) {
-      if (index_of_id[p.id[i]] >= 0) inconsistent("two particles have the id " + std::to_string(p.id[i]));
-      index_of_id[p.id[i]] = static_cast<int>(i);
-    }
-    for (std::size_t k = 0; k < n; ++k) {  // what the spec fixes of each particle (its index may have moved)
-      const int i = index_of_id[spec.id[k]];
-      if (p.material[i] != spec.material[k]) inconsistent("particle id " + std::to_string(spec.id[k]) + " has another material");
+      if (seen[p.id[i]]) inconsistent("two particles have the id " + std::to_string(p.id[i]));
+      seen[p.id[i]] = 1;
+      if (p.material[i] != material_of_id[p.id[i]]) inconsistent("particle id " + std::to_string(p.id[i]) + " has another material");
     }
   }
 
@@ -371,17 +376,11 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   s.bonds.restore(std::move(saved_bonds));
 
   r.get(p.body, "the clumps"); r.get(p.body_offset, "the clumps"); r.get(p.q, "the orientations");
-  expect_size(p.body, spec.body.size(), "the clump of each particle");
-  expect_size(p.body_offset, spec.body_offset.size(), "the clump offsets");
-  expect_size(p.q, spec.q.size(), "the orientations");
-  expect_indices(p.body, -1, static_cast<int>(bodies), "the clump of particle");
-  if (!p.body.empty()) {
-    std::vector<int> index_of_id(n);
-    for (std::size_t i = 0; i < n; ++i) index_of_id[p.id[i]] = static_cast<int>(i);
-    for (std::size_t k = 0; k < n; ++k)
-      if (p.body[index_of_id[spec.id[k]]] != spec.body[k])
-        inconsistent("particle id " + std::to_string(spec.id[k]) + " is in another clump");
-  }
+  expect_size(p.body, members, "the clump of each particle");
+  expect_size(p.body_offset, offsets, "the clump offsets");
+  expect_size(p.q, orientations, "the orientations");
+  for (std::size_t i = 0; i < p.body.size(); ++i)  // the ids were checked above
+    if (p.body[i] != body_of_id[p.id[i]]) inconsistent("particle id " + std::to_string(p.id[i]) + " is in another clump");
   r.get(sim.ledger_, "the energy ledger");
   ClumpBodies& cb = s.bodies;
   r.get(cb.x, "the clumps"); r.get(cb.v, "the clumps"); r.get(cb.rotation, "the clumps");
