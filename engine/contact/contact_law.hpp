@@ -102,6 +102,32 @@ struct ContactLaw {
     return Normal::evaluate(p, c);
   }
 
+  // The force to add over the step after a contact parted: the spring's impulse the last sample
+  // could not see (spring_boundary_correction), with `before` the overlap at that sample and `lost`
+  // the overlap lost since. A normal model without spring_force takes none. With the no-tension
+  // clamp a damped contact's force reached zero before the overlap did: no kink at delta = 0.
+  static double parting_correction(const Pair& p, double before, double lost, double r_eff, double vn,
+                                   double sqrt_m_eff) {
+    if constexpr (requires { Normal::spring_force(p.normal, before, r_eff); }) {
+      if constexpr (NoTensile) {
+        ContactInput<double> c{};
+        c.delta = before;
+        c.vn_now = vn;
+        c.onset = 1;
+        c.sqrt_m_eff = sqrt_m_eff;
+        c.r_eff = r_eff;
+        typename Normal::template Lanes<double> lanes{};
+        lanes.set(0, p.normal);
+        if (Normal::evaluate(lanes, c).fn <= 0) return 0;
+      }
+      return spring_boundary_correction(
+          before, lost, [&](double x) { return Normal::elastic_energy(p.normal, x, r_eff); },
+          [&](double x) { return Normal::spring_force(p.normal, x, r_eff); });
+    } else {
+      return 0;
+    }
+  }
+
   // shear and roll: the contact's springs, updated in place.
   template <class T>
   DEM_HOT static ContactOutput<T> evaluate(const Lanes<T>& p, const ContactInput<T>& c, V3<T>& shear, V3<T>& roll) {

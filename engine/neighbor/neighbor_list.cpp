@@ -151,6 +151,7 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
 
   // Carry the history of pairs that were already listed.
   next.shear.assign(pairs, Vec3::Zero());
+  next.touched.assign(pairs, 0);
   if (options.keep_rolling_history) next.roll.assign(pairs, Vec3::Zero());
   else next.roll.clear();
   if (previous.partner.empty()) return;
@@ -164,6 +165,7 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
       if (old < 0) continue;
       const double sign = oi < oj ? 1.0 : -1.0;
       next.shear[k] = sign * previous.shear[old];
+      if (!previous.touched.empty()) next.touched[k] = previous.touched[old];
       if (keep_roll) next.roll[k] = sign * previous.roll[old];
     }
   }

@@ -10,6 +10,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <cstdint>
 #include <vector>
 
 #include "core/particles.hpp"
@@ -38,6 +39,9 @@ struct NeighborList {
   std::vector<int> partner;    // j of each pair, ascending within a row
   std::vector<Vec3> shear;     // tangential spring per pair
   std::vector<Vec3> roll;      // rolling spring per pair (empty unless the rolling law has one)
+  // 1 where the pair touched at the last force evaluation: the force loop counts a contact's first
+  // and last step by it (contact/contact_input.hpp, spring_boundary_correction)
+  std::vector<std::uint8_t> touched;
   // pair constants, one array each so that the force loop streams only those its law needs
   std::vector<double> sqrt_m_eff;
   std::vector<double> r_eff;

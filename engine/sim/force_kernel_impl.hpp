@@ -162,6 +162,7 @@ class ForceKernelImpl final : public ForceKernel {
     const double* __restrict i_roll = nl.i_roll.data();
     Vec3* __restrict shear = nl.shear.data();
     Vec3* __restrict roll = nl.roll.data();
+    std::uint8_t* __restrict touched = nl.touched.data();
     BodySums* __restrict sums = s.blocks.sums.data();
     double* __restrict out_fn = s.pairs.fn.data();
     double* __restrict out_ft2 = s.pairs.ft_squared.data();
@@ -169,10 +170,27 @@ class ForceKernelImpl final : public ForceKernel {
     const int materials = table.material_count();
     const T dt = splat<T>(s.dt);
 
-    auto part = [&](int k) {  // a listed pair that does not touch: its history ends
-      if (!shear[k].isZero(0)) shear[k].setZero();
-      if constexpr (Law::kRollingSpring) roll[k].setZero();
+    auto part = [&](int k, int i, int j, int to) {  // a listed pair that does not touch: its history ends
       if constexpr (kRecord) out_touching[k] = 0;
+      if (!touched[k]) return;  // apart at the last sample too: the springs are zero already
+      touched[k] = 0;
+      shear[k].setZero();
+      if constexpr (Law::kRollingSpring) roll[k].setZero();
+      // Parted since the last sample: the spring's impulse that sample could not see
+      // (spring_boundary_correction), along the line of the centres so that both momenta stay.
+      const Vec3 d = x[i] - x[j];
+      const double rs = radius[i] + radius[j], dist = d.norm();
+      const Vec3 vc = v[i] - v[j];
+      const double before = rs - (d - s.dt * vc).norm();  // the overlap at the last sample
+      const double lost = before - (rs - dist);
+      if (!(before > 0 && lost > 0 && dist > 0)) return;
+      const Vec3 n = d / dist;
+      const double f = Law::parting_correction(table(material[i], material[j]), before, lost, r_eff[k],
+                                               vc.dot(n), sqrt_m_eff[k]);
+      if (f == 0) return;
+      const Lanes4 push{f * n.x(), f * n.y(), f * n.z(), 0.0};
+      sums[i].f = sums[i].f + push;
+      sums[to].f = sums[to].f - push;
     };
 
     typename Law::template Lanes<T> params{};
@@ -225,7 +243,7 @@ class ForceKernelImpl final : public ForceKernel {
         const Geometry& geo = geometry[g];
         const int *kv = geo.k, *iv = geo.i, *jv = geo.j;
         if (!any_lane(geo.touching)) {
-          for (int l = 0; l < geo.used; ++l) part(kv[l]);
+          for (int l = 0; l < geo.used; ++l) part(kv[l], iv[l], jv[l], geo.to[l]);
           continue;
         }
         int pair_of[W];
@@ -251,12 +269,27 @@ class ForceKernelImpl final : public ForceKernel {
         // that the two levers add up to the distance of the centres and the tangential force keeps
         // the total angular momentum (through the full radii it leaked delta / R of it).
         const T li = geo.ri - 0.5 * geo.delta, lj = geo.rj - 0.5 * geo.delta;
-        c.v_rel = gather<T>(v, iv) - gather<T>(v, jv) - cross(li * wi + lj * wj, c.n);
+        const V3<T> v_centres = gather<T>(v, iv) - gather<T>(v, jv);
+        c.v_rel = v_centres - cross(li * wi + lj * wj, c.n);
         const T vn = dot(c.v_rel, c.n);
         // full-step prediction: v(n+1) ~ v(n+1/2) + (the first half kick again)
         c.vn_now = vn + dot(gather<T>(kick, iv) - gather<T>(kick, jv), c.n);
         c.onset = boundary_share(c.delta, vn, dt);
         c.travel = lane_abs(vn) * dt;
+        c.first_touch = T{};
+        {
+          T was{};
+          for (int l = 0; l < W; ++l) set_lane(was, l, touched[kv[l]] ? 1.0 : 0.0);
+          const auto unseen = lane_and(geo.touching, was == T{});
+          if (any_lane(unseen)) {
+            // New since the last sample where apart at the start of the drift (a contact of the first
+            // step, overlapping from the start, is not): the overlap it gained over the drift.
+            const T dist = geo.ri + geo.rj - geo.delta;
+            const T dist_before = lane_sqrt(squared_norm(dist * geo.n - dt * v_centres));
+            const auto fresh = lane_and(unseen, dist_before >= geo.ri + geo.rj);
+            c.first_touch = select(fresh, dist_before - dist, T{});
+          }
+        }
         c.w_rel = wi - wj;
         c.sqrt_m_eff = gather<T>(sqrt_m_eff, kv);
         c.r_eff = Law::kNeedsEffectiveRadius ? gather<T>(r_eff, kv) : T{};
@@ -281,9 +314,10 @@ class ForceKernelImpl final : public ForceKernel {
         for (int l = 0; l < geo.used; ++l) {
           const int k = kv[l];
           if (!lane_on(geo.touching, l)) {
-            part(k);
+            part(k, iv[l], jv[l], geo.to[l]);
             continue;
           }
+          touched[k] = 1;
           BodySums& on_i = sums[iv[l]];
           BodySums& on_j = sums[geo.to[l]];
           on_i.f = on_i.f + force_of[l];
@@ -373,7 +407,7 @@ class ForceKernelImpl final : public ForceKernel {
                                                     const Vec3& normal, double delta,
                                                     const Vec3& point, const WallPose& pose, int wall_material,
                                                     const PairConstants& pc, Vec3& shear, Vec3& roll, Vec3& f,
-                                                    Vec3& t, double weight = 1) {
+                                                    Vec3& t, bool first_sample, double weight = 1) {
     const Particles& p = s.particles;
     if (delta > s.overlap_limit * p.radius[i]) s.deep_overlap.store(true, std::memory_order_relaxed);
     const double li = p.radius[i] - 0.5 * delta;  // to the contact point, as for a pair
@@ -386,6 +420,8 @@ class ForceKernelImpl final : public ForceKernel {
     c.vn_now = vn + dot(to_v3(s.half_kick[i]), c.n);
     c.onset = boundary_share(c.delta, vn, s.dt);
     c.travel = std::abs(vn) * s.dt;
+    // the overlap gained since the last sample (a sphere moves straight relative to a plane)
+    c.first_touch = first_sample && vn < 0 && delta <= c.travel ? c.travel : 0.0;
     c.w_rel = to_v3(p.w[i] - pose.angular_velocity);
     c.sqrt_m_eff = pc.sqrt_m_eff;
     c.r_eff = pc.r_eff;
@@ -418,9 +454,24 @@ class ForceKernelImpl final : public ForceKernel {
       Vec3 normal;
       double delta;
       if (p.inv_mass[i] == 0 || !wall.contact(p.x[i], ri, normal, delta)) {
+        const bool parted = wc.touching[e] && p.inv_mass[i] != 0;
         wc.touching[e] = 0;
         wc.fn[e] = wc.ft[e] = 0;
         wc.force[e].setZero();
+        if (parted) {  // since the last sample: the spring's impulse it could not see (spring_boundary_correction)
+          const Vec3 n = wall.normal_towards(p.x[i]);
+          const double now = ri - wall.distance(p.x[i]);
+          Vec3 v_rel = p.v[i];
+          if (wall.pose.moving()) v_rel -= wall.pose.velocity_at(p.x[i] - ri * n);
+          const double vn = v_rel.dot(n);
+          const double before = now + vn * s.dt;
+          if (before > 0 && vn > 0) {
+            const double push = Law::parting_correction(table(p.material[i], wall.material), before, vn * s.dt,
+                                                        wc.constants[e].r_eff, vn, wc.constants[e].sqrt_m_eff);
+            wc.force[e] = push * n;
+            f += wc.force[e];
+          }
+        }
         wc.shear[e].setZero();
         if constexpr (Law::kRollingSpring) wc.roll[e].setZero();
         continue;
@@ -429,7 +480,8 @@ class ForceKernelImpl final : public ForceKernel {
       Vec3& roll = Law::kRollingSpring ? wc.roll[e] : unused_roll;
       const Vec3 point = p.x[i] - (ri - 0.5 * delta) * normal;  // the middle of the overlap
       const ContactOutput<double> r =
-          wall_contact(s, table, i, normal, delta, point, wall.pose, wall.material, wc.constants[e], wc.shear[e], roll, f, t);
+          wall_contact(s, table, i, normal, delta, point, wall.pose, wall.material, wc.constants[e], wc.shear[e], roll, f, t,
+                       !wc.touching[e]);
       wc.fn[e] = r.fn;
       if (s.record_contacts) wc.ft[e] = std::sqrt(squared_norm(r.shear_force));
       wc.force[e] = r.force.get(0);
@@ -457,10 +509,11 @@ class ForceKernelImpl final : public ForceKernel {
     struct History {
       int mesh;
       Vec3 normal, shear, roll;
+      double delta, weight;
     } before[kSlots];
     bool taken[kSlots] = {};
     int had = 0;
-    for (; mc.used[i] && had < kSlots && now[had].mesh >= 0; ++had) before[had] = {now[had].mesh, now[had].normal, now[had].shear, now[had].roll};
+    for (; mc.used[i] && had < kSlots && now[had].mesh >= 0; ++had) before[had] = {now[had].mesh, now[had].normal, now[had].shear, now[had].roll, now[had].delta, now[had].weight};
     const double ri = p.radius[i];
     const PairConstants& pc = mc.constants[i];
     int filled = 0;
@@ -493,7 +546,8 @@ class ForceKernelImpl final : public ForceKernel {
         }
         const Vec3 point = p.x[i] - (ri - 0.5 * touch.delta) * touch.normal;  // the middle of the overlap
         const ContactOutput<double> r = wall_contact(s, table, i, touch.normal, touch.delta, point, s.meshes[m].pose,
-                                                     s.meshes[m].material, pc, slot.shear, slot.roll, f, t, touch.weight);
+                                                     s.meshes[m].material, pc, slot.shear, slot.roll, f, t,
+                                                     /*first_sample=*/best < 0, touch.weight);
         slot.normal = touch.normal;
         slot.force = r.force.get(0);
         if (touch.weight != 1) {  // a face shared at a valley: the pull of its weight, through the centre
@@ -510,6 +564,19 @@ class ForceKernelImpl final : public ForceKernel {
         if (filled < kSlots) now[filled++] = slot;
       }
       a = b;
+    }
+    // A face contact of the last sample found nowhere now, that the drift since has carried off its
+    // plane: parted, with the spring's impulse the last sample could not see (spring_boundary_correction).
+    for (int o = 0; o < had; ++o) {
+      if (taken[o] || before[o].delta <= 0) continue;
+      const History& h = before[o];
+      Vec3 v_rel = p.v[i];
+      if (s.meshes[h.mesh].pose.moving()) v_rel -= s.meshes[h.mesh].pose.velocity_at(p.x[i] - ri * h.normal);
+      const double vn = v_rel.dot(h.normal);
+      if (!(vn > 0 && h.delta <= vn * s.dt)) continue;
+      const double push = Law::parting_correction(table(p.material[i], s.meshes[h.mesh].material), h.delta,
+                                                  vn * s.dt, pc.r_eff, vn, pc.sqrt_m_eff);
+      f += (h.weight * push) * h.normal;
     }
     if (filled < kSlots && (filled > 0 || mc.used[i])) now[filled].mesh = -1;
     mc.used[i] = filled > 0;

@@ -611,23 +611,25 @@ void Simulation::build_wall_contacts(const WallContacts& previous, const std::ve
     for (int w = 0; w < static_cast<int>(state_.walls.size()); ++w) {
       if (state_.walls[w].distance(p.x[i]) >= p.radius[i] + skin_) continue;
       Vec3 shear = Vec3::Zero(), roll = Vec3::Zero();
+      std::uint8_t touching = 0;  // at the last force evaluation (the force loop's first and last steps)
       if (!previous.row_start.empty()) {
         for (int e = previous.row_start[old]; e < previous.row_start[old + 1]; ++e) {
           if (previous.wall[e] != w) continue;
           shear = previous.shear[e];
           if (keep_roll) roll = previous.roll[e];
+          if (!previous.touching.empty()) touching = previous.touching[e];
         }
       }
       wc.wall.push_back(w);
       wc.constants.push_back(wall_constants(p, i));
       wc.shear.push_back(shear);
+      wc.touching.push_back(touching);
       if (keep_roll) wc.roll.push_back(roll);
     }
     wc.row_start[i + 1] = static_cast<int>(wc.wall.size());
   }
   wc.fn.assign(wc.wall.size(), 0.0);
   wc.ft.assign(wc.wall.size(), 0.0);
-  wc.touching.assign(wc.wall.size(), 0);
   wc.force.assign(wc.wall.size(), Vec3::Zero());
   wc.point.assign(wc.wall.size(), Vec3::Zero());
 }

@@ -17,7 +17,7 @@ namespace dem {
 namespace {
 
 // 5: a CRC-32 of everything before it as the last four bytes; 4: orientations, bonds' bonded states
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '5'};
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '6'};
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
@@ -141,7 +141,7 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   w.put(s.half_kick);
   w.put(sim.x_at_build_);
   const NeighborList& nl = s.neighbors;
-  w.put(nl.row_start); w.put(nl.partner); w.put(nl.shear); w.put(nl.roll);
+  w.put(nl.row_start); w.put(nl.partner); w.put(nl.shear); w.put(nl.roll); w.put(nl.touched);
   w.put(nl.sqrt_m_eff); w.put(nl.r_eff); w.put(nl.i_roll);
   w.put(s.pairs.fn); w.put(s.pairs.ft_squared); w.put(s.pairs.touching);
   const BlockPlan& b = s.blocks;
@@ -260,7 +260,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
 
   NeighborList& nl = s.neighbors;
   r.get(nl.row_start, "the neighbour list"); r.get(nl.partner, "the neighbour list"); r.get(nl.shear, "the neighbour list");
-  r.get(nl.roll, "the neighbour list"); r.get(nl.sqrt_m_eff, "the neighbour list"); r.get(nl.r_eff, "the neighbour list");
+  r.get(nl.roll, "the neighbour list"); r.get(nl.touched, "the neighbour list"); r.get(nl.sqrt_m_eff, "the neighbour list"); r.get(nl.r_eff, "the neighbour list");
   r.get(nl.i_roll, "the neighbour list");
   r.get(s.pairs.fn, "the contacts"); r.get(s.pairs.ft_squared, "the contacts"); r.get(s.pairs.touching, "the contacts");
   const std::size_t pairs = nl.partner.size();
@@ -276,6 +276,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   for (const auto* v : {&nl.sqrt_m_eff, &nl.r_eff, &nl.i_roll, &s.pairs.fn, &s.pairs.ft_squared})
     expect_size(*v, pairs, "the neighbour list's pair values");
   expect_size(s.pairs.touching, pairs, "the neighbour list's pair values");
+  expect_size(nl.touched, pairs, "the neighbour list's pair values");
 
   BlockPlan& b = s.blocks;
   r.get(b.block_size, "the block plan");

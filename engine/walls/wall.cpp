@@ -90,6 +90,13 @@ bool Wall::contact(const Vec3& x, double r, Vec3& n, double& delta) const {
   return true;
 }
 
+Vec3 Wall::normal_towards(const Vec3& x) const {
+  if (kind == Kind::Plane) return normal;
+  const Vec3 gap = x - closest_on_plate(x);
+  const double d = gap.norm();
+  return d > 0 ? Vec3(gap / d) : normal;
+}
+
 double Wall::distance(const Vec3& x) const {
   if (kind == Kind::Plane) return (x - point).dot(normal);
   return (x - closest_on_plate(x)).norm();

@@ -31,6 +31,8 @@ struct Wall {
 
   // Distance from x to the wall's solid (negative behind a plane), for candidate lists.
   double distance(const Vec3& x) const;
+  // The unit normal from the wall towards x (what contact() gives where they touch).
+  Vec3 normal_towards(const Vec3& x) const;
 
  private:
   Vec3 closest_on_plate(const Vec3& x) const;
