@@ -469,6 +469,7 @@ class ForceKernelImpl final : public ForceKernel {
             const double push = Law::parting_correction(table(p.material[i], wall.material), before, vn * s.dt,
                                                         wc.constants[e].r_eff, vn, wc.constants[e].sqrt_m_eff);
             wc.force[e] = push * n;
+            wc.point[e] = p.x[i] - ri * n;
             f += wc.force[e];
           }
         }

@@ -232,7 +232,12 @@ void Simulation::settle_walls(double t_new, double dt) {
   if (!wc.row_start.empty())
     for (int i = 0; i < n; ++i)
       for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
-        if (wc.touching[e]) add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e]);
+        if (wc.touching[e]) {
+          add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e]);
+        } else if (!wc.force[e].isZero(0)) {  // the step after a parting (the spring's missed impulse)
+          add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e]);
+          --boundary_loads_[boundary_of_plane_[wc.wall[e]]].contacts;  // not a contact now
+        }
   const MeshContacts& mc = state_.mesh_contacts;
   for (int i = 0; i < n && !mc.used.empty(); ++i)
     for (int k = 0, used = mc.count(i); k < used; ++k)
