@@ -100,6 +100,28 @@ class ForceKernelImpl final : public ForceKernel {
     return sum;
   }
 
+  // A listed pair parted since the last sample: the spring's impulse that sample could not see
+  // (spring_boundary_correction), along the line of the centres so that both momenta stay. Rare:
+  // kept out of the force loop.
+  [[gnu::noinline]] static void add_parting_push(SimState& s, const PairTable<Pair>& table, int k, int i, int j, int to) {
+    const Particles& p = s.particles;
+    const Vec3 d = p.x[i] - p.x[j];
+    const double rs = p.radius[i] + p.radius[j], dist = d.norm();
+    const Vec3 vc = p.v[i] - p.v[j];
+    const double before = rs - (d - s.dt * vc).norm();  // the overlap at the last sample
+    const double lost = before - (rs - dist);
+    if (!(before > 0 && lost > 0 && dist > 0)) return;
+    const Vec3 n = d / dist;
+    const NeighborList& nl = s.neighbors;
+    const double f = Law::parting_correction(table(p.material[i], p.material[j]), before, lost, nl.r_eff[k], vc.dot(n),
+                                             nl.sqrt_m_eff[k]);
+    if (f == 0) return;
+    const Lanes4 push{f * n.x(), f * n.y(), f * n.z(), 0.0};
+    BodySums* sums = s.blocks.sums.data();
+    sums[i].f = sums[i].f + push;
+    sums[to].f = sums[to].f - push;
+  }
+
   // kRecord: keep each pair's forces for observers (force chains, contact counts) this step.
   template <bool kRecord>
   static void evaluate_pairs(SimState& s, const PairTable<Pair>& table) {
@@ -171,26 +193,12 @@ class ForceKernelImpl final : public ForceKernel {
     const T dt = splat<T>(s.dt);
 
     auto part = [&](int k, int i, int j, int to) {  // a listed pair that does not touch: its history ends
-      if constexpr (kRecord) out_touching[k] = 0;
-      if (!touched[k]) return;  // apart at the last sample too: the springs are zero already
-      touched[k] = 0;
-      shear[k].setZero();
+      if (!shear[k].isZero(0)) shear[k].setZero();
       if constexpr (Law::kRollingSpring) roll[k].setZero();
-      // Parted since the last sample: the spring's impulse that sample could not see
-      // (spring_boundary_correction), along the line of the centres so that both momenta stay.
-      const Vec3 d = x[i] - x[j];
-      const double rs = radius[i] + radius[j], dist = d.norm();
-      const Vec3 vc = v[i] - v[j];
-      const double before = rs - (d - s.dt * vc).norm();  // the overlap at the last sample
-      const double lost = before - (rs - dist);
-      if (!(before > 0 && lost > 0 && dist > 0)) return;
-      const Vec3 n = d / dist;
-      const double f = Law::parting_correction(table(material[i], material[j]), before, lost, r_eff[k],
-                                               vc.dot(n), sqrt_m_eff[k]);
-      if (f == 0) return;
-      const Lanes4 push{f * n.x(), f * n.y(), f * n.z(), 0.0};
-      sums[i].f = sums[i].f + push;
-      sums[to].f = sums[to].f - push;
+      if constexpr (kRecord) out_touching[k] = 0;
+      if (!touched[k]) return;
+      touched[k] = 0;
+      add_parting_push(s, table, k, i, j, to);
     };
 
     typename Law::template Lanes<T> params{};
@@ -277,13 +285,21 @@ class ForceKernelImpl final : public ForceKernel {
         c.onset = boundary_share(c.delta, vn, dt);
         c.travel = lane_abs(vn) * dt;
         c.first_touch = T{};
-        {
+        // Only an overlap smaller than the drift's relative travel can be new since the last sample
+        // (the overlap changes by at most |v_i - v_j| dt a step): there, and only there, the flag of
+        // the last sample is read and set. An older contact keeps its flag, which it set on the way in
+        // (or, touching from the start, sets on its way out before it parts).
+        const T reach2 = squared_norm(v_centres) * (1.0001 * s.dt * s.dt);
+        const auto near_boundary = lane_and(geo.touching, geo.delta * geo.delta < reach2);
+        bool near_any = false;
+        if (any_lane(near_boundary)) {
+          near_any = true;
           T was{};
           for (int l = 0; l < W; ++l) set_lane(was, l, touched[kv[l]] ? 1.0 : 0.0);
-          const auto unseen = lane_and(geo.touching, was == T{});
+          const auto unseen = lane_and(near_boundary, was == T{});
           if (any_lane(unseen)) {
-            // New since the last sample where apart at the start of the drift (a contact of the first
-            // step, overlapping from the start, is not): the overlap it gained over the drift.
+            // New where apart at the start of the drift (a contact of the first step, overlapping
+            // from the start, is not): the overlap it gained over the drift.
             const T dist = geo.ri + geo.rj - geo.delta;
             const T dist_before = lane_sqrt(squared_norm(dist * geo.n - dt * v_centres));
             const auto fresh = lane_and(unseen, dist_before >= geo.ri + geo.rj);
@@ -317,7 +333,7 @@ class ForceKernelImpl final : public ForceKernel {
             part(k, iv[l], jv[l], geo.to[l]);
             continue;
           }
-          touched[k] = 1;
+          if (near_any && lane_on(near_boundary, l)) touched[k] = 1;
           BodySums& on_i = sums[iv[l]];
           BodySums& on_j = sums[geo.to[l]];
           on_i.f = on_i.f + force_of[l];
