@@ -12,7 +12,6 @@
 #pragma once
 
 #include "core/lanes.hpp"
-#include <cstdlib>
 
 // The models run once per contact per step: keep them inlined into the force loop whatever the
 // compiler's size heuristics say (measured: 30% of the loop went to calls otherwise).

@@ -8,9 +8,9 @@
 // from it, is the same whatever the number of threads.
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <cstdint>
 #include <vector>
 
 #include "core/particles.hpp"
