@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <string>
 
 #include "core/scene.hpp"
@@ -46,6 +47,24 @@ inline ParticleInit sphere(const Vec3& x, double r, const Vec3& v = Vec3::Zero()
 
 inline WallInit plane(const Vec3& point, const Vec3& normal, const std::string& name = "plane") {
   return WallInit{name, 1, PlaneShape{point, normal.normalized()}, {}, {}};
+}
+
+// An elastic gas: `side`^3 spheres of radius r on a lattice in a cube of edge `box` closed by six
+// planes, each with a random velocity of components in (-1, 1) m/s drawn from `seed`.
+inline void fill_gas_box(Scene& s, int side, double r, double box, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> speed(-1.0, 1.0);
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      for (int k = 0; k < side; ++k)
+        s.particles.push_back(sphere(Vec3(i + 0.5, j + 0.5, k + 0.5) * (box / side), r,
+                                     Vec3(speed(rng), speed(rng), speed(rng))));
+  for (int d = 0; d < 3; ++d) {
+    Vec3 n = Vec3::Zero();
+    n[d] = 1;
+    s.walls.push_back(plane(Vec3::Zero(), n));
+    s.walls.push_back(plane(n * box, -n));
+  }
 }
 
 // Runs until `done(sim)` or max_steps; returns the number of steps taken.

@@ -78,19 +78,7 @@ double small_gas_energy_change(std::string_view law, std::uint32_t seed) {
   Scene s = base_scene(law, kDensity, 1e8, 0.25, 1.0, 0.0, kStiffness);
   const double r = kRadius;
   const double box = std::cbrt(64 * 4.0 / 3.0 * std::numbers::pi * r * r * r / 0.15);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> speed(-1.0, 1.0);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j)
-      for (int k = 0; k < 4; ++k)
-        s.particles.push_back(sphere(Vec3(i + 0.5, j + 0.5, k + 0.5) * (box / 4), r,
-                                     Vec3(speed(rng), speed(rng), speed(rng))));
-  for (int d = 0; d < 3; ++d) {
-    Vec3 n = Vec3::Zero();
-    n[d] = 1;
-    s.walls.push_back(plane(Vec3::Zero(), n));
-    s.walls.push_back(plane(n * box, -n));
-  }
+  fill_gas_box(s, 4, r, box, seed);
   s.time.duration = 0.5;
   s.time.steps = 0;
   Simulation sim(s);

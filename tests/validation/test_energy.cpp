@@ -17,20 +17,7 @@ namespace {
 Scene elastic_gas(std::string_view model, std::uint32_t seed) {
   Scene s = base_scene(model, 2500, 1e8, 0.25, 1.0, 0.0, 1e4);
   const double r = 0.005, box = 0.1;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> speed(-1.0, 1.0);
-  // 6 x 6 x 6 lattice with room between spheres, random velocities
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j)
-      for (int k = 0; k < 6; ++k)
-        s.particles.push_back(sphere(Vec3(i + 0.5, j + 0.5, k + 0.5) * (box / 6), r,
-                                     Vec3(speed(rng), speed(rng), speed(rng))));
-  for (int d = 0; d < 3; ++d) {
-    Vec3 n = Vec3::Zero();
-    n[d] = 1;
-    s.walls.push_back(plane(Vec3::Zero(), n));
-    s.walls.push_back(plane(n * box, -n));
-  }
+  fill_gas_box(s, 6, r, box, seed);
   return s;
 }
 
