@@ -461,6 +461,14 @@ class ForceKernelImpl final : public ForceKernel {
     return r;
   }
 
+  // The speed at which particle i's centre leaves a boundary moving with `pose`, along its normal n
+  // (wall -> particle): after a parting, to count the step the contact left (parting_correction).
+  static double leaving_speed(const SimState& s, int i, const Vec3& n, const WallPose& pose) {
+    Vec3 v = s.particles.v[i];
+    if (pose.moving()) v -= pose.velocity_at(s.particles.x[i] - s.particles.radius[i] * n);
+    return v.dot(n);
+  }
+
   static void add_wall_forces(SimState& s, const PairTable<Pair>& table, int i, Vec3& f, Vec3& t) {
     const Particles& p = s.particles;
     WallContacts& wc = s.wall_contacts;
@@ -476,11 +484,8 @@ class ForceKernelImpl final : public ForceKernel {
         wc.force[e].setZero();
         if (parted) {  // since the last sample: the spring's impulse it could not see (spring_boundary_correction)
           const Vec3 n = wall.normal_towards(p.x[i]);
-          const double now = ri - wall.distance(p.x[i]);
-          Vec3 v_rel = p.v[i];
-          if (wall.pose.moving()) v_rel -= wall.pose.velocity_at(p.x[i] - ri * n);
-          const double vn = v_rel.dot(n);
-          const double before = now + vn * s.dt;
+          const double vn = leaving_speed(s, i, n, wall.pose);
+          const double before = ri - wall.distance(p.x[i]) + vn * s.dt;
           if (before > 0 && vn > 0) {
             const double push = Law::parting_correction(table(p.material[i], wall.material), before, vn * s.dt,
                                                         wc.constants[e].r_eff, vn, wc.constants[e].sqrt_m_eff);
@@ -587,9 +592,7 @@ class ForceKernelImpl final : public ForceKernel {
     for (int o = 0; o < had; ++o) {
       if (taken[o] || before[o].delta <= 0) continue;
       const History& h = before[o];
-      Vec3 v_rel = p.v[i];
-      if (s.meshes[h.mesh].pose.moving()) v_rel -= s.meshes[h.mesh].pose.velocity_at(p.x[i] - ri * h.normal);
-      const double vn = v_rel.dot(h.normal);
+      const double vn = leaving_speed(s, i, h.normal, s.meshes[h.mesh].pose);
       if (!(vn > 0 && h.delta <= vn * s.dt)) continue;
       const double push = Law::parting_correction(table(p.material[i], s.meshes[h.mesh].material), h.delta,
                                                   vn * s.dt, pc.r_eff, vn, pc.sqrt_m_eff);

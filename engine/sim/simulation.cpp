@@ -222,22 +222,19 @@ void Simulation::settle_walls(double t_new, double dt) {
   const Particles& p = state_.particles;
   const WallContacts& wc = state_.wall_contacts;
   const int n = static_cast<int>(p.size());
-  auto add = [&](int k, const Vec3& force_on_particle, const Vec3& point) {
+  // is_contact: false for the push of the step after a parting (the spring's missed impulse)
+  auto add = [&](int k, const Vec3& force_on_particle, const Vec3& point, bool is_contact = true) {
     BoundaryLoad& load = boundary_loads_[k];
     const Vec3 centre = drivers_[k].pose().center0 + drivers_[k].pose().displacement;
     load.force -= force_on_particle;
     load.torque -= (point - centre).cross(force_on_particle);
-    ++load.contacts;
+    if (is_contact) ++load.contacts;
   };
   if (!wc.row_start.empty())
     for (int i = 0; i < n; ++i)
       for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
-        if (wc.touching[e]) {
-          add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e]);
-        } else if (!wc.force[e].isZero(0)) {  // the step after a parting (the spring's missed impulse)
-          add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e]);
-          --boundary_loads_[boundary_of_plane_[wc.wall[e]]].contacts;  // not a contact now
-        }
+        if (wc.touching[e] || !wc.force[e].isZero(0))
+          add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e], wc.touching[e] != 0);
   const MeshContacts& mc = state_.mesh_contacts;
   for (int i = 0; i < n && !mc.used.empty(); ++i)
     for (int k = 0, used = mc.count(i); k < used; ++k)

@@ -25,7 +25,6 @@ double collision_energy_error(std::string_view law, double offset, double phase)
   Scene s = base_scene(law, kDensity, 1e8, 0.25, 1.0, 0.0, kStiffness);
   const double r = kRadius;
   const double closing = 2.0;  // m/s
-  Simulation probe(s);         // an empty scene only to learn the default step
   s.particles.push_back(sphere(Vec3(-r - 0.001, 0, 0), r, Vec3(1, 0, 0)));
   s.particles.push_back(sphere(Vec3(r + 0.001, offset, 0), r, Vec3(-1, 0, 0)));
   Simulation first(s);
