@@ -14,6 +14,9 @@ struct ContactSummary {
   int worst_partner = -1;           // index of the other particle of that contact (-1: a wall)
   double elastic_energy = 0;        // stored in the normal springs
   std::size_t contacts = 0;
+  // The fastest the bodies of one contact would part if its stored energy all went into their
+  // relative motion, sqrt(2 U / m*): the speed a release from an initial overlap reaches.
+  double release_speed = 0;
 };
 
 class ForceKernel {

@@ -55,9 +55,10 @@ class ForceKernelImpl final : public ForceKernel {
     const Particles& p = s.particles;
     static const Vec3 kNone = Vec3::Zero();  // the rolling spring of a law without one
     ContactSummary sum;
-    auto note = [&](int i, int j, double delta, double r_min, double elastic) {
+    auto note = [&](int i, int j, double delta, double r_min, double elastic, double sqrt_m_eff) {
       ++sum.contacts;
       sum.elastic_energy += elastic;
+      if (sqrt_m_eff > 0) sum.release_speed = std::max(sum.release_speed, std::sqrt(2 * elastic) / sqrt_m_eff);
       if (delta / r_min > sum.max_overlap_fraction) {
         sum.max_overlap_fraction = delta / r_min;
         sum.worst_particle = i;
@@ -74,7 +75,8 @@ class ForceKernelImpl final : public ForceKernel {
         if (dist >= rs) continue;
         note(i, j, rs - dist, std::min(ri, rj),
              Law::stored_energy(table_(p.material[i], p.material[j]), rs - dist, ri * rj / rs, s.neighbors.shear[k],
-                                Law::kRollingSpring ? s.neighbors.roll[k] : kNone));
+                                Law::kRollingSpring ? s.neighbors.roll[k] : kNone),
+             s.neighbors.sqrt_m_eff[k]);
       }
       if constexpr (kWalls) {
         for (int e = s.wall_contacts.row_start[i]; e < s.wall_contacts.row_start[i + 1]; ++e) {
@@ -84,7 +86,8 @@ class ForceKernelImpl final : public ForceKernel {
           if (!wall.contact(p.x[i], ri, normal, delta)) continue;
           note(i, -1, delta, ri,
                Law::stored_energy(table_(p.material[i], wall.material), delta, ri, s.wall_contacts.shear[e],
-                                  Law::kRollingSpring ? s.wall_contacts.roll[e] : kNone));
+                                  Law::kRollingSpring ? s.wall_contacts.roll[e] : kNone),
+               s.wall_contacts.constants[e].sqrt_m_eff);
         }
         const MeshContacts& mc = s.mesh_contacts;
         for (int k = 0, used = mc.count(i); k < used; ++k) {
@@ -93,7 +96,8 @@ class ForceKernelImpl final : public ForceKernel {
           if (delta <= 0) continue;
           note(i, -1, delta, ri,
                slot.weight * Law::stored_energy(table_(p.material[i], s.meshes[slot.mesh].material), delta, ri, slot.shear,
-                                                slot.roll));
+                                                slot.roll),
+               mc.constants[i].sqrt_m_eff);
         }
       }
     }
@@ -589,14 +593,22 @@ class ForceKernelImpl final : public ForceKernel {
     }
     // A face contact of the last sample found nowhere now, that the drift since has carried off its
     // plane: parted, with the spring's impulse the last sample could not see (spring_boundary_correction).
+    // The push goes to the mesh's load too (mc.parted); a particle leaving faces of two meshes in
+    // one step keeps the first mesh's push only, so that each wall's work stays its own.
     for (int o = 0; o < had; ++o) {
       if (taken[o] || before[o].delta <= 0) continue;
       const History& h = before[o];
+      MeshParting& parting = mc.parted[i];
+      if (parting.mesh >= 0 && parting.mesh != h.mesh) continue;
       const double vn = leaving_speed(s, i, h.normal, s.meshes[h.mesh].pose);
       if (!(vn > 0 && h.delta <= vn * s.dt)) continue;
       const double push = Law::parting_correction(table(p.material[i], s.meshes[h.mesh].material), h.delta,
                                                   vn * s.dt, pc.r_eff, vn, pc.sqrt_m_eff);
-      f += (h.weight * push) * h.normal;
+      const Vec3 force = (h.weight * push) * h.normal;
+      f += force;
+      parting.mesh = h.mesh;
+      parting.force += force;
+      parting.point = p.x[i] - ri * h.normal;
     }
     if (filled < kSlots && (filled > 0 || mc.used[i])) now[filled].mesh = -1;
     mc.used[i] = filled > 0;

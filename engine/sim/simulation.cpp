@@ -123,8 +123,14 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
     for (const ParticleInit& p : scene_.particles) stone.push_back(p.stone);
     state_.bonds = BondSet(*scene_.bonds, state_.particles, state_.neighbors, stone);
   }
+  // Forces at t = 0 for the first half kick: a zero step leaves history and velocities unchanged.
+  // They come first so that the step knows the initial contacts (the speed their stored energy gives).
+  state_.dt = 0;
+  kernel_->compute_and_kick(state_);
+  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
+  settle_walls(0, 0);
   // the step knows whether any bond was made (a bonds block that glued nothing does not shorten it)
-  time_step_ = choose_time_step(scene_, *kernel_, !state_.bonds.empty());
+  time_step_ = choose_time_step(scene_, *kernel_, !state_.bonds.empty(), kernel_->summarize(state_).release_speed);
   state_.dt = time_step_.dt;
   // A prescribed motion must not carry a wall through a particle between two force evaluations.
   const double wall_reach = 0.5 * scene_.numerics.max_overlap_fraction * smallest_given_radius_;
@@ -167,12 +173,6 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
                                      ? std::max<std::int64_t>(1, total_steps_)
                                      : std::max<std::int64_t>(1, std::llround(every));
   }
-  // Forces at t = 0 for the first half kick: a zero step leaves history and velocities unchanged.
-  state_.dt = 0;
-  kernel_->compute_and_kick(state_);
-  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
-  settle_walls(0, 0);
-  state_.dt = time_step_.dt;
   ledger_.initial_energy = mechanical_energy();
 }
 
@@ -235,10 +235,15 @@ void Simulation::settle_walls(double t_new, double dt) {
       for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
         if (wc.touching[e] || !wc.force[e].isZero(0))
           add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e], wc.touching[e] != 0);
-  const MeshContacts& mc = state_.mesh_contacts;
-  for (int i = 0; i < n && !mc.used.empty(); ++i)
+  MeshContacts& mc = state_.mesh_contacts;
+  for (int i = 0; i < n && !mc.used.empty(); ++i) {
     for (int k = 0, used = mc.count(i); k < used; ++k)
       add(state_.meshes[mc.slot(i, k).mesh].boundary, mc.slot(i, k).force, mc.slot(i, k).point);
+    if (MeshParting& parting = mc.parted[i]; parting.mesh >= 0) {
+      add(state_.meshes[parting.mesh].boundary, parting.force, parting.point, /*is_contact=*/false);
+      parting = MeshParting{};
+    }
+  }
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
     if (!drivers_[k].load_controlled()) continue;
     drivers_[k].end_step(t_new, dt, boundary_loads_[k].force);
@@ -651,6 +656,7 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
     permute_array(mc.used, new_to_old);
   }
   mc.used.resize(n, 0);
+  mc.parted.assign(n, MeshParting{});
   mc.slots.resize(static_cast<std::size_t>(n) * kSlots);  // new slots are empty (mesh = -1)
   mc.constants.resize(n);
   for (int i = 0; i < n; ++i) mc.constants[i] = wall_constants(p, i);

@@ -42,6 +42,14 @@ struct MeshSlot {
   double weight = 1;  // the face's share at a valley (mesh/mesh_wall.hpp): fn and force include it
 };
 
+// The spring's push on a particle on the step after it parted from a mesh's face (the impulse the
+// last sample missed): kept for that step's wall load, so that the mesh's work counts it too.
+struct MeshParting {
+  int mesh = -1;  // -1: none this step
+  Vec3 force = Vec3::Zero();  // on the particle
+  Vec3 point = Vec3::Zero();
+};
+
 // Particle-mesh candidates (triangles within reach, rebuilt with the neighbour list, grouped by
 // mesh) and each particle's contact slots.
 struct MeshContacts {
@@ -52,6 +60,9 @@ struct MeshContacts {
   std::vector<MeshSlot> slots; // n * kSlots; in use first, then (if room) one with mesh = -1
   std::vector<std::uint8_t> used;  // per particle: any slot in use (the slots are not read otherwise)
   std::vector<PairConstants> constants;  // per particle, against any wall (computed at the build)
+  // per particle: written by the force loop, read and cleared by the walls' loads of the same step
+  // (so never saved: a saved state holds the loads themselves)
+  std::vector<MeshParting> parted;
 
   // The slots of particle i in use.
   int count(int i) const {

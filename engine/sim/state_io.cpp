@@ -315,6 +315,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
         inconsistent("mesh contact slot " + std::to_string(k) + " names mesh " + std::to_string(mc.slots[k].mesh));
     expect_size(mc.used, n, "the mesh contacts' flags");
     expect_size(mc.constants, n, "the mesh contacts' constants");
+    mc.parted.assign(n, MeshParting{});  // the loads saved already hold the last step's
   } else {
     for (const auto* v : {&mc.mesh, &mc.triangle}) expect_size(*v, 0, "the mesh contacts of a job without meshes");
     expect_size(mc.slots, 0, "the mesh contacts of a job without meshes");

@@ -21,8 +21,10 @@ struct TimeStepReport {
 
 // Throws SceneError when a given dt exceeds the stable limit and the scene does not allow it.
 // The contact times come from the scene's normal model, through its force kernel; the bonds' periods
-// count when `bonded` (some bond was made).
-TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel, bool bonded = true);
+// count when `bonded` (some bond was made). `release_speed`: the fastest the initial contacts' stored
+// energy would part their bodies (ContactSummary::release_speed), an impact speed like the others.
+TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel, bool bonded = true,
+                                double release_speed = 0);
 
 // The fastest a wall's prescribed motion (or servo load) moves a point of it, or the point where it
 // meets a particle: its centre's speed plus its spin times the farthest of its corners, vertices
