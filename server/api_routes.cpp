@@ -181,7 +181,11 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
   if (s.size() == 2 && s[1] == "health") {
     nlohmann::json counts = nlohmann::json::object();
     for (const auto& [state, n] : ctx.jobs.counts()) counts[state] = n;
-    return json_response(req, http::status::ok, {{"status", "ok"}, {"version", kVersion}, {"jobs", counts}});
+    const JobManager::StoreHealth h = ctx.jobs.store_health();
+    nlohmann::json store = {{"freeBytes", h.free_bytes}, {"totalBytes", h.total_bytes}, {"unsavedJobs", h.unsaved_jobs}};
+    if (!h.problem.empty()) store["problem"] = h.problem;
+    return json_response(req, http::status::ok,
+                         {{"status", h.problem.empty() ? "ok" : "degraded"}, {"version", kVersion}, {"jobs", counts}, {"store", store}});
   }
   if (s.size() == 2 && s[1] == "openapi.json") return text_response(req, http::status::ok, "application/json", ctx.openapi);
   if (s[1] == "cases") {

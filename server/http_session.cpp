@@ -129,7 +129,12 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
       cookie = "dem_token=" + state_.token + "; Path=/; HttpOnly; SameSite=Strict";
     send(serve_static(req, target, state_.web, cookie));
   } catch (const std::exception& e) {  // the store or the disk failed: say so, keep serving
-    send(error_response(req, http::status::internal_server_error, std::string("internal error: ") + e.what()));
+    // a full data folder is for the operator to mend (delete jobs: that still works), not a fault
+    const JobManager::StoreHealth store = state_.jobs.store_health();
+    if (store.low_on_space)
+      send(error_response(req, http::status::insufficient_storage, std::string("the data folder is full: ") + e.what()));
+    else
+      send(error_response(req, http::status::internal_server_error, std::string("internal error: ") + e.what()));
   }
 }
 

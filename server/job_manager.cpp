@@ -57,7 +57,7 @@ void JobManager::recover() {
                   (job.checkpoint_step >= 0 ? "resume it to continue from its checkpoint at step " +
                                                   std::to_string(job.checkpoint_step)
                                             : std::string("it had no checkpoint yet: resuming starts it again"));
-      store_->update(job);
+      save(job);  // on a full disk the table catches up later; the server starts all the same
     }
     if (!job.idempotency_key.empty()) by_key_[job.idempotency_key] = job.id;
     // half-written files of a crash (checkpoint.dat.tmp, outputs.tar.tmp): their whole versions
@@ -106,6 +106,8 @@ void JobManager::shutdown() {
   for (std::thread& t : workers_)
     if (t.joinable()) t.join();
   workers_.clear();
+  std::lock_guard lock(mutex_);
+  save_unsaved();
 }
 
 int JobManager::threads_per_job() const {
@@ -113,7 +115,62 @@ int JobManager::threads_per_job() const {
   return std::max(1, omp_get_num_procs() / std::max(1, options_.concurrency));
 }
 
-void JobManager::save(const JobRecord& job) { store_->update(job); }
+void JobManager::save(const JobRecord& job) {
+  try {
+    store_->update(job);
+  } catch (const std::exception& e) {
+    if (unsaved_.insert(job.id).second)
+      std::fprintf(stderr, "dem-server: job %lld: its state is kept in memory until the table can be written: %s\n",
+                   static_cast<long long>(job.id), e.what());
+    store_problem_ = e.what();
+    return;
+  }
+  unsaved_.erase(job.id);
+  save_unsaved();
+}
+
+void JobManager::save_unsaved() {
+  for (auto it = unsaved_.begin(); it != unsaved_.end();) {
+    const auto job = jobs_.find(*it);
+    if (job == jobs_.end()) {  // deleted meanwhile
+      it = unsaved_.erase(it);
+      continue;
+    }
+    try {
+      store_->update(job->second);
+    } catch (const std::exception& e) {
+      store_problem_ = e.what();
+      return;
+    }
+    it = unsaved_.erase(it);
+  }
+  store_problem_.clear();
+}
+
+JobManager::StoreHealth JobManager::store_health() const {
+  StoreHealth h;
+  std::error_code error;
+  const fs::space_info space = fs::space(options_.data, error);
+  {
+    std::lock_guard lock(mutex_);
+    h.unsaved_jobs = unsaved_.size();
+    h.problem = store_problem_;
+  }
+  if (error) {
+    if (h.problem.empty()) h.problem = "cannot read the space of " + options_.data.string() + ": " + error.message();
+    return h;
+  }
+  h.free_bytes = static_cast<double>(space.available);
+  h.total_bytes = static_cast<double>(space.capacity);
+  h.low_on_space = h.free_bytes < std::min(64.0 * 1024 * 1024, 0.02 * h.total_bytes);
+  if (h.low_on_space && h.problem.empty()) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%.0f bytes free of %.0f: jobs may fail to write their files; delete jobs to free space",
+                  h.free_bytes, h.total_bytes);
+    h.problem = options_.data.string() + ": " + buf;
+  }
+  return h;
+}
 
 JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::string& idempotency_key) {
   const std::string bytes = spec.SerializeAsString();
@@ -196,7 +253,7 @@ ActionResult JobManager::cancel(std::int64_t id) {
     changed_.wait_for(lock, std::chrono::seconds(2), [&] { return jobs_.at(id).state != JobState::Running; });
     return {Outcome::Done, "", jobs_.at(id)};
   }
-  JobRecord cancelled = job;  // the table first: if it cannot be written, nothing has changed
+  JobRecord cancelled = job;  // the table first (on a full disk it catches up later: save)
   cancelled.state = JobState::Cancelled;
   cancelled.error = kCancelled;
   cancelled.finished_at = utc_now();
@@ -249,12 +306,21 @@ ActionResult JobManager::remove(std::int64_t id) {
   if (it->second.state == JobState::Running)
     return {Outcome::Conflict, "job " + std::to_string(id) + " is running: cancel it first", it->second};
   JobRecord job = it->second;
-  store_->remove(id);  // first the row: a crash now leaves a folder that recovery removes
   std::error_code ignored;
+  try {
+    store_->remove(id);  // first the row: a crash now leaves a folder that recovery moves aside
+  } catch (const StoreError&) {
+    // A full disk: the table's log cannot grow by the page the deletion needs. The job's files,
+    // which the operator asked to go, go first and free the space; then the row (a crash between
+    // leaves a row without files, which says so: better than a disk nobody can free through the API).
+    fs::remove_all(folder(id).root, ignored);
+    store_->remove(id);
+  }
   fs::remove_all(folder(id).root, ignored);
   if (!job.idempotency_key.empty()) by_key_.erase(job.idempotency_key);
   jobs_.erase(it);
   frames_.close(id, "job deleted");
+  save_unsaved();  // the space freed may let the table catch up
   return {Outcome::Done, "", job};
 }
 

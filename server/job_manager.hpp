@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -68,6 +69,16 @@ class JobManager {
   JobFolder folder(std::int64_t id) const { return JobFolder(options_.data, id); }
   std::map<std::string, int> counts() const;  // jobs per state
 
+  // The data folder's file system and the table's state: `problem` is empty when all is well, else
+  // why not (the last failed write of the table, or too little space left).
+  struct StoreHealth {
+    double free_bytes = 0, total_bytes = 0;
+    std::size_t unsaved_jobs = 0;  // jobs whose latest state the table does not hold yet
+    bool low_on_space = false;     // less than min(64 MiB, 2% of the file system) free
+    std::string problem;
+  };
+  StoreHealth store_health() const;
+
  private:
   struct Running {
     std::atomic<bool> stop{false};
@@ -78,7 +89,10 @@ class JobManager {
   void recover();
   void work();
   void run_one(JobRecord job);
-  void save(const JobRecord& job);  // into the table; the caller holds mutex_
+  // Into the table; the caller holds mutex_. Never throws: a row that cannot be written (a full
+  // disk) is kept in memory, listed in unsaved_, and written with the next write that succeeds.
+  void save(const JobRecord& job);
+  void save_unsaved();  // the caller holds mutex_
   int threads_per_job() const;
 
   ManagerOptions options_;
@@ -91,6 +105,8 @@ class JobManager {
   std::map<std::int64_t, std::shared_ptr<Running>> running_;
   std::vector<std::thread> workers_;
   bool stopping_ = false;
+  std::set<std::int64_t> unsaved_;  // jobs whose last save failed
+  std::string store_problem_;       // why, while any is unsaved
 };
 
 }  // namespace dem::server

@@ -61,6 +61,11 @@ JobStore::JobStore(const std::string& path) : path_(path) {
     throw StoreError("cannot open the job table " + path + ": " + why);
   }
   sqlite3_busy_timeout(db_, 5000);
+  // One server per data folder, holding the table for itself: the WAL's index then lives in the
+  // process's memory, not in a -shm file, so that a full disk does not stop the table from opening
+  // (it did: "disk I/O error", and the server refused to start); a second server on the same
+  // folder is told the table is locked.
+  exec("PRAGMA locking_mode=EXCLUSIVE");
   // WAL with synchronous=FULL: a committed change survives a crash of the process or the machine.
   exec("PRAGMA journal_mode=WAL");
   exec("PRAGMA synchronous=FULL");
