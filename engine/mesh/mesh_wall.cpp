@@ -283,6 +283,81 @@ DiscShare disc_share(const MeshWall& mesh, int t, const Vec3& p, double a, const
   return out;
 }
 
+namespace {
+
+// A valley edge j of triangle t, for a centre whose signed distance to t's plane has sign `side`:
+// the other face rises on the centre's side of t, and the centre lies on the side of the other face
+// where t rises (a convex edge seen from behind t, with the centre above the other face, is none).
+bool is_valley(const MeshWall& mesh, int t, int j, const Vec3& x, double side) {
+  if (!(side * mesh.fold[t][j] > 0)) return false;
+  const int u = mesh.across[t][j];
+  const Vec3& t_far = mesh.vertices[mesh.triangles[t][(j + 2) % 3]];
+  return (mesh.normals[u].dot(x) - mesh.offsets[u]) * (mesh.normals[u].dot(t_far) - mesh.offsets[u]) > 0;
+}
+
+// Face t's share of a contact at its valleys and the share's gradient in the centre: the part of
+// the contact disc (the sphere's section by t's plane, about the centre's projection) on t's side
+// of each valley edge that cuts it; 1 without one.
+struct ValleyShare {
+  double share = 1;
+  Vec3 gradient = Vec3::Zero();
+};
+ValleyShare valley_share(const MeshWall& mesh, int t, const Vec3& x, double r) {
+  ValleyShare out;
+  const double signed_d = mesh.normals[t].dot(x) - mesh.offsets[t];
+  const double a2 = r * r - signed_d * signed_d;
+  if (!(a2 > 0)) return out;
+  const double side = signed_d >= 0 ? 1 : -1, a = std::sqrt(a2);
+  const Vec3 p = x - signed_d * mesh.normals[t];
+  int valleys[3], count = 0;
+  for (int j = 0; j < 3; ++j)
+    if (is_valley(mesh, t, j, x, side) && inside_by(mesh, t, j, p) < a) valleys[count++] = j;
+  if (count == 0) return out;
+  const DiscShare share = disc_share(mesh, t, p, a, valleys, count);
+  out.share = share.share;
+  // through the projection p (in the plane) and through the disc's radius a = sqrt(r^2 - d^2)
+  out.gradient = share.d_centre - share.d_radius * (std::abs(signed_d) / a) * side * mesh.normals[t];
+  return out;
+}
+
+// The weight of a contact with edge e at its closest point q: continuous with the contacts of the
+// faces on either side, which carry their valley shares up to the edge. Across the edge's region (a
+// wedge between the two faces' normals) it turns from one face's share to the other's with the
+// angle; an open edge carries its one face's. A weighted face whose contact passed over a ridge or
+// an open edge to that edge's contact of weight 1 gained the rest of a contact's energy at once (an
+// independent tester's elastic bounce on a bumpy terrain came off 14% faster).
+ValleyShare edge_weight(const MeshWall& mesh, int e, const Vec3& x, double r, const Vec3& q) {
+  const int first = mesh.topology.edge_triangle_start[e], count = mesh.topology.edge_triangle_start[e + 1] - first;
+  if (count < 1 || count > 2) return {};
+  const int t0 = mesh.topology.edge_triangles[first];
+  const ValleyShare w0 = valley_share(mesh, t0, x, r);
+  if (count == 1) return w0;
+  const int t2 = mesh.topology.edge_triangles[first + 1];
+  const ValleyShare w2 = valley_share(mesh, t2, x, r);
+  if (w0.share == 1 && w2.share == 1 && w0.gradient.isZero(0) && w2.gradient.isZero(0)) return {};
+  // the faces' normals towards the centre, and the centre's angle from the first about the edge
+  const Vec3 d = x - q;
+  const Vec3 a0 = (mesh.normals[t0].dot(x) - mesh.offsets[t0] >= 0 ? 1.0 : -1.0) * mesh.normals[t0];
+  const Vec3 a2 = (mesh.normals[t2].dot(x) - mesh.offsets[t2] >= 0 ? 1.0 : -1.0) * mesh.normals[t2];
+  const Vec3 turn = a0.cross(a2);
+  const double opening = std::atan2(turn.norm(), a0.dot(a2));
+  ValleyShare out;
+  if (!(opening > 1e-9) || !(d.squaredNorm() > 0)) {  // a flat seam: its region is a line
+    out.share = 0.5 * (w0.share + w2.share);
+    out.gradient = 0.5 * (w0.gradient + w2.gradient);
+    return out;
+  }
+  const Vec3 k = turn / turn.norm();
+  const double angle = std::atan2(a0.cross(d).dot(k), a0.dot(d));
+  const double s = std::clamp(angle / opening, 0.0, 1.0);
+  out.share = (1 - s) * w0.share + s * w2.share;
+  out.gradient = (1 - s) * w0.gradient + s * w2.gradient;
+  if (s > 0 && s < 1) out.gradient += (w2.share - w0.share) / opening * k.cross(d) / d.squaredNorm();
+  return out;
+}
+
+}  // namespace
+
 int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_count, const Vec3& x, double r,
                  MeshTouch* out, int out_capacity) {
   // The triangles within r, then their contacts by feature: faces first, so that an edge or vertex
@@ -352,15 +427,7 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
     int valleys[3], valley_count = 0;
     bool beyond_other_edge = false;
     for (int j = 0; j < 3; ++j) {
-      // a valley only for a centre inside its wedge: on the side of t where the other face rises
-      // and on the side of the other face where t rises (a convex edge seen from behind t, with the
-      // centre above the other face, is no valley)
-      bool valley = side * mesh.fold[t][j] > 0;
-      if (valley) {
-        const int u = mesh.across[t][j];
-        const Vec3& t_far = mesh.vertices[mesh.triangles[t][(j + 2) % 3]];
-        valley = (mesh.normals[u].dot(x) - mesh.offsets[u]) * (mesh.normals[u].dot(t_far) - mesh.offsets[u]) > 0;
-      }
+      const bool valley = is_valley(mesh, t, j, x, side);
       if (inside && !valley) continue;  // inside: only valley edges can cut the disc's share
       const double h = inside_by(mesh, t, j, p);
       if (valley && h < a) {
@@ -391,7 +458,10 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
     for (int o = 0; o < written && !covered; ++o)
       covered = (out[o].feature == Feature::Face && triangle_has_edge(mesh, out[o].key, e)) ||
                 (out[o].feature == Feature::Edge && out[o].key == e);
-    if (!covered && in_edge_region(mesh, e, x - near[k].cp.point)) accept(near[k], e);
+    if (!covered && in_edge_region(mesh, e, x - near[k].cp.point)) {
+      const ValleyShare w = edge_weight(mesh, e, x, r, near[k].cp.point);
+      if (w.share > 0) accept(near[k], e, w.share, w.gradient);
+    }
   }
   for (int k = 0; k < near_count; ++k) {
     if (near[k].cp.feature != Feature::Vertex) continue;

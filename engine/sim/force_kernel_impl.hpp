@@ -581,6 +581,7 @@ class ForceKernelImpl final : public ForceKernel {
           const Vec3 pull = -stored * touch.weight_gradient;
           f += pull;
           slot.force += pull;
+          slot.pull = pull;
         }
         slot.point = point;
         slot.fn = r.fn;

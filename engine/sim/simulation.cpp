@@ -237,8 +237,14 @@ void Simulation::settle_walls(double t_new, double dt) {
           add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e], wc.touching[e] != 0);
   MeshContacts& mc = state_.mesh_contacts;
   for (int i = 0; i < n && !mc.used.empty(); ++i) {
-    for (int k = 0, used = mc.count(i); k < used; ++k)
-      add(state_.meshes[mc.slot(i, k).mesh].boundary, mc.slot(i, k).force, mc.slot(i, k).point);
+    for (int k = 0, used = mc.count(i); k < used; ++k) {
+      // a valley weight's pull acts through the centre: at the contact point its torque on a
+      // turning mesh was wrong, and so was the mesh's work (a sphere in a spinning pit: 21% of it)
+      const MeshSlot& slot = mc.slot(i, k);
+      const int boundary = state_.meshes[slot.mesh].boundary;
+      add(boundary, slot.force - slot.pull, slot.point);
+      if (!slot.pull.isZero(0)) add(boundary, slot.pull, p.x[i], /*is_contact=*/false);
+    }
     if (MeshParting& parting = mc.parted[i]; parting.mesh >= 0) {
       add(state_.meshes[parting.mesh].boundary, parting.force, parting.point, /*is_contact=*/false);
       parting = MeshParting{};

@@ -38,6 +38,7 @@ struct MeshSlot {
   Vec3 roll = Vec3::Zero();
   Vec3 force = Vec3::Zero();  // on the particle
   Vec3 point = Vec3::Zero();  // the contact point (the middle of the overlap)
+  Vec3 pull = Vec3::Zero();   // the part of `force` that acts through the particle's centre (a valley weight's pull)
   double fn = 0, ft = 0, delta = 0;
   double weight = 1;  // the face's share at a valley (mesh/mesh_wall.hpp): fn and force include it
 };

@@ -17,7 +17,7 @@ namespace dem {
 namespace {
 
 // 5: a CRC-32 of everything before it as the last four bytes; 4: orientations, bonds' bonded states
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '6'};
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '7'};
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for

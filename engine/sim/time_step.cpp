@@ -140,6 +140,41 @@ double contact_mass(const Scene& scene, const ParticleInit& p) {
   return 1.0 / (1.0 / c.mass + largest);
 }
 
+// A wall moved by a cyclic load is a body of mass M: a contact on it moves m M / (m + M), and a
+// wall much lighter than the particles it presses rings on their contacts faster than the step
+// resolves. The step is the particles' (a plate added to a settled bed keeps the bed's step, as a
+// continued run needs); a wall too light for it is refused, with the mass it would need. A plate of
+// 1e-6 kg on spheres of 2e-3 kg once ran 938 steps and was stopped, its load "driving it faster
+// than the time step resolves" (an independent tester).
+void refuse_light_loaded_walls(const Scene& scene, const ForceKernel& kernel, const std::vector<Smallest>& smallest,
+                               const TimeStepReport& r) {
+  for (std::size_t k = 0; k < scene.walls.size(); ++k) {
+    const WallInit& w = scene.walls[k];
+    if (!w.load || w.load->kind != LoadControl::Kind::Cyclic || !(w.load->mass > 0)) continue;
+    for (int a = 0; a < static_cast<int>(smallest.size()); ++a) {
+      if (smallest[a].mass == kInf) continue;
+      const double m = smallest[a].mass, rad = smallest[a].radius;
+      auto time_with = [&](double mass) {
+        return kernel.contact_time(a, w.material, m * mass / (m + mass), rad, r.reference_speed);
+      };
+      // fewer than 10 steps in its contact does not resolve it (the stable limit's rule)
+      if (r.dt <= time_with(w.load->mass) / 10 * (1 + 1e-6)) continue;
+      double lo = w.load->mass, hi = std::max(1.0, 1e3 * m);  // the lightest mass that passes
+      while (hi / lo > 1.001) {
+        const double mid = std::sqrt(lo * hi);
+        (r.dt <= time_with(mid) / 10 ? hi : lo) = mid;
+      }
+      char buf[520];
+      std::snprintf(buf, sizeof buf,
+                    "walls[%zu].load.mass: %.6g kg is too light for the time step: on a contact with a %.3g kg "
+                    "particle it moves %.3g kg, a contact of %.3e s, which the step of %.6e s does not resolve (10 "
+                    "steps at least); give the wall a mass of at least %.3g kg, or a smaller time.dtFraction",
+                    k, w.load->mass, m, m * w.load->mass / (m + w.load->mass), time_with(w.load->mass), r.dt, hi);
+      throw SceneError(buf);
+    }
+  }
+}
+
 }  // namespace
 
 TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel, bool bonded, double release_speed) {
@@ -205,6 +240,7 @@ TimeStepReport choose_time_step(const Scene& scene, const ForceKernel& kernel, b
   } else {
     r.dt = automatic;
   }
+  if (!scene.time.allow_unstable_dt) refuse_light_loaded_walls(scene, kernel, smallest, r);
   return r;
 }
 

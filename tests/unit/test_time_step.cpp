@@ -102,6 +102,44 @@ TEST(TimeStep, ContactWithARigidWallCounts) {
   EXPECT_NEAR(choose(s).contact_time, kPi * 1e-4, 1e-15);
 }
 
+// A wall moved by its load (a cyclic load's mass M) is a body of its own: a contact with it moves
+// m* = m M / (m + M). A plate of 1e-6 kg on spheres of 2e-3 kg rang on their contacts faster than
+// the step resolves, and was stopped after 938 steps (an independent tester): a wall too light for
+// the step is refused, naming its mass and the least it needs; a heavy one keeps the particles' step.
+TEST(TimeStep, ALoadedWallTooLightForTheStepIsRefused) {
+  Scene s = linear_pair_scene();
+  s.particles.pop_back();
+  Material steel;
+  steel.name = "steel";
+  steel.rigid = true;
+  s.materials.push_back(steel);
+  s.interactions = {Interaction{0.5, 0.3, 0}, Interaction{1.0, 0.3, 0}, Interaction{1.0, 0.3, 0},
+                    Interaction{1, 0, 0}};
+  WallInit plate;
+  plate.material = 1;
+  plate.shape = PlateShape{{Vec3(-0.1, -0.1, 0.02), Vec3(0.1, -0.1, 0.02), Vec3(0.1, 0.1, 0.02), Vec3(-0.1, 0.1, 0.02)}};
+  LoadControl load;
+  load.kind = LoadControl::Kind::Cyclic;
+  load.mass = 1e-6;
+  load.direction = Vec3(0, 0, -1);
+  load.f_max = 1;
+  load.frequency = 5;
+  load.cycles = 1;
+  plate.load = load;
+  s.walls = {plate};
+  const std::string why = rejection(s);
+  EXPECT_NE(why.find("walls[0].load.mass: 1e-06 kg is too light for the time step"), std::string::npos) << why;
+  // the least mass it names passes: (m* / m)^(1/2) = 10 dt / t_c = 1/5 for the linear law, so m* = m / 25
+  EXPECT_NE(why.find("at least 8.3"), std::string::npos) << why;  // 8.333e-05 kg, rounded up
+  s.walls[0].load->mass = 8.34e-5;
+  EXPECT_EQ(rejection(s), "");
+  s.walls[0].load->mass = 40;  // a sleeper: the particles' own step, as without the load
+  EXPECT_NEAR(choose(s).dt, kPi * 1e-4 / 50, 1e-15);
+  s.time.allow_unstable_dt = true;
+  s.walls[0].load->mass = 1e-6;
+  EXPECT_EQ(rejection(s), "");
+}
+
 TEST(TimeStep, LightestParticlesSetTheContactTime) {
   // Adding a sphere of half the radius (1/8 of the mass) shortens the shortest contact: small-small
   // with m* = m / 16 = 1.25e-4 kg.
