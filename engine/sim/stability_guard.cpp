@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "core/errors.hpp"
@@ -127,6 +128,15 @@ void StabilityGuard::check(const Simulation& sim) const {
       throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner +
                              " as placed, before the first step; likely cause: the scene's initial positions (move "
                              "them apart or make them smaller, or let them grow into place with growth)");
+    const std::optional<Scene::Growth>& growth = sim.scene().growth;
+    if (growth && growth->factor > 1 && sim.step_count() <= growth->steps) {  // still growing
+      char why[320];
+      std::snprintf(why, sizeof why,
+                    "; likely cause: the radii grow too fast for the contacts to push the particles apart "
+                    "(growth.factor %.6g over growth.steps %lld, now at step %lld; grow over more steps)",
+                    growth->factor, static_cast<long long>(growth->steps), static_cast<long long>(sim.step_count()));
+      throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner + why);
+    }
     throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner +
                            "; likely cause: the contact stiffness is too low for the load, or the time step "
                            "too large (" + sim.time_step().describe() + ")");

@@ -291,6 +291,20 @@ TEST(StabilityGuard, AnOverlapAsPlacedIsBlamedOnThePlacement) {
   EXPECT_EQ(outcome.error.find("stiffness is too low"), std::string::npos) << outcome.error;
 }
 
+// Spheres grown threefold in one step overlap past the limit at once: the growth is the cause, not
+// the stiffness or the step (an independent tester found the stop blaming "contact stiffness too
+// low ... or time step too large" for two bonded spheres grown x3 over one step).
+TEST(StabilityGuard, AnOverlapMadeByGrowthIsBlamedOnTheGrowth) {
+  Scene s = pressed_pair();
+  s.growth = Scene::Growth{3.0, 1};
+  Simulation sim(s);
+  const RunOutcome outcome = run(sim, {});
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_NE(outcome.error.find("likely cause: the radii grow too fast"), std::string::npos) << outcome.error;
+  EXPECT_NE(outcome.error.find("growth.steps"), std::string::npos) << outcome.error;
+  EXPECT_EQ(outcome.error.find("stiffness is too low"), std::string::npos) << outcome.error;
+}
+
 // Energy made after much was lost is still made: the guard compares with the lowest the balance
 // has been, not only with the start (a stiff rolling dashpot once made 1.65 times the initial
 // energy after the pile had settled, and the run ended "ok").
