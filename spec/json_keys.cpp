@@ -67,8 +67,16 @@ class KeyWalker : public nlohmann::json_sax<nlohmann::json> {
   std::string path() const {
     std::string out;
     for (const Level& l : levels_) {
-      if (l.object) out += (out.empty() ? "" : ".") + l.key;
-      else out += "[" + std::to_string(std::max(0L, l.index)) + "]";
+      // appended piece by piece: GCC 12 misreads `a + b` into a temporary as an overlapping copy
+      // (a false -Wrestrict)
+      if (l.object) {
+        if (!out.empty()) out += '.';
+        out += l.key;
+      } else {
+        out += '[';
+        out += std::to_string(std::max(0L, l.index));
+        out += ']';
+      }
     }
     return out;
   }

@@ -7,10 +7,14 @@ namespace dem {
 
 CellGrid::CellGrid(const Vec3& lo, const Vec3& hi, double cell_size, std::size_t max_cells)
     : origin_(lo), cell_(cell_size) {
-  const Vec3 extent = (hi - lo).cwiseMax(Vec3::Constant(cell_size));
+  Vec3 extent = (hi - lo).cwiseMax(Vec3::Constant(cell_size));
+  // A particle gone to an absurd place (a blow-up the guard is about to stop) must not make a count
+  // of cells past an int (undefined behaviour, found by the sanitizer suite) or one that no growth of
+  // the cells brings down (an infinite extent): such a grid is one cell.
+  if (!extent.allFinite()) extent = Vec3::Constant(cell_size);
   auto dims_for = [&](double c) {
     std::array<int, 3> d;
-    for (int k = 0; k < 3; ++k) d[k] = std::max(1, static_cast<int>(std::floor(extent[k] / c)) + 1);
+    for (int k = 0; k < 3; ++k) d[k] = static_cast<int>(std::clamp(std::floor(extent[k] / c) + 1, 1.0, 1e9));
     return d;
   };
   dims_ = dims_for(cell_);

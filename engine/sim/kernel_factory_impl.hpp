@@ -24,9 +24,9 @@ template <class Normal, bool NoTensile, class Tangential, class... Rollings>
 std::unique_ptr<ForceKernel> with_rolling(const Scene& scene, bool has_walls, std::string_view rolling,
                                           ModelList<Rollings...>) {
   std::unique_ptr<ForceKernel> kernel;
-  ((Rollings::kName == rolling &&
-    (kernel = with_walls<ContactLaw<Normal, NoTensile, Tangential, Rollings>>(scene, has_walls), true)) ||
-   ...);
+  (void)((Rollings::kName == rolling &&
+          (kernel = with_walls<ContactLaw<Normal, NoTensile, Tangential, Rollings>>(scene, has_walls), true)) ||
+         ...);
   return kernel;
 }
 
@@ -35,9 +35,9 @@ template <class Normal, bool NoTensile, class... Tangentials>
 std::unique_ptr<ForceKernel> with_tangential(const Scene& scene, bool has_walls, std::string_view rolling,
                                              ModelList<Tangentials...>) {
   std::unique_ptr<ForceKernel> kernel;
-  ((Tangentials::wanted(scene) &&
-    (kernel = with_rolling<Normal, NoTensile, Tangentials>(scene, has_walls, rolling, RollingModels{}), true)) ||
-   ...);
+  (void)((Tangentials::wanted(scene) &&
+          (kernel = with_rolling<Normal, NoTensile, Tangentials>(scene, has_walls, rolling, RollingModels{}), true)) ||
+         ...);
   return kernel;
 }
 

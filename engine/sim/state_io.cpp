@@ -17,7 +17,7 @@ namespace dem {
 namespace {
 
 // 5: a CRC-32 of everything before it as the last four bytes; 4: orientations, bonds' bonded states
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '7'};
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '8'};
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
@@ -153,7 +153,7 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   w.put(mc.row_start); w.put(mc.mesh); w.put(mc.triangle); w.put(mc.slots); w.put(mc.used); w.put(mc.constants);
   w.put(s.walls);
   for (const MeshWall& m : s.meshes) w.put(m.pose);
-  for (const WallDriver& d : sim.drivers_) w.put(d);
+  for (const WallDriver& d : sim.drivers_) w.put(d.record());
   w.put(sim.pose_at_build_);
   w.put(sim.boundary_loads_);
   w.put(sim.growth_at_build_);
@@ -244,6 +244,12 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   expect_size(p.external, externals, "the particles' external forces");
   expect_finite(p.x, "the position of particle");
   expect_finite(sim.x_at_build_, "the position at the last build of particle");
+  for (const auto* v : {&p.v, &p.w, &p.f, &p.t, &s.half_kick}) expect_finite(*v, "a velocity, force or kick of particle");
+  // no farther out than a spec may place a particle (Simulation::refuse_positions_past_precision)
+  for (std::size_t i = 0; i < n; ++i)
+    if (p.x[i].cwiseAbs().maxCoeff() > 1e9 * sim.smallest_given_radius_ ||
+        sim.x_at_build_[i].cwiseAbs().maxCoeff() > 1e9 * sim.smallest_given_radius_)
+      inconsistent("particle " + std::to_string(i) + " is farther out than 1e9 of the smallest radius");
   for (std::size_t i = 0; i < n; ++i)
     if (!(p.radius[i] > 0) || !std::isfinite(p.radius[i]) || !(p.mass[i] > 0) || !std::isfinite(p.mass[i]) ||
         !(p.inv_mass[i] >= 0) || !std::isfinite(p.inv_mass[i]) || !(p.inv_inertia[i] >= 0) || !std::isfinite(p.inv_inertia[i]))
@@ -331,8 +337,16 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   }
   std::vector<WallPose> mesh_poses(s.meshes.size());
   for (WallPose& pose : mesh_poses) r.get(pose, "the walls");
-  std::vector<WallDriver> saved_drivers(sim.drivers_.size());
-  for (WallDriver& d : saved_drivers) r.get(d, "the walls");
+  std::vector<WallDriver> saved_drivers;
+  for (std::size_t k = 0; k < sim.drivers_.size(); ++k) {
+    WallDriver::Record record;
+    r.get(record, "the walls");
+    try {
+      saved_drivers.push_back(WallDriver::from_record(record));
+    } catch (const std::runtime_error& e) {
+      inconsistent("walls[" + std::to_string(k) + "]: " + e.what());
+    }
+  }
   for (std::size_t m = 0; m < s.meshes.size(); ++m) {  // a mesh that never moved keeps its vertices as read from the spec
     const WallPose& pose = mesh_poses[m];
     const bool moved = saved_drivers[s.meshes[m].boundary].moves() || !pose.displacement.isZero(0) ||
@@ -368,12 +382,13 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   expect_size(saved_bonds, s.bonds.bonds().size(), "the bonds");
   for (std::size_t k = 0; k < saved_bonds.size(); ++k) {
     const Bond& bond = saved_bonds[k];
-    std::uint8_t state = 0;
+    std::uint8_t state = 0, moments = 0;
     std::memcpy(&state, &bond.state, 1);  // its byte, not yet an enumerator
+    std::memcpy(&moments, &bond.moments, 1);  // a bool that is neither 0 nor 1 must not be read as one
     if (bond.i < 0 || bond.j < 0 || bond.i >= static_cast<int>(n) || bond.j >= static_cast<int>(n) || bond.i == bond.j ||
-        state > static_cast<std::uint8_t>(BondBreak::Shear))
+        state > static_cast<std::uint8_t>(BondBreak::Shear) || moments > 1)
       inconsistent("bond " + std::to_string(k) + " joins particles " + std::to_string(bond.i) + " and " +
-                   std::to_string(bond.j) + " (state " + std::to_string(state) + ")");
+                   std::to_string(bond.j) + " (state " + std::to_string(state) + ", moments " + std::to_string(moments) + ")");
   }
   s.bonds.restore(std::move(saved_bonds));
 

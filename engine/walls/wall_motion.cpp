@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace dem {
 
@@ -84,6 +85,47 @@ bool same_load(const std::optional<LoadControl>& a, const std::optional<LoadCont
 }
 
 }  // namespace
+
+WallDriver::Record WallDriver::record() const {
+  Record r;
+  r.has_motion = motion_.has_value();
+  if (motion_) {
+    const PrescribedMotion& m = *motion_;
+    r.motion = {m.velocity, m.amplitude, m.frequency, m.phase, m.angular_velocity, m.center.value_or(Vec3::Zero())};
+    r.has_center = m.center.has_value();
+  }
+  r.has_load = load_.has_value();
+  if (load_) r.load = *load_;
+  r.pose = pose_;
+  r.gravity_along = gravity_along_;
+  r.speed = speed_;
+  r.accel = accel_;
+  r.applied_force = applied_force_;
+  r.load_start = load_start_;
+  return r;
+}
+
+WallDriver WallDriver::from_record(const Record& r) {
+  if (r.has_motion > 1 || r.has_center > 1 || r.has_load > 1)
+    throw std::runtime_error("a wall's flags are not 0 or 1 (" + std::to_string(r.has_motion) + ", " +
+                             std::to_string(r.has_center) + ", " + std::to_string(r.has_load) + ")");
+  if (r.load.kind != LoadControl::Kind::Cyclic && r.load.kind != LoadControl::Kind::Servo)
+    throw std::runtime_error("a wall's load is of no known kind (" + std::to_string(static_cast<int>(r.load.kind)) + ")");
+  WallDriver d;
+  if (r.has_motion) {
+    const PlainMotion& m = r.motion;
+    d.motion_ = PrescribedMotion{m.velocity, m.amplitude, m.frequency, m.phase, m.angular_velocity, std::nullopt};
+    if (r.has_center) d.motion_->center = m.center;
+  }
+  if (r.has_load) d.load_ = r.load;
+  d.pose_ = r.pose;
+  d.gravity_along_ = r.gravity_along;
+  d.speed_ = r.speed;
+  d.accel_ = r.accel;
+  d.applied_force_ = r.applied_force;
+  d.load_start_ = r.load_start;
+  return d;
+}
 
 bool WallDriver::continue_from(const WallDriver& saved, double now) {
   if (!same_motion(motion_, saved.motion_))

@@ -2,6 +2,7 @@
 // points moves, and what drives it (a prescribed motion, a cyclic load, a servo).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 
 #include "core/scene.hpp"
@@ -25,6 +26,16 @@ struct WallPose {
 // Advances one wall's pose through a step. Velocity Verlet like the particles: begin_step moves the
 // wall to t + dt (a load-controlled wall with the force of the last step), end_step takes the
 // particles' new reaction on the wall (the force the wall receives, N) and completes its velocity.
+// A prescribed motion without its optional centre (that is PrescribedMotion::center, a flag apart).
+struct PlainMotion {
+  Vec3 velocity = Vec3::Zero();
+  Vec3 amplitude = Vec3::Zero();
+  double frequency = 0;
+  double phase = 0;
+  Vec3 angular_velocity = Vec3::Zero();
+  Vec3 center = Vec3::Zero();
+};
+
 class WallDriver {
  public:
   WallDriver() = default;
@@ -53,6 +64,20 @@ class WallDriver {
   // Returns true when a load starts now: the caller then gives it the particles' reaction with
   // end_step(now, 0, reaction), as a fresh run does at t = 0.
   bool continue_from(const WallDriver& saved, double now);
+
+  // What a saved state holds of a driver: numbers, and flags as whole bytes. A state read from a
+  // file may hold any bytes, and an optional's flag (a bool) copied from one that is neither 0 nor 1
+  // is undefined behaviour (the saved-state fuzzer found it), so the flags are bytes and checked.
+  struct Record {
+    std::uint8_t has_motion = 0, has_center = 0, has_load = 0;
+    PlainMotion motion;
+    LoadControl load;
+    WallPose pose;
+    double gravity_along = 0, speed = 0, accel = 0, applied_force = 0, load_start = 0;
+  };
+  Record record() const;
+  // Throws std::runtime_error for a flag other than 0 or 1.
+  static WallDriver from_record(const Record& r);
 
  private:
   std::optional<PrescribedMotion> motion_;

@@ -88,7 +88,7 @@ TEST(InputRange, AStepAtTheStableLimitIsAccepted) {
   const double limit = probe.time_step().stable_limit;
   char printed[32];
   std::snprintf(printed, sizeof printed, "%.6e", limit);  // as the report prints it (rounded either way)
-  for (const std::string dt : {std::to_string(limit), std::string(printed)}) {
+  for (const std::string& dt : {std::to_string(limit), std::string(printed)}) {
     char exact[40];
     std::snprintf(exact, sizeof exact, "%.17g", dt == printed ? std::stod(printed) : limit);
     EXPECT_EQ(problems(spec_with(std::string(R"({"steps": 5, "dt": )") + exact + "}")), "") << exact;

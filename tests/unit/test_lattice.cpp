@@ -219,7 +219,9 @@ TEST(Lattice, SiteBoundIsTheCountOrAboveIt) {
         EXPECT_GE(bound, made) << hi.transpose() << " spacing " << spacing;
         // and not far above it where the box holds several spheres across (a box one sphere thick
         // loses the shifted rows of a hexagonal lattice)
-        if (hi.minCoeff() > 4 * r) EXPECT_LE(bound, 1.5 * made + 8) << hi.transpose() << " spacing " << spacing;
+        if (hi.minCoeff() > 4 * r) {
+          EXPECT_LE(bound, 1.5 * made + 8) << hi.transpose() << " spacing " << spacing;
+        }
       }
     }
   const double huge = lattice_site_bound(LatticeKind::Fcc, Vec3::Zero(), Vec3::Constant(1e300), r, 1);

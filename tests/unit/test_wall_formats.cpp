@@ -93,7 +93,9 @@ TEST(WallForceChainFile, RoundTripsInBothFormats) {
   frame.chains = {{2, 1, 45895.55, 22947.77}, {2, 6, 12.5, 0}, {7, 1, 0.25, 0.125}};
   for (NumberFormat format : {NumberFormat::Scientific, NumberFormat::LegacyFixed}) {
     const std::string text = written([&](std::FILE* out) { write_wall_force_chain_frame(out, frame, format); });
-    if (format == NumberFormat::LegacyFixed) EXPECT_EQ(text.substr(0, 35), "3DWF: 13500 3\n2 1 45895.55 22947.77");
+    if (format == NumberFormat::LegacyFixed) {
+      EXPECT_EQ(text.substr(0, 35), "3DWF: 13500 3\n2 1 45895.55 22947.77");
+    }
     std::istringstream in(text);
     const auto read = read_wall_force_chains(in);
     ASSERT_TRUE(read.problem.empty()) << read.problem;

@@ -156,7 +156,9 @@ TEST(RollingTouchDown, TakesNoMoreSpinThanTheRollingLimitAllows) {
              taken / most, 1.0);
       EXPECT_LE(taken, most * (1 + 1e-9)) << law << " " << model << " eta_r " << eta;
       // CDT's torque is at the limit throughout (the spin never stops); EPSD's spring winds up first
-      if (model == CdtRolling::kName) EXPECT_NEAR(taken, most, 1e-6 * most) << law;
+      if (model == CdtRolling::kName) {
+        EXPECT_NEAR(taken, most, 1e-6 * most) << law;
+      }
     }
 }
 
