@@ -106,6 +106,7 @@ int run_server(const ServerOptions& options) {
   manager_options.threads_per_job = options.threads_per_job;
   manager_options.checkpoint_seconds = options.checkpoint_seconds;
   manager_options.max_frame_rate = options.max_frame_rate;
+  manager_options.max_output_bytes = options.max_output_bytes;
   JobManager jobs(manager_options, frames);
   ServerState state{jobs, frames, openapi_json(), options.web, options.cases, options.token, options.max_body};
 

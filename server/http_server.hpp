@@ -21,6 +21,7 @@ struct ServerOptions {
   std::size_t max_body = 64u << 20;   // bytes of a request body
   double checkpoint_seconds = 10;
   double max_frame_rate = 30;         // live frames a second per job; 0: every output frame
+  double max_output_bytes = 10000.0 * 1024 * 1024;  // what one job's files may hold
   int io_threads = 2;
 };
 

@@ -1,6 +1,8 @@
 #include "server/job_execution.hpp"
 
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -71,6 +73,22 @@ class FramePublisher {
   double seconds_ = 0;
 };
 
+// The job's files, at a frame: past the server's limit the job stops here, failed (the files
+// written so far stay as they are).
+void check_output_size(const JobFolder& folder, double limit) {
+  std::uintmax_t total = 0;
+  std::error_code error;
+  for (const auto& f : std::filesystem::directory_iterator(folder.outputs(), error))
+    if (f.is_regular_file(error)) total += f.file_size(error);
+  if (static_cast<double>(total) <= limit) return;
+  char buf[300];
+  std::snprintf(buf, sizeof buf,
+                "the job's files hold %.1f MB, past the server's limit of %.1f MB (--max-output-mb): write frames less "
+                "often (outputs.interval or outputs.everySteps) or fewer files",
+                static_cast<double>(total) / 1048576, limit / 1048576);
+  throw std::runtime_error(buf);
+}
+
 api::JobSpec read_spec(const JobFolder& folder) {
   std::ifstream in(folder.spec(), std::ios::binary);
   std::stringstream bytes;
@@ -104,7 +122,10 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     options.on_progress = hooks.on_progress;
     options.progress_seconds = 0.5;
     options.periodically = [&](const Simulation& s) { checkpointer.maybe_save(s); };
-    options.after_step = [&](const Simulation& s, bool frame) { publisher.after_step(s, frame); };
+    options.after_step = [&](const Simulation& s, bool frame) {
+      publisher.after_step(s, frame);
+      if (frame && hooks.max_output_bytes > 0) check_output_size(folder, hooks.max_output_bytes);
+    };
     const RunOutcome outcome = run(sim, observers, options);
     writers.clear();  // closes the files
     result.run_seconds = outcome.loop_seconds;

@@ -21,6 +21,7 @@ struct ExecutionHooks {
   const std::atomic<bool>* checkpoint_on_stop = nullptr;  // shut down: save the state where it stopped
   std::shared_ptr<FrameChannel> frames;   // may be null
   double max_frame_rate = 30;             // live frames a second at most; 0: every output frame
+  double max_output_bytes = 0;            // the job's files may hold at most this (0: no limit)
   std::function<void(const Simulation&)> on_start;
   std::function<void(const Progress&)> on_progress;
   std::function<void(std::int64_t step)> on_checkpoint;

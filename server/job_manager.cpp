@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -39,6 +40,23 @@ fs::path unaccounted_place(const fs::path& data, const std::string& name) {
 }
 
 }  // namespace
+
+// The frames' animation alone, at 100 bytes a sphere (a line is 100 to 300 bytes by the number
+// format): a spec that would pass the limit with that is refused before it runs.
+void JobManager::refuse_outputs_past_limit(const Simulation& sim) const {
+  const Scene& scene = sim.scene();
+  if (!scene.outputs.animation || scene.outputs.every_steps <= 0) return;
+  const double frames = std::floor(static_cast<double>(sim.total_steps()) / static_cast<double>(scene.outputs.every_steps)) + 1;
+  const double bytes = frames * static_cast<double>(sim.particles().size()) * 100.0;
+  if (bytes <= options_.max_output_bytes) return;
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "outputs: %.0f frames of %zu particles would write at least %.1f MB of ANIMATION_3D.dat, past the "
+                "server's limit of %.1f MB for a job's files (--max-output-mb); write frames less often "
+                "(outputs.interval or outputs.everySteps)",
+                frames, sim.particles().size(), bytes / 1048576, options_.max_output_bytes / 1048576);
+  throw spec::SpecError({buf});
+}
 
 JobManager::JobManager(ManagerOptions options, FrameHub& frames) : options_(std::move(options)), frames_(frames) {
   fs::create_directories(options_.data / "jobs");
@@ -200,6 +218,7 @@ JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::st
     job.particles = static_cast<std::int64_t>(sim.particles().size());
     job.total_steps = sim.total_steps();
     job.time_step = sim.dt();
+    refuse_outputs_past_limit(sim);
   }
   job.created_at = utc_now();
   job.idempotency_key = idempotency_key;
@@ -386,6 +405,7 @@ void JobManager::run_one(JobRecord job) {
   hooks.threads = threads_per_job();
   hooks.checkpoint_seconds = options_.checkpoint_seconds;
   hooks.max_frame_rate = options_.max_frame_rate;
+  hooks.max_output_bytes = options_.max_output_bytes;
   hooks.stop = &control->stop;
   hooks.checkpoint_on_stop = &control->checkpoint_on_stop;
   hooks.frames = frames_.open(id);

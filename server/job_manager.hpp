@@ -21,6 +21,10 @@
 #include "server/job_folder.hpp"
 #include "server/job_store.hpp"
 
+namespace dem {
+class Simulation;
+}
+
 namespace dem::server {
 
 struct ManagerOptions {
@@ -29,6 +33,7 @@ struct ManagerOptions {
   int threads_per_job = 0;        // 0: the cores divided among the running jobs
   double checkpoint_seconds = 10;
   double max_frame_rate = 30;     // live frames a second per job; 0: every output frame
+  double max_output_bytes = 10000.0 * 1024 * 1024;  // what one job's files may hold (--max-output-mb)
 };
 
 // What a request on a job came to.
@@ -93,6 +98,7 @@ class JobManager {
   // disk) is kept in memory, listed in unsaved_, and written with the next write that succeeds.
   void save(const JobRecord& job);
   void save_unsaved();  // the caller holds mutex_
+  void refuse_outputs_past_limit(const Simulation& sim) const;  // throws spec::SpecError
   int threads_per_job() const;
 
   ManagerOptions options_;

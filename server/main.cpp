@@ -12,7 +12,7 @@ namespace {
 const char* kUsage =
     "usage: dem-server --data DIR [--port PORT] [--address ADDR] [--token TOKEN] [--jobs N]\n"
     "                  [--threads-per-job N] [--max-body-mb MB] [--web DIR] [--checkpoint-seconds S]\n"
-    "                  [--max-frame-rate HZ] [--cases DIR]\n"
+    "                  [--max-frame-rate HZ] [--max-output-mb MB] [--cases DIR]\n"
     "  --data DIR              where the job table (jobs.db) and each job's folder live (made if missing)\n"
     "  --port PORT             default 8080; 0 picks a free port (printed)\n"
     "  --address ADDR          default 127.0.0.1; any other address needs a token\n"
@@ -24,7 +24,9 @@ const char* kUsage =
     "  --web DIR               the viewer's files (default: web/dist of the source tree)\n"
     "  --cases DIR             the bundled cases offered to the viewer (default: cases/ of the source tree)\n"
     "  --checkpoint-seconds S  a checkpoint of a running job every S seconds (default 10)\n"
-    "  --max-frame-rate HZ     live frames a second per job at most (default 30; 0: every output frame)\n";
+    "  --max-frame-rate HZ     live frames a second per job at most (default 30; 0: every output frame)\n"
+    "  --max-output-mb MB      what one job's files may hold (default 10000): a spec whose frames alone\n"
+    "                          would pass it is refused, a job whose files pass it is stopped\n";
 
 bool number(const std::string& text, double& out) {
   try {
@@ -78,6 +80,9 @@ int main(int argc, char** argv) {
     } else if (a == "--max-body-mb") {
       if (!number(v, x) || !(x > 0) || x > 4096) return bad("a size in MB, > 0");
       options.max_body = static_cast<std::size_t>(x * 1024 * 1024);
+    } else if (a == "--max-output-mb") {
+      if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0");
+      options.max_output_bytes = x * 1024 * 1024;
     } else if (a == "--max-frame-rate") {
       if (!number(v, x) || !(x >= 0)) return bad("a rate in Hz >= 0");
       options.max_frame_rate = x;
