@@ -20,6 +20,8 @@ class FrameSession final : public FrameViewer, public std::enable_shared_from_th
   FrameSession(boost::asio::ip::tcp::socket&& socket, bool force_chains);
   // Accepts the upgrade, then joins `channel`; with no channel, closes at once saying `why`.
   void start(Request request, std::shared_ptr<FrameChannel> channel, std::string why);
+  // Keeps the connection's place within the server's limits (ConnectionLimits) while it lives.
+  void hold(std::shared_ptr<void> ticket) { ticket_ = std::move(ticket); }
 
   void offer(std::shared_ptr<const EncodedFrame> frame) override;
   void end(const std::string& reason) override;
@@ -45,6 +47,7 @@ class FrameSession final : public FrameViewer, public std::enable_shared_from_th
   bool ending_ = false;
   bool closed_ = false;
   std::string end_reason_;
+  std::shared_ptr<void> ticket_;
 };
 
 }  // namespace dem::server

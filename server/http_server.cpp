@@ -40,7 +40,11 @@ class Listener : public std::enable_shared_from_this<Listener> {
     acceptor_.async_accept(asio::make_strand(io_), [self = shared_from_this()](boost::system::error_code ec, tcp::socket s) {
       if (ec == asio::error::operation_aborted || !self->acceptor_.is_open()) return;  // stopped
       if (!ec) {
-        std::make_shared<HttpSession>(std::move(s), self->state_)->run();
+        boost::system::error_code no_peer;
+        const std::string client = s.remote_endpoint(no_peer).address().to_string();
+        std::string why;
+        std::shared_ptr<void> ticket = self->state_.connections.admit(client, why);
+        std::make_shared<HttpSession>(std::move(s), self->state_, std::move(ticket), std::move(why))->run();
         self->accept();
         return;
       }
@@ -108,7 +112,11 @@ int run_server(const ServerOptions& options) {
   manager_options.max_frame_rate = options.max_frame_rate;
   manager_options.max_output_bytes = options.max_output_bytes;
   JobManager jobs(manager_options, frames);
-  ServerState state{jobs, frames, openapi_json(), options.web, options.cases, options.token, options.max_body};
+  ConnectionLimits connections(options.max_connections, options.max_connections_per_client);
+  ServerState state{jobs,          frames,        openapi_json(), options.web, options.cases, options.token, options.max_body,
+                    connections,
+                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                        std::chrono::duration<double>(options.request_timeout))};
 
   asio::io_context io(options.io_threads);
   boost::system::error_code ec;

@@ -13,19 +13,65 @@ namespace dem::server {
 namespace beast = boost::beast;
 namespace websocket = beast::websocket;
 
-HttpSession::HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& state)
-    : stream_(std::move(socket)), state_(state) {}
+HttpSession::HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& state, std::shared_ptr<void> ticket,
+                         std::string refused_why)
+    : stream_(std::move(socket)),
+      deadline_(stream_.get_executor()),
+      ticket_(std::move(ticket)),
+      refused_why_(std::move(refused_why)),
+      state_(state) {}
 
 void HttpSession::run() {
-  boost::asio::dispatch(stream_.get_executor(), beast::bind_front_handler(&HttpSession::read, shared_from_this()));
+  if (ticket_) {
+    boost::asio::dispatch(stream_.get_executor(), beast::bind_front_handler(&HttpSession::read, shared_from_this()));
+    return;
+  }
+  // past a connection limit: answered at once, whatever the client sends
+  boost::asio::dispatch(stream_.get_executor(), [self = shared_from_this()] {
+    Request head;
+    auto res = error_response(head, http::status::service_unavailable,
+                              "too many connections: " + self->refused_why_ + "; try again in a moment");
+    res.set(http::field::retry_after, "1");
+    self->refuse(std::move(res));
+  });
 }
 
 void HttpSession::read() {
   parser_.emplace();
   parser_->body_limit(state_.max_body);
-  stream_.expires_after(std::chrono::seconds(60));
+  stream_.expires_never();  // the request's own deadline, below
+  start_deadline(state_.request_timeout);
   // the header first: the token and the body's size are checked before any body is read
   http::async_read_header(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_header, shared_from_this()));
+}
+
+// A request must arrive whole in time: one that stalls half sent (slowloris) is answered 408 and
+// its connection closed; an idle kept-alive connection is closed without a word.
+void HttpSession::start_deadline(std::chrono::steady_clock::duration within) {
+  deadline_passed_ = false;
+  deadline_.expires_after(within);
+  deadline_.async_wait(beast::bind_front_handler(&HttpSession::on_deadline, shared_from_this()));
+}
+
+void HttpSession::on_deadline(beast::error_code ec) {
+  if (ec) return;  // met, or moved on
+  deadline_passed_ = true;
+  beast::error_code ignored;
+  stream_.socket().cancel(ignored);  // the pending read ends with operation_aborted: timed_out() answers
+}
+
+bool HttpSession::timed_out(beast::error_code ec) {
+  if (!deadline_passed_ || ec != boost::asio::error::operation_aborted) return false;
+  if (parser_->got_some() || buffer_.size() > 0) {
+    Request head;
+    refuse(error_response(head, http::status::request_timeout,
+                          "the request did not arrive whole within " +
+                              std::to_string(std::chrono::duration_cast<std::chrono::seconds>(state_.request_timeout).count()) +
+                              " s (--request-timeout; a body gets 60 s more)"));
+  } else {
+    close();
+  }
+  return true;
 }
 
 // An early answer (before or instead of the body): the connection closes after it.
@@ -35,6 +81,7 @@ void HttpSession::refuse(http::response<http::string_body> res) {
 }
 
 void HttpSession::on_header(beast::error_code ec, std::size_t) {
+  if (timed_out(ec)) return;
   if (ec == http::error::end_of_stream) return close();
   if (ec) return on_read_error(ec);
   const auto& head = parser_->get();
@@ -94,6 +141,7 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
 }
 
 void HttpSession::read_body() {
+  start_deadline(state_.request_timeout + std::chrono::seconds(60));
   http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_read, shared_from_this()));
 }
 
@@ -112,7 +160,9 @@ void HttpSession::on_read_error(beast::error_code ec) {
 }
 
 void HttpSession::on_read(beast::error_code ec, std::size_t) {
+  if (timed_out(ec)) return;
   if (ec) return on_read_error(ec);
+  deadline_.cancel();
   Request req = parser_->release();
   const Target target = *parse_target(req.target());  // checked with the header
   try {
@@ -174,12 +224,15 @@ void HttpSession::upgrade(Request request, const Target& target) {
   const auto q = target.query.find("forceChains");
   const bool chains = q != target.query.end() && (q->second == "1" || q->second == "true");
   stream_.expires_never();  // the WebSocket keeps its own timeouts
+  deadline_.cancel();
   auto session = std::make_shared<FrameSession>(stream_.release_socket(), chains);
+  session->hold(ticket_);  // the connection stays counted while it streams
   session->start(std::move(request), std::move(channel), std::move(why));
 }
 
 void HttpSession::send(http::message_generator message) {
   const bool keep_alive = message.keep_alive();
+  deadline_.cancel();
   stream_.expires_never();  // a large artifact may take long to send; the next read sets a deadline again
   beast::async_write(stream_, std::move(message),
                      beast::bind_front_handler(&HttpSession::on_write, shared_from_this(), keep_alive));
@@ -192,6 +245,7 @@ void HttpSession::on_write(bool keep_alive, beast::error_code ec, std::size_t) {
 }
 
 void HttpSession::close() {
+  deadline_.cancel();  // its wait holds the session (and its place within the limits)
   beast::error_code ignored;
   stream_.socket().shutdown(boost::asio::ip::tcp::socket::shutdown_send, ignored);
   drain();

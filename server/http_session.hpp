@@ -12,7 +12,12 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 
+#include <chrono>
+
+#include <boost/asio/steady_timer.hpp>
+
 #include "server/api_routes.hpp"
+#include "server/connection_limits.hpp"
 #include "server/frame_hub.hpp"
 
 namespace dem::server {
@@ -26,11 +31,14 @@ struct ServerState {
   std::filesystem::path cases;
   std::string token;
   std::size_t max_body;
+  ConnectionLimits& connections;
+  std::chrono::steady_clock::duration request_timeout;  // for a request's header; its body gets 60 s more
 };
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& state);
+  // `ticket`: the connection's place within the limits; null: answer 503 and close.
+  HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& state, std::shared_ptr<void> ticket, std::string refused_why);
   void run();
 
  private:
@@ -47,8 +55,15 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void on_write(bool keep_alive, boost::beast::error_code ec, std::size_t bytes);
   void upgrade(Request request, const Target& target);
   void close();
+  void start_deadline(std::chrono::steady_clock::duration within);
+  void on_deadline(boost::beast::error_code ec);
+  bool timed_out(boost::beast::error_code ec);
 
   boost::beast::tcp_stream stream_;
+  boost::asio::steady_timer deadline_;  // a request must come whole in time (slowloris)
+  bool deadline_passed_ = false;
+  std::shared_ptr<void> ticket_;
+  std::string refused_why_;
   boost::beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
   std::array<char, 4096> scratch_;

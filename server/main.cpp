@@ -12,7 +12,8 @@ namespace {
 const char* kUsage =
     "usage: dem-server --data DIR [--port PORT] [--address ADDR] [--token TOKEN] [--jobs N]\n"
     "                  [--threads-per-job N] [--max-body-mb MB] [--web DIR] [--checkpoint-seconds S]\n"
-    "                  [--max-frame-rate HZ] [--max-output-mb MB] [--cases DIR]\n"
+    "                  [--max-frame-rate HZ] [--max-output-mb MB] [--cases DIR] [--request-timeout S]\n"
+    "                  [--max-connections N] [--max-connections-per-client N]\n"
     "  --data DIR              where the job table (jobs.db) and each job's folder live (made if missing)\n"
     "  --port PORT             default 8080; 0 picks a free port (printed)\n"
     "  --address ADDR          default 127.0.0.1; any other address needs a token\n"
@@ -26,7 +27,11 @@ const char* kUsage =
     "  --checkpoint-seconds S  a checkpoint of a running job every S seconds (default 10)\n"
     "  --max-frame-rate HZ     live frames a second per job at most (default 30; 0: every output frame)\n"
     "  --max-output-mb MB      what one job's files may hold (default 10000): a spec whose frames alone\n"
-    "                          would pass it is refused, a job whose files pass it is stopped\n";
+    "                          would pass it is refused, a job whose files pass it is stopped\n"
+    "  --request-timeout S     a request's header must arrive within S seconds (default 10; its body\n"
+    "                          gets 60 s more), else 408 and the connection closes\n"
+    "  --max-connections N     connections at once (default 512), WebSockets included; past it 503\n"
+    "  --max-connections-per-client N   from one address (default 128)\n";
 
 bool number(const std::string& text, double& out) {
   try {
@@ -83,6 +88,15 @@ int main(int argc, char** argv) {
     } else if (a == "--max-output-mb") {
       if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0");
       options.max_output_bytes = x * 1024 * 1024;
+    } else if (a == "--request-timeout") {
+      if (!number(v, x) || !(x > 0) || x > 86400) return bad("a number of seconds > 0");
+      options.request_timeout = x;
+    } else if (a == "--max-connections") {
+      if (!whole(1, 1e6)) return bad("a whole number >= 1");
+      options.max_connections = static_cast<std::size_t>(x);
+    } else if (a == "--max-connections-per-client") {
+      if (!whole(1, 1e6)) return bad("a whole number >= 1");
+      options.max_connections_per_client = static_cast<std::size_t>(x);
     } else if (a == "--max-frame-rate") {
       if (!number(v, x) || !(x >= 0)) return bad("a rate in Hz >= 0");
       options.max_frame_rate = x;

@@ -2,6 +2,7 @@
 // (--max-output-mb) is refused when submitted, naming the limit; a job whose files grow past it
 // anyway (other files, longer lines than the estimate) is stopped and failed, naming it, with what
 // it wrote kept. A 1 KB spec with a frame every step once wrote 1.1 GB in 5 s.
+#include "support/raw_http.hpp"
 #include "support/server_test.hpp"
 
 namespace dem::test {
@@ -42,6 +43,72 @@ TEST_F(ServerLimits, TheLimitMustBeAPositiveSize) {
   const int status = pclose(p);
   EXPECT_NE(status, 0);
   EXPECT_NE(std::string(buf, got).find("--max-output-mb must be"), std::string::npos) << std::string(buf, got);
+}
+
+}  // namespace
+}  // namespace dem::test
+
+namespace dem::test {
+namespace {
+
+// A client that sends half a request and stalls (slowloris) is answered 408 once the request
+// timeout passes, and the connection closes; an idle kept-alive connection closes without a word.
+// Slow clients were cut only after 60 s, and 20,000 of them used up the file descriptors.
+TEST_F(ServerLimits, AStalledRequestIsAnswered408AfterTheRequestTimeout) {
+  start_server({"--request-timeout", "1"});
+  RawConnection half(server_->port());
+  ASSERT_TRUE(half.connected());
+  half.send("GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n");  // no blank line: the header never ends
+  const auto start = std::chrono::steady_clock::now();
+  bool timed_out = false;
+  const std::string answer = half.receive(10, &timed_out);
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_FALSE(timed_out) << "the connection was not closed";
+  EXPECT_EQ(answer.rfind("HTTP/1.1 408", 0), 0u) << answer;
+  EXPECT_GT(waited, 0.8);
+  EXPECT_LT(waited, 5);
+  RawConnection idle(server_->port());
+  EXPECT_EQ(idle.receive(10, &timed_out), "");
+  EXPECT_FALSE(timed_out) << "an idle connection was kept past the request timeout";
+}
+
+// Past --max-connections-per-client connections from one address, the next is answered 503 with
+// Retry-After and closed; once one of them closes, a new one is served.
+TEST_F(ServerLimits, ConnectionsPastTheLimitAreAnswered503WithRetryAfter) {
+  start_server({"--max-connections-per-client", "3"});
+  std::vector<std::unique_ptr<RawConnection>> held;
+  for (int k = 0; k < 3; ++k) {
+    held.push_back(std::make_unique<RawConnection>(server_->port()));
+    ASSERT_TRUE(held.back()->connected());
+  }
+  // a served request on each: the server has accepted all three
+  for (auto& c : held) {
+    c->send("GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+    EXPECT_EQ(c->receive(10, nullptr, "\r\n\r\n").rfind("HTTP/1.1 200", 0), 0u);
+  }
+  RawConnection fourth(server_->port());
+  fourth.send("GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+  const std::string refused = fourth.receive(10);
+  EXPECT_EQ(refused.rfind("HTTP/1.1 503", 0), 0u) << refused;
+  EXPECT_NE(refused.find("Retry-After: 1"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("--max-connections-per-client"), std::string::npos) << refused;
+  held.pop_back();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the server sees the close
+  RawConnection again(server_->port());
+  again.send("GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+  EXPECT_EQ(again.receive(10, nullptr, "\r\n\r\n").rfind("HTTP/1.1 200", 0), 0u);
+}
+
+TEST_F(ServerLimits, TheConnectionAndTimeoutLimitsMustBePositive) {
+  for (const char* option : {"--request-timeout 0", "--max-connections 0", "--max-connections-per-client -1"}) {
+    const std::string command = std::string(DEM_BINARY_DIR) + "/dem-server --data '" + (dir_ / "d").string() + "' " +
+                                option + " 2>&1";
+    std::FILE* p = popen(command.c_str(), "r");
+    char buf[512] = {};
+    const std::size_t got = std::fread(buf, 1, sizeof buf - 1, p);
+    EXPECT_NE(pclose(p), 0) << option;
+    EXPECT_NE(std::string(buf, got).find("must be"), std::string::npos) << option << ": " << std::string(buf, got);
+  }
 }
 
 }  // namespace
