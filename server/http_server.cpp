@@ -113,8 +113,9 @@ int run_server(const ServerOptions& options) {
   manager_options.max_output_bytes = options.max_output_bytes;
   JobManager jobs(manager_options, frames);
   ConnectionLimits connections(options.max_connections, options.max_connections_per_client);
+  asio::thread_pool checks(2);  // submissions' checks; joined when the server returns
   ServerState state{jobs,          frames,        openapi_json(), options.web, options.cases, options.token, options.max_body,
-                    connections,
+                    connections,   checks,
                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                         std::chrono::duration<double>(options.request_timeout))};
 

@@ -164,27 +164,40 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
   if (ec) return on_read_error(ec);
   deadline_.cancel();
   Request req = parser_->release();
-  const Target target = *parse_target(req.target());  // checked with the header
+  Target target = *parse_target(req.target());  // checked with the header
+  const bool api = !target.segments.empty() && target.segments[0] == "api";
+  if (api && websocket::is_upgrade(req)) return upgrade(std::move(req), target);
+  // Checking a submission builds its simulation (dem validate's checks), which for a large scene
+  // takes a while: off the connections' threads, which must go on answering (two large
+  // submissions once held /api/health for 2.6 s).
+  if (api && req.method() == http::verb::post && target.segments.size() == 2 && target.segments[1] == "jobs") {
+    return boost::asio::post(state_.checks, [self = shared_from_this(), req = std::move(req), target = std::move(target)] {
+      boost::asio::post(self->stream_.get_executor(), [self, answer = self->answer(req, target)]() mutable {
+        self->send(std::move(answer));
+      });
+    });
+  }
+  send(answer(req, target));
+}
+
+http::message_generator HttpSession::answer(const Request& req, const Target& target) {
   try {
-    const bool api = !target.segments.empty() && target.segments[0] == "api";
-    if (api && websocket::is_upgrade(req)) return upgrade(std::move(req), target);
-    if (api) {
+    if (!target.segments.empty() && target.segments[0] == "api") {
       ApiContext ctx{state_.jobs, state_.openapi, state_.cases};
-      return send(handle_api(req, target, ctx));
+      return handle_api(req, target, ctx);
     }
     // a page opened with ?access_token= keeps the token in a cookie for its scripts and styles: the
     // server's own token (checked cookie-safe at start), never the value of the request
     std::string cookie;
     if (!state_.token.empty() && target.query.count("access_token") && tokens_equal(target.query.at("access_token"), state_.token))
       cookie = "dem_token=" + state_.token + "; Path=/; HttpOnly; SameSite=Strict";
-    send(serve_static(req, target, state_.web, cookie));
+    return serve_static(req, target, state_.web, cookie);
   } catch (const std::exception& e) {  // the store or the disk failed: say so, keep serving
     // a full data folder is for the operator to mend (delete jobs: that still works), not a fault
     const JobManager::StoreHealth store = state_.jobs.store_health();
     if (store.low_on_space)
-      send(error_response(req, http::status::insufficient_storage, std::string("the data folder is full: ") + e.what()));
-    else
-      send(error_response(req, http::status::internal_server_error, std::string("internal error: ") + e.what()));
+      return error_response(req, http::status::insufficient_storage, std::string("the data folder is full: ") + e.what());
+    return error_response(req, http::status::internal_server_error, std::string("internal error: ") + e.what());
   }
 }
 

@@ -15,6 +15,7 @@
 #include <chrono>
 
 #include <boost/asio/steady_timer.hpp>
+#include <boost/asio/thread_pool.hpp>
 
 #include "server/api_routes.hpp"
 #include "server/connection_limits.hpp"
@@ -32,6 +33,7 @@ struct ServerState {
   std::string token;
   std::size_t max_body;
   ConnectionLimits& connections;
+  boost::asio::thread_pool& checks;  // where submissions are checked (not the connections' threads)
   std::chrono::steady_clock::duration request_timeout;  // for a request's header; its body gets 60 s more
 };
 
@@ -54,6 +56,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void send(http::message_generator message);
   void on_write(bool keep_alive, boost::beast::error_code ec, std::size_t bytes);
   void upgrade(Request request, const Target& target);
+  http::message_generator answer(const Request& req, const Target& target);  // the API's or the viewer's
   void close();
   void start_deadline(std::chrono::steady_clock::duration within);
   void on_deadline(boost::beast::error_code ec);

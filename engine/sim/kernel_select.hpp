@@ -16,7 +16,8 @@ namespace dem {
 template <class... Normals>
 std::unique_ptr<ForceKernel> select_kernel_from(ModelList<Normals...>, const Scene& scene, bool has_walls) {
   std::unique_ptr<ForceKernel> kernel;
-  ((Normals::kName == scene.contact.normal && (kernel = make_force_kernel<Normals>(scene, has_walls), true)) || ...);
+  (void)((Normals::kName == scene.contact.normal && (kernel = make_force_kernel<Normals>(scene, has_walls), true)) ||
+         ...);
   if (!kernel) throw SceneError("contact.normal: no normal model named \"" + scene.contact.normal + "\"");
   return kernel;
 }

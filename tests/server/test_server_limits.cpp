@@ -2,6 +2,9 @@
 // (--max-output-mb) is refused when submitted, naming the limit; a job whose files grow past it
 // anyway (other files, longer lines than the estimate) is stopped and failed, naming it, with what
 // it wrote kept. A 1 KB spec with a frame every step once wrote 1.1 GB in 5 s.
+#include <atomic>
+#include <thread>
+
 #include "support/raw_http.hpp"
 #include "support/server_test.hpp"
 
@@ -109,6 +112,39 @@ TEST_F(ServerLimits, TheConnectionAndTimeoutLimitsMustBePositive) {
     EXPECT_NE(pclose(p), 0) << option;
     EXPECT_NE(std::string(buf, got).find("must be"), std::string::npos) << option << ": " << std::string(buf, got);
   }
+}
+
+}  // namespace
+}  // namespace dem::test
+
+namespace dem::test {
+namespace {
+
+// Checking a submission builds its simulation (the checks of dem validate): for a large scene that
+// takes a while, and it must not hold the connections' threads. Two large submissions once held
+// /api/health for 2.6 s.
+TEST_F(ServerLimits, LargeSubmissionsBeingCheckedDoNotHoldOtherRequests) {
+  start_server();
+  const std::string big = pouring_spec(0.0012, 10, 10);  // about 450,000 spheres: a second or two to check
+  std::vector<std::thread> submitters;
+  std::atomic<int> created{0};
+  for (int k = 0; k < 2; ++k)
+    submitters.emplace_back([&] {
+      client::HttpClient c(server_->url());
+      if (c.request("POST", "/api/jobs", big, "application/json", {}).status == 201) ++created;
+    });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // both are being checked now
+  double slowest = 0;
+  for (int k = 0; k < 10; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_EQ(client_->get("/api/health").status, 200);
+    slowest = std::max(slowest, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  for (auto& t : submitters) t.join();
+  EXPECT_EQ(created.load(), 2);
+  std::printf("slowest /api/health while two large submissions were checked: %.3f s\n", slowest);
+  EXPECT_LT(slowest, 0.25);
 }
 
 }  // namespace
