@@ -82,10 +82,8 @@ TEST(TimeStep, DtFractionScalesTheAutomaticStep) {
   EXPECT_NEAR(choose(s).dt, linear_contact_time(0.5, 1e5, 1e-3) / 100, 1e-12 * 3.2e-6);
 }
 
-TEST(TimeStep, ContactWithARigidWallCounts) {
-  // One sphere of 2e-3 kg on a rigid wall: m* = m, and eq. 4 with a rigid partner gives K_n = 2 k:
-  // omega0 = 1e4 / s as for the pair. The wall contact is elastic (zeta = 0), so it is shorter than
-  // the damped sphere-sphere one: t_c = pi / omega0 = 3.1416e-4 s, not 3.2172e-4 s.
+// One sphere of the pair's and a rigid material for walls (elastic against the sphere).
+Scene sphere_and_rigid_material() {
   Scene s = linear_pair_scene();
   s.particles.pop_back();
   Material steel;
@@ -94,6 +92,14 @@ TEST(TimeStep, ContactWithARigidWallCounts) {
   s.materials.push_back(steel);
   s.interactions = {Interaction{0.5, 0.3, 0}, Interaction{1.0, 0.3, 0}, Interaction{1.0, 0.3, 0},
                     Interaction{1, 0, 0}};
+  return s;
+}
+
+TEST(TimeStep, ContactWithARigidWallCounts) {
+  // One sphere of 2e-3 kg on a rigid wall: m* = m, and eq. 4 with a rigid partner gives K_n = 2 k:
+  // omega0 = 1e4 / s as for the pair. The wall contact is elastic (zeta = 0), so it is shorter than
+  // the damped sphere-sphere one: t_c = pi / omega0 = 3.1416e-4 s, not 3.2172e-4 s.
+  Scene s = sphere_and_rigid_material();
   WallInit floor;
   floor.material = 1;
   floor.shape = PlaneShape{};
@@ -107,14 +113,7 @@ TEST(TimeStep, ContactWithARigidWallCounts) {
 // the step resolves, and was stopped after 938 steps (an independent tester): a wall too light for
 // the step is refused, naming its mass and the least it needs; a heavy one keeps the particles' step.
 TEST(TimeStep, ALoadedWallTooLightForTheStepIsRefused) {
-  Scene s = linear_pair_scene();
-  s.particles.pop_back();
-  Material steel;
-  steel.name = "steel";
-  steel.rigid = true;
-  s.materials.push_back(steel);
-  s.interactions = {Interaction{0.5, 0.3, 0}, Interaction{1.0, 0.3, 0}, Interaction{1.0, 0.3, 0},
-                    Interaction{1, 0, 0}};
+  Scene s = sphere_and_rigid_material();
   WallInit plate;
   plate.material = 1;
   plate.shape = PlateShape{{Vec3(-0.1, -0.1, 0.02), Vec3(0.1, -0.1, 0.02), Vec3(0.1, 0.1, 0.02), Vec3(-0.1, 0.1, 0.02)}};

@@ -47,19 +47,25 @@ double mechanical(const std::vector<double>& row) {
 
 // A plate moving at V into a resting sphere, elastic, no gravity: the sphere leaves at 2V, and the
 // wall's work is its kinetic energy, 2 m V^2.
-TEST(EnergyBalance, AMovingWallsWorkIsWhatTheParticleGains) {
-  const double v = 0.2, r = 0.01;
+// An elastic sphere of radius r resting 1 mm above `wall`, which rises at v: linear, no gravity.
+Scene pushed_sphere(WallInit wall, double v, const Vec3& at, double r, double duration) {
   Scene s = base_scene(LinearNormal::kName, 2500, 0, 0, 1.0, 0.0, 1e4);
-  s.particles.push_back(sphere({0, 0, r + 0.001}, r));
-  WallInit plate{"pusher", 1, PlateShape{{Vec3(-0.05, -0.05, 0), Vec3(0.05, -0.05, 0), Vec3(0.05, 0.05, 0), Vec3(-0.05, 0.05, 0)}}, {}, {}};
+  s.particles.push_back(sphere(at + Vec3(0, 0, r + 0.001), r));
   PrescribedMotion m;
   m.velocity = {0, 0, v};
-  plate.motion = m;
-  s.walls.push_back(plate);
+  wall.motion = m;
+  s.walls.push_back(wall);
   s.time.steps = 0;
-  s.time.duration = 0.03;
+  s.time.duration = duration;
   s.outputs.every_steps = 50;
-  const auto rows = energy_rows(s);
+  return s;
+}
+
+const WallInit kPlate{"pusher", 1, PlateShape{{Vec3(-0.05, -0.05, 0), Vec3(0.05, -0.05, 0), Vec3(0.05, 0.05, 0), Vec3(-0.05, 0.05, 0)}}, {}, {}};
+
+TEST(EnergyBalance, AMovingWallsWorkIsWhatTheParticleGains) {
+  const double v = 0.2, r = 0.01;
+  const auto rows = energy_rows(pushed_sphere(kPlate, v, Vec3::Zero(), r, 0.03));
   const std::vector<double>& last = rows.back();
   const double want = 2 * sphere_mass(2500, r) * v * v;
   report("moving plate: work of the wall", last[kWalls], want);
@@ -80,19 +86,8 @@ TEST_P(MovingWallWork, ClosesTheBalanceToTwoIn1e5) {
   const bool mesh = GetParam();
   const double r = 0.01;
   for (double v : {0.2, 0.3, 0.37}) {  // three positions of the parting within its step
-    Scene s = base_scene(LinearNormal::kName, 2500, 0, 0, 1.0, 0.0, 1e4);
-    s.particles.push_back(sphere({0.003, -0.002, r + 0.001}, r));
-    const Vec3 lo(-0.05, -0.05, 0);
-    WallInit wall = mesh ? mesh_wall(grid_rectangle(lo, Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), 2, 2), "pusher")
-                         : WallInit{"pusher", 1, PlateShape{{lo, Vec3(0.05, -0.05, 0), Vec3(0.05, 0.05, 0), Vec3(-0.05, 0.05, 0)}}, {}, {}};
-    PrescribedMotion m;
-    m.velocity = {0, 0, v};
-    wall.motion = m;
-    s.walls.push_back(wall);
-    s.time.steps = 0;
-    s.time.duration = 0.02;
-    s.outputs.every_steps = 50;
-    const auto rows = energy_rows(s);
+    const WallInit wall = mesh ? mesh_wall(grid_rectangle({-0.05, -0.05, 0}, Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), 2, 2), "pusher") : kPlate;
+    const auto rows = energy_rows(pushed_sphere(wall, v, Vec3(0.003, -0.002, 0), r, 0.02));
     const std::vector<double>& last = rows.back();
     // elastic: the wall's work is all the sphere gained (the dissipated column, the balance's
     // remainder, shows any difference)
