@@ -22,12 +22,20 @@ void FrameSession::start(Request request, std::shared_ptr<FrameChannel> channel,
   ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
   ws_.set_option(websocket::stream_base::decorator(
       [](websocket::response_type& res) { res.set(http::field::server, "dem-server"); }));
+  // Joined before the handshake is answered: a job that starts as the viewer's client sees the
+  // answer publishes its first frame to this viewer too (it went to nobody, and the viewer missed
+  // step 0). Frames offered before the handshake is done wait for it (write_next).
+  joined_ = channel_ && channel_->join(shared_from_this());
   ws_.async_accept(request, beast::bind_front_handler(&FrameSession::on_accept, shared_from_this()));
 }
 
 void FrameSession::on_accept(beast::error_code ec) {
-  if (ec) return;
-  if (!channel_ || !channel_->join(shared_from_this())) {
+  if (ec) {
+    leave();
+    return;
+  }
+  accepted_ = true;
+  if (!joined_) {
     end_reason_ = channel_ ? channel_->end_reason() : refuse_reason_;
     if (end_reason_.empty()) end_reason_ = "the job is over";
     ending_ = true;
@@ -35,6 +43,7 @@ void FrameSession::on_accept(beast::error_code ec) {
     return;
   }
   read();
+  write_next();  // what came while the handshake was answered
 }
 
 void FrameSession::read() {
@@ -58,7 +67,11 @@ void FrameSession::on_read(beast::error_code ec, std::size_t) {
 
 void FrameSession::offer(std::shared_ptr<const EncodedFrame> frame) {
   boost::asio::post(ws_.get_executor(), [self = shared_from_this(), frame = std::move(frame)]() mutable {
-    self->pending_ = std::move(frame);  // a frame not yet written is replaced: skipped
+    // A few frames wait while one is written, so that a viewer that keeps up is not made to skip by
+    // a moment's delay (a fast test viewer on a busy machine missed one in ten runs); past them the
+    // oldest waiting is dropped: a slow viewer skips frames and its memory stays bounded.
+    self->pending_.push_back(std::move(frame));
+    if (self->pending_.size() > kWaitingFrames) self->pending_.pop_front();
     if (!self->writing_) self->write_next();
   });
 }
@@ -72,13 +85,13 @@ void FrameSession::end(const std::string& reason) {
 }
 
 void FrameSession::write_next() {
-  if (closed_) return;
-  if (!pending_) {
+  if (closed_ || !accepted_) return;
+  if (pending_.empty()) {
     if (ending_) close();
     return;
   }
-  writing_ = std::move(pending_);
-  pending_.reset();
+  writing_ = std::move(pending_.front());
+  pending_.pop_front();
   std::vector<boost::asio::const_buffer> parts{boost::asio::buffer(*writing_->base)};
   if (radii_sent_ != writing_->radii_version) parts.push_back(boost::asio::buffer(*writing_->radii));
   radii_sent_ = writing_->radii_version;

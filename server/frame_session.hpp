@@ -3,6 +3,8 @@
 // and never makes the server queue them. The viewer may send the text {"forceChains": true|false}.
 #pragma once
 
+#include <deque>
+
 #include <memory>
 #include <string>
 
@@ -42,9 +44,13 @@ class FrameSession final : public FrameViewer, public std::enable_shared_from_th
   std::string refuse_reason_;
   std::atomic<bool> force_chains_;
   // on the session's strand only:
-  std::shared_ptr<const EncodedFrame> writing_, pending_;
+  static constexpr std::size_t kWaitingFrames = 3;
+  std::shared_ptr<const EncodedFrame> writing_;
+  std::deque<std::shared_ptr<const EncodedFrame>> pending_;  // at most kWaitingFrames, oldest first
   std::uint64_t radii_sent_ = 0;  // the version of the radii this viewer has
   bool ending_ = false;
+  bool joined_ = false;    // to its job's channel, before the handshake
+  bool accepted_ = false;  // the handshake is done: frames may be written
   bool closed_ = false;
   std::string end_reason_;
   std::shared_ptr<void> ticket_;
