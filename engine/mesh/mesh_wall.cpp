@@ -302,6 +302,13 @@ struct ValleyShare {
   double share = 1;
   Vec3 gradient = Vec3::Zero();
 };
+
+// A disc share's gradient in the sphere's centre, for the disc of radius a about the centre's
+// projection on t's plane at signed distance d (sign `side`): through the projection (in the plane)
+// and through the radius a = sqrt(r^2 - d^2), which shrinks as the centre moves off the plane.
+Vec3 share_gradient(const MeshWall& mesh, int t, const DiscShare& share, double signed_d, double a, double side) {
+  return share.d_centre - share.d_radius * (std::abs(signed_d) / a) * side * mesh.normals[t];
+}
 ValleyShare valley_share(const MeshWall& mesh, int t, const Vec3& x, double r) {
   ValleyShare out;
   const double signed_d = mesh.normals[t].dot(x) - mesh.offsets[t];
@@ -315,8 +322,7 @@ ValleyShare valley_share(const MeshWall& mesh, int t, const Vec3& x, double r) {
   if (count == 0) return out;
   const DiscShare share = disc_share(mesh, t, p, a, valleys, count);
   out.share = share.share;
-  // through the projection p (in the plane) and through the disc's radius a = sqrt(r^2 - d^2)
-  out.gradient = share.d_centre - share.d_radius * (std::abs(signed_d) / a) * side * mesh.normals[t];
+  out.gradient = share_gradient(mesh, t, share, signed_d, a, side);
   return out;
 }
 
@@ -446,10 +452,7 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
     Near face = near[k];
     face.cp = {p, Feature::Face, 0};
     face.d2 = signed_d * signed_d;
-    // the share's gradient in the centre: through the projection p (in the plane) and through the
-    // disc's radius a = sqrt(r^2 - d^2), which shrinks as the centre moves off the plane
-    const Vec3 gradient = share.d_centre - share.d_radius * (std::abs(signed_d) / a) * side * mesh.normals[t];
-    accept(face, t, share.share, gradient);
+    accept(face, t, share.share, share_gradient(mesh, t, share, signed_d, a, side));
   }
   for (int k = 0; k < near_count; ++k) {
     if (near[k].cp.feature != Feature::Edge) continue;
