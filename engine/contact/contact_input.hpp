@@ -5,10 +5,12 @@
 // delta > 0 the overlap, v the velocity of i's contact point relative to j's, force = on body i.
 //
 // Velocities: velocity Verlet evaluates forces at the full step but only knows the half-step
-// velocity there. Springs move with the half-step velocity (exact for the displacement); the normal
-// dashpot uses the velocity predicted at the full step, v(n+1/2) + dt/2 a(n), because the half-step
-// lag adds dissipation of relative size zeta*omega*dt (3.5% of e at e = 0.1 with 50 steps per
-// contact, against 0.1% with the prediction; see docs/physics.md).
+// velocity there. Springs move with the half-step velocity (exact for the displacement); the
+// dashpots use the velocity predicted at the full step, v(n+1/2) + dt/2 a(n) (and the spin's
+// likewise), because the half-step lag adds dissipation of relative size zeta*omega*dt: 3.5% of e
+// at e = 0.1 with 50 steps per contact, against 0.1% with the prediction (docs/physics.md); in the
+// tangential direction, where a sphere's contact point is 3.5 times easier to move than its centre,
+// a partial-slip impact's spin was 3% off and first order in the step.
 #pragma once
 
 #include "core/lanes.hpp"
@@ -25,6 +27,7 @@ struct ContactInput {
   T delta;
   V3<T> v_rel;      // contact-point relative velocity at the half step (moves the springs)
   T vn_now;         // normal relative velocity predicted at the full step (normal damping)
+  V3<T> vt_now;     // tangential relative velocity predicted at the full step (tangential damping)
   T onset;          // share of the step's force window inside the contact (boundary_share)
   T travel;         // |v_n| dt: the overlap gained or lost in a step (a contact boundary is nearer)
   T first_touch{};  // on the first sample of a new contact, the overlap gained since the last sample

@@ -137,9 +137,7 @@ struct ContactLaw {
     ContactOutput<T> out;
     out.fn = fn;
     if constexpr (kFriction) {
-      const T vn = dot(c.v_rel, c.n);
-      const V3<T> v_t = c.v_rel - vn * c.n;
-      out.shear_force = Tangential::evaluate(p.tangential, nr, lane_max(fn, T{}), c.n, v_t, c.dt, shear);
+      out.shear_force = Tangential::evaluate(p.tangential, nr, lane_max(fn, T{}), c, shear);
     } else {
       out.shear_force = V3<T>::zero();
     }

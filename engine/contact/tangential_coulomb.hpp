@@ -2,9 +2,14 @@
 // (PDEM-EGD manual eqs. 2-3). The normal model gives the spring's stiffness and dashpot.
 //
 // Sliding is decided on the spring alone, as LIGGGHTS does: when k_t |xi| exceeds mu F_n the spring
-// is shortened to the sliding force and the dashpot is off; otherwise spring plus dashpot, capped.
-// (Taking the dashpot into the spring, as LAMMPS' xi = -(F_s + c_t v_t)/k_t does, can point the
-// spring against the slip when c_t |v_t| > mu F_n and make the friction force flip sign.)
+// is shortened to mu F_n / k_t. (Taking the dashpot into the spring, as LAMMPS'
+// xi = -(F_s + c_t v_t)/k_t does, can point the spring against the slip when c_t |v_t| > mu F_n and
+// make the friction force flip sign.) The force is spring plus dashpot, capped at mu F_n, sliding or
+// not: in gross sliding both oppose the slip and the cap gives mu F_n; where the slip reverses
+// while the spring is held at the limit (the normal force falling at the end of an impact), the
+// dashpot opposes the spring. Turning the dashpot off when sliding began, as LIGGGHTS does, made the
+// force jump there (from +0.36 mu F_n to -mu F_n in a partial-slip impact, linear law, e = 0.5), at
+// a moment known only to a step: the spin came out first order in the step.
 #pragma once
 
 #include <array>
@@ -40,24 +45,40 @@ struct CoulombFriction {
   };
 
   // fn: the compressive normal force (>= 0); shear: the spring, updated in place.
+  //
+  // The spring moves with the half-step tangential velocity, over the part of the drift in contact:
+  // on a contact's first sample only delta / first_touch of it. The dashpot resists the full step's
+  // velocity (contact_input.hpp), with the window share of a contact boundary, as the normal
+  // dashpot does. Without either, a partial-slip impact's spin (linear law, e = 0.5) converged at
+  // first order: a whole step's travel on the first sample left the spring up to v_t dt long, which
+  // moved the end of the slip phase that the dashpot holds at mu F_n by up to a step.
   template <class T>
-  DEM_HOT static V3<T> evaluate(const Lanes<T>& p, const NormalResponse<T>& nr, T fn, const V3<T>& n,
-                                const V3<T>& v_t, T dt, V3<T>& shear) {
-    shear = in_plane(shear, n) + v_t * dt;
+  DEM_HOT static V3<T> evaluate(const Lanes<T>& p, const NormalResponse<T>& nr, T fn, const ContactInput<T>& c,
+                                V3<T>& shear) {
+    const V3<T>& n = c.n;
+    const V3<T> v_t = c.v_rel - dot(c.v_rel, n) * n;
+    T moved_for = c.dt;
+    const auto fresh = c.first_touch > T{};
+    if (any_lane(fresh))  // rare: skip the division
+      moved_for = select(fresh, c.dt * lane_min(c.delta / select(fresh, c.first_touch, splat<T>(1.0)), splat<T>(1.0)), c.dt);
+    shear = in_plane(shear, n) + v_t * moved_for;
     const T limit = p.mu * fn;
     const T limit2 = limit * limit;
-    const V3<T> elastic = -nr.kt * shear;
+    V3<T> elastic = -nr.kt * shear;
     const T elastic2 = squared_norm(elastic);
     const auto sliding = elastic2 > limit2;
-    V3<T> fs = elastic - nr.ct * v_t;
+    const V3<T> damping = (c.onset * nr.ct) * c.vt_now;
+    // Most contacts stick below the limit: the square roots and divisions only when a lane needs them.
+    if (any_lane(sliding)) {
+      const T slide_scale = limit / lane_sqrt(select(sliding, elastic2, splat<T>(1.0)));
+      shear = select(sliding, shear * slide_scale, shear);
+      elastic = select(sliding, elastic * slide_scale, elastic);
+    }
+    const V3<T> fs = elastic - damping;
     const T fs2 = squared_norm(fs);
     const auto capped = fs2 > limit2;
-    // Most contacts stick below the limit: the square roots and divisions only when a lane needs them.
-    if (!any_lane(sliding) && !any_lane(capped)) return fs;
-    const T slide_scale = limit / lane_sqrt(elastic2);  // only kept where sliding (elastic2 > 0)
-    fs = select(capped, fs * (limit / lane_sqrt(fs2)), fs);
-    shear = select(sliding, shear * slide_scale, shear);
-    return select(sliding, slide_scale * elastic, fs);
+    if (!any_lane(capped)) return fs;
+    return select(capped, fs * (limit / lane_sqrt(select(capped, fs2, splat<T>(1.0)))), fs);
   }
 };
 

@@ -178,6 +178,7 @@ class ForceKernelImpl final : public ForceKernel {
     const Vec3* __restrict v = p.v.data();
     const Vec3* __restrict w = p.w.data();
     const Vec3* __restrict kick = s.half_kick.data();
+    const Vec3* __restrict spin_kick = s.spin_kick.data();
     const double* __restrict radius = p.radius.data();
     const int* __restrict material = p.material.data();
     const int* __restrict partner = nl.partner.data();
@@ -239,6 +240,7 @@ class ForceKernelImpl final : public ForceKernel {
           __builtin_prefetch(&v[geo.j[l]]);
           __builtin_prefetch(&w[geo.j[l]]);
           __builtin_prefetch(&kick[geo.j[l]]);
+          if constexpr (Law::kFriction) __builtin_prefetch(&spin_kick[geo.j[l]]);
         }
         const V3<T> d = gather<T>(x, geo.i) - gather<T>(x, geo.j);
         geo.ri = gather<T>(radius, geo.i);
@@ -285,7 +287,12 @@ class ForceKernelImpl final : public ForceKernel {
         c.v_rel = v_centres - cross(li * wi + lj * wj, c.n);
         const T vn = dot(c.v_rel, c.n);
         // full-step prediction: v(n+1) ~ v(n+1/2) + (the first half kick again)
-        c.vn_now = vn + dot(gather<T>(kick, iv) - gather<T>(kick, jv), c.n);
+        const V3<T> kicks = gather<T>(kick, iv) - gather<T>(kick, jv);
+        c.vn_now = vn + dot(kicks, c.n);
+        if constexpr (Law::kFriction) {
+          const V3<T> v_now = c.v_rel + kicks - cross(li * gather<T>(spin_kick, iv) + lj * gather<T>(spin_kick, jv), c.n);
+          c.vt_now = v_now - dot(v_now, c.n) * c.n;
+        }
         c.onset = boundary_share(c.delta, vn, dt);
         c.travel = lane_abs(vn) * dt;
         c.first_touch = T{};
@@ -438,6 +445,10 @@ class ForceKernelImpl final : public ForceKernel {
     if (pose.moving()) c.v_rel = c.v_rel - to_v3(pose.velocity_at(point));
     const double vn = dot(c.v_rel, c.n);
     c.vn_now = vn + dot(to_v3(s.half_kick[i]), c.n);
+    if constexpr (Law::kFriction) {  // the wall's own acceleration is left out, as in vn_now
+      const V3<double> v_now = c.v_rel + to_v3(s.half_kick[i]) - li * cross(to_v3(s.spin_kick[i]), c.n);
+      c.vt_now = v_now - dot(v_now, c.n) * c.n;
+    }
     c.onset = boundary_share(c.delta, vn, s.dt);
     c.travel = std::abs(vn) * s.dt;
     // the overlap gained since the last sample (a sphere moves straight relative to a plane)

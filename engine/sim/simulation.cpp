@@ -75,6 +75,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   mark_members(scene_, state_.bodies, state_.particles);
   state_.f_next.assign(state_.particles.size(), Vec3::Zero());
   state_.half_kick.assign(state_.particles.size(), Vec3::Zero());
+  state_.spin_kick.assign(state_.particles.size(), Vec3::Zero());
   state_.gravity = scene_.gravity;
   state_.overlap_limit = scene_.numerics.max_overlap_fraction;
   state_.local_damping = scene_.numerics.local_damping;
@@ -509,6 +510,7 @@ double Simulation::half_kick_and_drift() {
         // Raw pointers and whole-vector expressions: through the std::vectors the compiler kept
         // reloading their data pointers and called Eigen's assignment loops out of line (9% of a step).
         Vec3* __restrict kick = state_.half_kick.data();
+        Vec3* __restrict spin_kick = state_.spin_kick.data();
         Vec3* __restrict x = p.x.data();
         Vec3* __restrict v = p.v.data();
         Vec3* __restrict w = p.w.data();
@@ -526,7 +528,9 @@ double Simulation::half_kick_and_drift() {
           kick[i] = k;
           const Vec3 vi = v[i] + k;
           v[i] = vi;
-          const Vec3 wi = w[i] + (half_dt * inv_inertia[i]) * t[i];
+          const Vec3 sk = (half_dt * inv_inertia[i]) * t[i];
+          spin_kick[i] = sk;
+          const Vec3 wi = w[i] + sk;
           w[i] = wi;
           const Vec3 xi = x[i] + dt * vi;
           x[i] = xi;
@@ -559,7 +563,8 @@ void Simulation::build_neighbors() {
       order.clear();
     } else {
       p.permute(order);
-      permute_array(state_.half_kick, order);  // this step's kick, already taken, feeds the prediction
+      permute_array(state_.half_kick, order);  // this step's kicks, already taken, feed the prediction
+      permute_array(state_.spin_kick, order);
       state_.bonds.renumber(order);
     }
   }

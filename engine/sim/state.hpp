@@ -112,6 +112,7 @@ struct SimState {
   // bond forces of this step (the pairs' are summed in blocks.sums, the last step's total is particles.f)
   std::vector<Vec3> f_next;
   std::vector<Vec3> half_kick;  // velocity change of this step's first half kick, dt/2 f/m
+  std::vector<Vec3> spin_kick;  // spin change of the same half kick, dt/2 t/I (made anew every drift)
   std::vector<Wall> walls;         // planes and plates
   WallContacts wall_contacts;
   std::vector<MeshWall> meshes;

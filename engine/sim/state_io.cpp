@@ -236,6 +236,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(p.inv_inertia, "the particles"); r.get(p.material, "the particles"); r.get(p.id, "the particles");
   r.get(p.external, "the particles");
   r.get(s.half_kick, "the particles");
+  s.spin_kick.assign(n, Vec3::Zero());  // not saved: the next drift makes it before any contact reads it
   r.get(sim.x_at_build_, "the particles");
   for (const auto* v : {&p.x, &p.v, &p.w, &p.f, &p.t, &s.half_kick, &sim.x_at_build_}) expect_size(*v, n, "a particle array");
   for (const auto* v : {&p.radius, &p.mass, &p.inv_mass, &p.inv_inertia}) expect_size(*v, n, "a particle array");
