@@ -240,7 +240,6 @@ class ForceKernelImpl final : public ForceKernel {
           __builtin_prefetch(&v[geo.j[l]]);
           __builtin_prefetch(&w[geo.j[l]]);
           __builtin_prefetch(&kick[geo.j[l]]);
-          if constexpr (Law::kFriction) __builtin_prefetch(&spin_kick[geo.j[l]]);
         }
         const V3<T> d = gather<T>(x, geo.i) - gather<T>(x, geo.j);
         geo.ri = gather<T>(radius, geo.i);
@@ -290,8 +289,9 @@ class ForceKernelImpl final : public ForceKernel {
         const V3<T> kicks = gather<T>(kick, iv) - gather<T>(kick, jv);
         c.vn_now = vn + dot(kicks, c.n);
         if constexpr (Law::kFriction) {
-          const V3<T> v_now = c.v_rel + kicks - cross(li * gather<T>(spin_kick, iv) + lj * gather<T>(spin_kick, jv), c.n);
-          c.vt_now = v_now - dot(v_now, c.n) * c.n;
+          // (the spins' kicks move the contact point in the plane only: vn_now is v_now's normal part)
+          const V3<T> spins = li * gather<T>(spin_kick, iv) + lj * gather<T>(spin_kick, jv);
+          c.vt_now = c.v_rel + kicks - cross(spins, c.n) - c.vn_now * c.n;
         }
         c.onset = boundary_share(c.delta, vn, dt);
         c.travel = lane_abs(vn) * dt;
