@@ -111,6 +111,8 @@ int run_server(const ServerOptions& options) {
   manager_options.checkpoint_seconds = options.checkpoint_seconds;
   manager_options.max_frame_rate = options.max_frame_rate;
   manager_options.max_output_bytes = options.max_output_bytes;
+  manager_options.retention.max_age_seconds = options.keep_finished_days * 86400;
+  manager_options.retention.max_finished = options.keep_finished_jobs;
   JobManager jobs(manager_options, frames);
   ConnectionLimits connections(options.max_connections, options.max_connections_per_client);
   asio::thread_pool checks(2);  // submissions' checks; joined when the server returns

@@ -25,6 +25,8 @@ struct ServerOptions {
   double request_timeout = 10;        // s for a request's header (its body gets 60 s more)
   std::size_t max_connections = 512;  // in all (WebSockets included)
   std::size_t max_connections_per_client = 128;  // from one address
+  double keep_finished_days = 0;      // finished jobs older than this are deleted; 0: kept
+  std::size_t keep_finished_jobs = 0; // only the newest this many finished jobs are kept; 0: all
   int io_threads = 2;
 };
 

@@ -109,6 +109,7 @@ void JobManager::start() {
   std::lock_guard lock(mutex_);
   stopping_ = false;
   for (int k = 0; k < std::max(1, options_.concurrency); ++k) workers_.emplace_back([this] { work(); });
+  if (options_.retention.active()) sweeper_ = std::thread([this] { sweep(); });
 }
 
 void JobManager::shutdown() {
@@ -121,9 +122,11 @@ void JobManager::shutdown() {
     }
   }
   changed_.notify_all();
+  sweeper_wake_.notify_all();
   for (std::thread& t : workers_)
     if (t.joinable()) t.join();
   workers_.clear();
+  if (sweeper_.joinable()) sweeper_.join();
   std::lock_guard lock(mutex_);
   save_unsaved();
 }
@@ -320,6 +323,26 @@ ActionResult JobManager::resume(std::int64_t id) {
 
 ActionResult JobManager::remove(std::int64_t id) {
   std::lock_guard lock(mutex_);
+  return remove_locked(id);
+}
+
+void JobManager::sweep() {
+  std::unique_lock lock(mutex_);
+  while (!stopping_) {
+    std::vector<JobRecord> all;
+    all.reserve(jobs_.size());
+    for (const auto& [id, job] : jobs_) all.push_back(job);
+    for (const std::int64_t id : jobs_past_retention(all, options_.retention, std::chrono::system_clock::now())) {
+      const ActionResult r = remove_locked(id);
+      if (r.outcome == Outcome::Done)
+        std::fprintf(stderr, "dem-server: retention: deleted job %lld (%s, finished %s)\n", static_cast<long long>(id),
+                     to_string(r.job.state), r.job.finished_at.c_str());
+    }
+    sweeper_wake_.wait_for(lock, options_.retention.sweep_interval(), [this] { return stopping_; });
+  }
+}
+
+ActionResult JobManager::remove_locked(std::int64_t id) {
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) return {Outcome::NotFound, "no job " + std::to_string(id), {}};
   if (it->second.state == JobState::Running)

@@ -20,6 +20,7 @@
 #include "server/job.hpp"
 #include "server/job_folder.hpp"
 #include "server/job_store.hpp"
+#include "server/retention.hpp"
 
 namespace dem {
 class Simulation;
@@ -34,6 +35,7 @@ struct ManagerOptions {
   double checkpoint_seconds = 10;
   double max_frame_rate = 30;     // live frames a second per job; 0: every output frame
   double max_output_bytes = 10000.0 * 1024 * 1024;  // what one job's files may hold (--max-output-mb)
+  RetentionPolicy retention;  // finished jobs deleted by age or count; none by default
 };
 
 // What a request on a job came to.
@@ -49,7 +51,7 @@ class JobManager {
  public:
   JobManager(ManagerOptions options, FrameHub& frames);  // opens the table, recovers; throws StoreError
   ~JobManager();
-  void start();     // the worker threads
+  void start();     // the worker threads (and the retention sweeper, with a policy)
   void shutdown();  // stops taking jobs; running ones are checkpointed and queued again
 
   // Checks the spec as `dem validate` does (throws spec::SpecError or SceneError) and queues it.
@@ -98,6 +100,8 @@ class JobManager {
   // disk) is kept in memory, listed in unsaved_, and written with the next write that succeeds.
   void save(const JobRecord& job);
   void save_unsaved();  // the caller holds mutex_
+  ActionResult remove_locked(std::int64_t id);  // the caller holds mutex_
+  void sweep();  // applies the retention policy, until shutdown
   void refuse_outputs_past_limit(const Simulation& sim) const;  // throws spec::SpecError
   int threads_per_job() const;
 
@@ -110,6 +114,8 @@ class JobManager {
   std::map<std::string, std::int64_t> by_key_;
   std::map<std::int64_t, std::shared_ptr<Running>> running_;
   std::vector<std::thread> workers_;
+  std::thread sweeper_;
+  std::condition_variable sweeper_wake_;  // at shutdown
   bool stopping_ = false;
   std::set<std::int64_t> unsaved_;  // jobs whose last save failed
   std::string store_problem_;       // why, while any is unsaved

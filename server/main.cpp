@@ -14,6 +14,7 @@ const char* kUsage =
     "                  [--threads-per-job N] [--max-body-mb MB] [--web DIR] [--checkpoint-seconds S]\n"
     "                  [--max-frame-rate HZ] [--max-output-mb MB] [--cases DIR] [--request-timeout S]\n"
     "                  [--max-connections N] [--max-connections-per-client N]\n"
+    "                  [--keep-finished-days D] [--keep-finished-jobs N]\n"
     "  --data DIR              where the job table (jobs.db) and each job's folder live (made if missing)\n"
     "  --port PORT             default 8080; 0 picks a free port (printed)\n"
     "  --address ADDR          default 127.0.0.1; any other address needs a token\n"
@@ -31,7 +32,12 @@ const char* kUsage =
     "  --request-timeout S     a request's header must arrive within S seconds (default 10; its body\n"
     "                          gets 60 s more), else 408 and the connection closes\n"
     "  --max-connections N     connections at once (default 512), WebSockets included; past it 503\n"
-    "  --max-connections-per-client N   from one address (default 128)\n";
+    "  --max-connections-per-client N   from one address (default 128)\n"
+    "  --keep-finished-days D  delete a job that succeeded, failed or was cancelled more than D days\n"
+    "                          ago, with its files (fractions allowed; default: keep every job)\n"
+    "  --keep-finished-jobs N  keep only the newest N finished jobs, deleting older ones with their\n"
+    "                          files (default: keep every job); queued, running and interrupted jobs\n"
+    "                          are never deleted by either\n";
 
 bool number(const std::string& text, double& out) {
   try {
@@ -97,6 +103,12 @@ int main(int argc, char** argv) {
     } else if (a == "--max-connections-per-client") {
       if (!whole(1, 1e6)) return bad("a whole number >= 1");
       options.max_connections_per_client = static_cast<std::size_t>(x);
+    } else if (a == "--keep-finished-days") {
+      if (!number(v, x) || !(x > 0) || x > 1e6) return bad("a number of days > 0");
+      options.keep_finished_days = x;
+    } else if (a == "--keep-finished-jobs") {
+      if (!whole(1, 1e9)) return bad("a whole number >= 1");
+      options.keep_finished_jobs = static_cast<std::size_t>(x);
     } else if (a == "--max-frame-rate") {
       if (!number(v, x) || !(x >= 0)) return bad("a rate in Hz >= 0");
       options.max_frame_rate = x;
