@@ -70,9 +70,12 @@ std::optional<int> parse_verb_args(const Verb& verb, const std::vector<std::stri
     if (takes_value) {
       if (k + 1 >= args.size()) return usage_error(verb, a + " needs a value");
       const std::string& v = args[++k];
-      if (a == "--server") out.server = v;
-      else if (a == "--token") out.token = v;
-      else out.values[a] = v;
+      if (a == "--server")
+        out.server = v;
+      else if (a == "--token")
+        out.token = v;
+      else
+        out.values[a] = v;
     } else if (listed(verb.flags, a)) {
       out.flags.insert(a);
     } else if (a.size() > 1 && a[0] == '-') {
@@ -138,8 +141,13 @@ bool is_artifact_name(const std::string& name) {
 }  // namespace
 
 int submit_command(const std::vector<std::string>& args) {
-  static const Verb verb{"submit", "submit SPEC.json [--wait] [--idempotency-key K] [--quiet]", "the spec file",
-                         {"--idempotency-key"}, {"--wait", "--quiet"}, 1, 1};
+  static const Verb verb{"submit",
+                         "submit SPEC.json [--wait] [--idempotency-key K] [--quiet]",
+                         "the spec file",
+                         {"--idempotency-key"},
+                         {"--wait", "--quiet"},
+                         1,
+                         1};
   VerbArgs a;
   if (const auto exit = parse_verb_args(verb, args, a)) return *exit;
   const std::string& path = a.positional[0];
@@ -168,10 +176,12 @@ int submit_command(const std::vector<std::string>& args) {
     }
     const nlohmann::json job = api.json_of(response, "/api/jobs");
     const std::int64_t id = job.value("id", std::int64_t{-1});
-    if (quiet) std::printf("%lld\n", static_cast<long long>(id));
+    if (quiet)
+      std::printf("%lld\n", static_cast<long long>(id));
     else if (response.header("idempotent-replayed") == "true")
       std::printf("already submitted with idempotency key %s: %s\n", key.c_str(), job_summary(job).c_str());
-    else std::printf("submitted %s\n", job_summary(job).c_str());
+    else
+      std::printf("submitted %s\n", job_summary(job).c_str());
     std::fflush(stdout);  // a script reading our output learns the id before the wait
     return a.flag("--wait") ? watch_job(api, id, verb.name, quiet) : 0;
   });
@@ -181,8 +191,10 @@ int status_command(const std::vector<std::string>& args) {
   static const Verb verb{"status", "status ID [--json]", "the job id", {}, {"--json"}, 1, 1};
   return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
     const client::Response response = api.send("GET", job_target(id));
-    if (a.flag("--json")) print_body(response.body);
-    else std::printf("%s\n", job_summary(api.json_of(response, job_target(id))).c_str());
+    if (a.flag("--json"))
+      print_body(response.body);
+    else
+      std::printf("%s\n", job_summary(api.json_of(response, job_target(id))).c_str());
     return 0;
   });
 }
@@ -194,8 +206,8 @@ int list_command(const std::vector<std::string>& args) {
   const std::string state = a.value("--state");
   static const std::set<std::string> kStates = {"queued", "running", "succeeded", "failed", "cancelled", "interrupted"};
   if (a.values.count("--state") && !kStates.count(state))
-    return usage_error(verb, "--state is one of queued, running, succeeded, failed, cancelled, interrupted (got \"" +
-                                 state + "\")");
+    return usage_error(
+        verb, "--state is one of queued, running, succeeded, failed, cancelled, interrupted (got \"" + state + "\")");
   return with_server(verb, a, [&](const ServerApi& api) {
     const std::string target = state.empty() ? "/api/jobs" : "/api/jobs?state=" + state;
     const client::Response response = api.send("GET", target);

@@ -80,8 +80,10 @@ int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, bo
   const Progress last = progress_of(job);
   if (show && shown >= 0 && shown < last.total) {
     // the printer closes its line (and logs its last line) only at the last step
-    if (job.value("state", "") == "succeeded") show(Progress{last.total, last.total, rate, 0});
-    else if (terminal) std::fputc('\n', stderr);
+    if (job.value("state", "") == "succeeded")
+      show(Progress{last.total, last.total, rate, 0});
+    else if (terminal)
+      std::fputc('\n', stderr);
   }
   if (job.value("state", "") == "succeeded") {
     if (!quiet) std::printf("%s\n", job_summary(job).c_str());

@@ -116,7 +116,8 @@ int run_command(const std::vector<std::string>& args) {
     const std::int64_t first_step = sim.step_count();  // a continued run starts at its saved step
     std::filesystem::create_directories(a.out);
     std::printf("%s: %zu particles, %zu walls, %lld steps; %s\n", a.spec.c_str(), sim.particles().size(),
-                sim.scene().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
+                sim.scene().walls.size(), static_cast<long long>(sim.total_steps()),
+                sim.time_step().describe().c_str());
     std::fflush(stdout);
 
     std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, a.out, append);

@@ -62,14 +62,16 @@ std::string Response::header(const std::string& name) const {
 
 HttpClient::HttpClient(const std::string& server, std::string token) : token_(std::move(token)) {
   std::string rest = server;
-  if (rest.rfind("http://", 0) == 0) rest = rest.substr(7);
+  if (rest.rfind("http://", 0) == 0)
+    rest = rest.substr(7);
   else if (rest.find("://") != std::string::npos)
     throw ClientError("server " + server + ": only http:// is supported (put TLS in front with a proxy)");
   rest = rest.substr(0, rest.find('/'));
   const std::size_t colon = rest.rfind(':');
   host_ = colon == std::string::npos ? rest : rest.substr(0, colon);
   port_ = colon == std::string::npos ? "80" : rest.substr(colon + 1);
-  if (host_.empty() || port_.empty()) throw ClientError("server \"" + server + "\" is not of the form http://HOST:PORT");
+  if (host_.empty() || port_.empty())
+    throw ClientError("server \"" + server + "\" is not of the form http://HOST:PORT");
 }
 
 Response HttpClient::request(const std::string& method, const std::string& target, const std::string& body,

@@ -24,7 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     request_token(req, *target);
   }
   if (const auto host = host_of_authority(req[http::field::host])) is_loopback_host(*host);
-  if (const auto origin = authority_of_origin(req[http::field::origin])) same_authority(*origin, req[http::field::host]);
+  if (const auto origin = authority_of_origin(req[http::field::origin]))
+    same_authority(*origin, req[http::field::host]);
   printable(req.body());
   return 0;
 }

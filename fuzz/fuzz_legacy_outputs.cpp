@@ -13,12 +13,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::istringstream in(std::string(reinterpret_cast<const char*>(data) + 1, size - 1));
   namespace legacy = dem::legacy;
   switch (data[0] % 6) {
-    case 0: legacy::read_animation(in); break;
-    case 1: legacy::read_force_chains(in); break;
-    case 2: legacy::read_wall_frames(in); break;
-    case 3: legacy::read_wall_force_chains(in); break;
-    case 4: legacy::read_force_displacement(in); break;
-    default: legacy::read_rows(in, 1 + data[0] % 17); break;
+    case 0:
+      legacy::read_animation(in);
+      break;
+    case 1:
+      legacy::read_force_chains(in);
+      break;
+    case 2:
+      legacy::read_wall_frames(in);
+      break;
+    case 3:
+      legacy::read_wall_force_chains(in);
+      break;
+    case 4:
+      legacy::read_force_displacement(in);
+      break;
+    default:
+      legacy::read_rows(in, 1 + data[0] % 17);
+      break;
   }
   return 0;
 }

@@ -10,8 +10,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size == 0) return 0;
   const std::string bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
   try {
-    if (data[0] & 1) dem::parse_stl(bytes, "fuzz.stl");
-    else dem::parse_legacy_mesh(bytes, "fuzz.dat");
+    if (data[0] & 1)
+      dem::parse_stl(bytes, "fuzz.stl");
+    else
+      dem::parse_legacy_mesh(bytes, "fuzz.dat");
   } catch (const dem::MeshError&) {
   }
   return 0;

@@ -11,7 +11,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     const std::string both = paths;
     const std::size_t colon = both.find(':');
     const std::string bytes = dem::spec::read_json_file(both.substr(0, colon)).SerializeAsString();
-    std::ofstream(both.substr(colon + 1), std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    std::ofstream(both.substr(colon + 1), std::ios::binary)
+        .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     std::exit(0);
   }
   return 0;

@@ -67,16 +67,19 @@ Response submit(const Request& req, ApiContext& ctx) {
   try {
     if (type == "application/json") {
       spec = spec::parse_json(req.body());
-    } else if (type == "application/x-protobuf" || type == "application/protobuf" || type == "application/octet-stream") {
+    } else if (type == "application/x-protobuf" || type == "application/protobuf" ||
+               type == "application/octet-stream") {
       spec = spec::parse_binary(req.body());
     } else {
-      return error_response(req, http::status::unsupported_media_type,
-                            "Content-Type \"" + type +
-                                "\" is not a job spec: send application/json or application/x-protobuf (proto/dem.proto, JobSpec)");
+      return error_response(
+          req, http::status::unsupported_media_type,
+          "Content-Type \"" + type +
+              "\" is not a job spec: send application/json or application/x-protobuf (proto/dem.proto, JobSpec)");
     }
     const std::string key(req["Idempotency-Key"]);
     if (key.size() > 200 || !std::all_of(key.begin(), key.end(), [](unsigned char c) { return c >= 0x20 && c < 0x7f; }))
-      return error_response(req, http::status::bad_request, "Idempotency-Key must be printable ASCII of at most 200 characters");
+      return error_response(req, http::status::bad_request,
+                            "Idempotency-Key must be printable ASCII of at most 200 characters");
     const JobManager::Submitted s = ctx.jobs.submit(spec, key);
     if (s.conflict)
       return error_response(req, http::status::unprocessable_entity,
@@ -98,8 +101,9 @@ Response list_jobs(const Request& req, const Target& target, ApiContext& ctx) {
   if (const auto q = target.query.find("state"); q != target.query.end()) {
     only = job_state_from(q->second);
     if (!only)
-      return error_response(req, http::status::bad_request,
-                            "state=" + q->second + " is not a job state (queued, running, succeeded, failed, cancelled, interrupted)");
+      return error_response(
+          req, http::status::bad_request,
+          "state=" + q->second + " is not a job state (queued, running, succeeded, failed, cancelled, interrupted)");
   }
   nlohmann::json jobs = nlohmann::json::array();
   for (const JobRecord& j : ctx.jobs.list())
@@ -109,9 +113,12 @@ Response list_jobs(const Request& req, const Target& target, ApiContext& ctx) {
 
 Response action(const Request& req, const ActionResult& r, http::status done = http::status::ok) {
   switch (r.outcome) {
-    case Outcome::NotFound: return error_response(req, http::status::not_found, r.message);
-    case Outcome::Conflict: return error_response(req, http::status::conflict, r.message);
-    case Outcome::Done: break;
+    case Outcome::NotFound:
+      return error_response(req, http::status::not_found, r.message);
+    case Outcome::Conflict:
+      return error_response(req, http::status::conflict, r.message);
+    case Outcome::Done:
+      break;
   }
   if (done == http::status::no_content) {
     Response res{http::status::no_content, req.version()};
@@ -132,15 +139,16 @@ Response list_artifacts(const Request& req, std::int64_t id, ApiContext& ctx) {
   if (fs::exists(folder.archive())) found.emplace_back(JobFolder::kArchiveName, fs::file_size(folder.archive()));
   std::sort(found.begin(), found.end());
   for (const auto& [name, size] : found)
-    files.push_back({{"name", name}, {"size", size}, {"url", "/api/jobs/" + std::to_string(id) + "/artifacts/" + name}});
+    files.push_back(
+        {{"name", name}, {"size", size}, {"url", "/api/jobs/" + std::to_string(id) + "/artifacts/" + name}});
   return json_response(req, http::status::ok, {{"job", id}, {"artifacts", files}});
 }
 
 http::message_generator artifact(const Request& req, std::int64_t id, const std::string& name, ApiContext& ctx) {
   if (!is_artifact_name(name))
     return error_response(req, http::status::bad_request,
-                          "\"" + name + "\" is not an artifact name (a file name from GET /api/jobs/" + std::to_string(id) +
-                              "/artifacts; no folders, no '..')");
+                          "\"" + name + "\" is not an artifact name (a file name from GET /api/jobs/" +
+                              std::to_string(id) + "/artifacts; no folders, no '..')");
   const JobFolder folder = ctx.jobs.folder(id);
   const fs::path path = name == JobFolder::kArchiveName ? folder.archive() : folder.outputs() / name;
   const bool tar = name == JobFolder::kArchiveName;
@@ -149,7 +157,8 @@ http::message_generator artifact(const Request& req, std::int64_t id, const std:
                     {{http::field::content_type, tar ? "application/x-tar" : "text/plain; charset=utf-8"},
                      {http::field::content_disposition, "attachment; filename=\"" + name + "\""},
                      {http::field::cache_control, "no-store"}});
-  if (!file) return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
+  if (!file)
+    return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
   return std::move(*file);
 }
 
@@ -157,9 +166,8 @@ http::message_generator artifact(const Request& req, std::int64_t id, const std:
 
 bool is_artifact_name(const std::string& name) {
   if (name.empty() || name.size() > 100 || name[0] == '.') return false;
-  return std::all_of(name.begin(), name.end(), [](unsigned char c) {
-    return std::isalnum(c) || c == '.' || c == '_' || c == '-';
-  });
+  return std::all_of(name.begin(), name.end(),
+                     [](unsigned char c) { return std::isalnum(c) || c == '.' || c == '_' || c == '-'; });
 }
 
 http::message_generator handle_api(const Request& req, const Target& target, ApiContext& ctx) {
@@ -167,7 +175,9 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
   const http::verb m = req.method();
   const bool get = m == http::verb::get || m == http::verb::head;
   const char* allowed = allowed_methods(s);
-  if (!allowed) return error_response(req, http::status::not_found, "no API at " + std::string(req.target()) + " (see /api/openapi.json)");
+  if (!allowed)
+    return error_response(req, http::status::not_found,
+                          "no API at " + std::string(req.target()) + " (see /api/openapi.json)");
   if (!allows(allowed, req.method_string())) return method_not_allowed(req, allowed);
   if (m == http::verb::options) {
     Response res{http::status::no_content, req.version()};
@@ -182,12 +192,15 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
     nlohmann::json counts = nlohmann::json::object();
     for (const auto& [state, n] : ctx.jobs.counts()) counts[state] = n;
     const JobManager::StoreHealth h = ctx.jobs.store_health();
-    nlohmann::json store = {{"freeBytes", h.free_bytes}, {"totalBytes", h.total_bytes}, {"unsavedJobs", h.unsaved_jobs}};
+    nlohmann::json store = {
+        {"freeBytes", h.free_bytes}, {"totalBytes", h.total_bytes}, {"unsavedJobs", h.unsaved_jobs}};
     if (!h.problem.empty()) store["problem"] = h.problem;
-    return json_response(req, http::status::ok,
-                         {{"status", h.problem.empty() ? "ok" : "degraded"}, {"version", kVersion}, {"jobs", counts}, {"store", store}});
+    return json_response(
+        req, http::status::ok,
+        {{"status", h.problem.empty() ? "ok" : "degraded"}, {"version", kVersion}, {"jobs", counts}, {"store", store}});
   }
-  if (s.size() == 2 && s[1] == "openapi.json") return text_response(req, http::status::ok, "application/json", ctx.openapi);
+  if (s.size() == 2 && s[1] == "openapi.json")
+    return text_response(req, http::status::ok, "application/json", ctx.openapi);
   if (s[1] == "cases") {
     if (s.size() == 2) return json_response(req, http::status::ok, {{"cases", list_cases(ctx.cases)}});
     if (std::optional<std::string> spec = case_spec(ctx.cases, s[2]))
@@ -203,7 +216,8 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
     if (get) return json_response(req, http::status::ok, to_json(*job));
     return action(req, ctx.jobs.remove(*id), http::status::no_content);
   }
-  if (s[3] == "cancel" || s[3] == "resume") return action(req, s[3] == "cancel" ? ctx.jobs.cancel(*id) : ctx.jobs.resume(*id));
+  if (s[3] == "cancel" || s[3] == "resume")
+    return action(req, s[3] == "cancel" ? ctx.jobs.cancel(*id) : ctx.jobs.resume(*id));
   if (s[3] == "frames") {
     Response res = error_response(req, http::status::upgrade_required,
                                   "the frames of job " + s[2] + " are a WebSocket stream: connect with ws://");

@@ -15,7 +15,7 @@ namespace dem::server {
 
 struct ApiContext {
   JobManager& jobs;
-  const std::string& openapi;         // the OpenAPI description served at /api/openapi.json
+  const std::string& openapi;          // the OpenAPI description served at /api/openapi.json
   const std::filesystem::path& cases;  // the bundled cases
 };
 

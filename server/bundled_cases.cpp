@@ -49,7 +49,9 @@ nlohmann::json list_cases(const fs::path& root) {
     } catch (const std::exception&) {
       continue;  // a broken bundled case is not offered
     }
-    cases.push_back({{"name", folder.filename().string()}, {"title", title}, {"description", description_of(folder / "README.md")}});
+    cases.push_back({{"name", folder.filename().string()},
+                     {"title", title},
+                     {"description", description_of(folder / "README.md")}});
   }
   return cases;
 }

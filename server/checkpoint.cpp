@@ -56,7 +56,7 @@ void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, c
     if (!(in >> name >> size)) throw std::runtime_error(path + ": the list of output files ends early");
     sizes[name] = size;
   }
-  in.get();  // the newline before the state
+  in.get();                // the newline before the state
   StateIO::read(sim, in);  // first: a state that does not fit leaves the files as they are
   StateIO::require_within_run(sim);
 
@@ -73,8 +73,10 @@ void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, c
   for (const fs::directory_entry& e : fs::directory_iterator(output_folder)) {
     if (!e.is_regular_file()) continue;
     const auto found = sizes.find(e.path().filename().string());
-    if (found == sizes.end()) fs::remove(e.path());  // created after the checkpoint
-    else if (e.file_size() != found->second) fs::resize_file(e.path(), found->second);  // cut back
+    if (found == sizes.end())
+      fs::remove(e.path());  // created after the checkpoint
+    else if (e.file_size() != found->second)
+      fs::resize_file(e.path(), found->second);  // cut back
   }
 }
 

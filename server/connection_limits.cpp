@@ -8,7 +8,8 @@ std::shared_ptr<void> ConnectionLimits::admit(const std::string& client, std::st
   if (total_ >= max_total_) {
     why = "the server holds " + std::to_string(total_) + " connections, its limit (--max-connections)";
   } else if (mine >= max_per_client_) {
-    why = "this client holds " + std::to_string(mine) + " connections, the limit for one address (--max-connections-per-client)";
+    why = "this client holds " + std::to_string(mine) +
+          " connections, the limit for one address (--max-connections-per-client)";
   } else {
     ++total_;
     ++mine;

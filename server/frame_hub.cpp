@@ -11,7 +11,7 @@ bool FrameChannel::wants_force_chains() const {
   return false;
 }
 
-void FrameChannel::publish(std::shared_ptr<const EncodedFrame> frame) {
+void FrameChannel::publish(const std::shared_ptr<const EncodedFrame>& frame) {
   std::vector<std::shared_ptr<FrameViewer>> targets;
   {
     std::lock_guard lock(mutex_);

@@ -27,7 +27,7 @@ class FrameChannel {
  public:
   bool has_viewers() const { return viewers_count_.load(std::memory_order_relaxed) > 0; }
   bool wants_force_chains() const;
-  void publish(std::shared_ptr<const EncodedFrame> frame);
+  void publish(const std::shared_ptr<const EncodedFrame>& frame);
   // Joins a viewer; it is offered the latest frame at once (if others watch; else it waits for the
   // next). False when the channel has ended.
   bool join(const std::shared_ptr<FrameViewer>& viewer);

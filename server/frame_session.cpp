@@ -16,7 +16,7 @@ FrameSession::FrameSession(boost::asio::ip::tcp::socket&& socket, bool force_cha
   beast::get_lowest_layer(ws_).socket().set_option(boost::asio::socket_base::send_buffer_size(256 * 1024), ignored);
 }
 
-void FrameSession::start(Request request, std::shared_ptr<FrameChannel> channel, std::string why) {
+void FrameSession::start(const Request& request, std::shared_ptr<FrameChannel> channel, std::string why) {
   channel_ = std::move(channel);
   refuse_reason_ = std::move(why);
   ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));

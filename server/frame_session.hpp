@@ -21,7 +21,7 @@ class FrameSession final : public FrameViewer, public std::enable_shared_from_th
  public:
   FrameSession(boost::asio::ip::tcp::socket&& socket, bool force_chains);
   // Accepts the upgrade, then joins `channel`; with no channel, closes at once saying `why`.
-  void start(Request request, std::shared_ptr<FrameChannel> channel, std::string why);
+  void start(const Request& request, std::shared_ptr<FrameChannel> channel, std::string why);
   // Keeps the connection's place within the server's limits (ConnectionLimits) while it lives.
   void hold(std::shared_ptr<void> ticket) { ticket_ = std::move(ticket); }
 
@@ -47,7 +47,7 @@ class FrameSession final : public FrameViewer, public std::enable_shared_from_th
   static constexpr std::size_t kWaitingFrames = 3;
   std::shared_ptr<const EncodedFrame> writing_;
   std::deque<std::shared_ptr<const EncodedFrame>> pending_;  // at most kWaitingFrames, oldest first
-  std::uint64_t radii_sent_ = 0;  // the version of the radii this viewer has
+  std::uint64_t radii_sent_ = 0;                             // the version of the radii this viewer has
   bool ending_ = false;
   bool joined_ = false;    // to its job's channel, before the handshake
   bool accepted_ = false;  // the handshake is done: frames may be written

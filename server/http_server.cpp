@@ -28,7 +28,7 @@ namespace {
 // Accepts connections, each on a strand of its own.
 class Listener : public std::enable_shared_from_this<Listener> {
  public:
-  Listener(asio::io_context& io, tcp::endpoint endpoint, ServerState& state)
+  Listener(asio::io_context& io, const tcp::endpoint& endpoint, ServerState& state)
       : io_(io), acceptor_(asio::make_strand(io)), backoff_(acceptor_.get_executor()), state_(state) {
     acceptor_.open(endpoint.protocol());
     acceptor_.set_option(asio::socket_base::reuse_address(true));
@@ -37,21 +37,22 @@ class Listener : public std::enable_shared_from_this<Listener> {
   }
   unsigned short port() const { return acceptor_.local_endpoint().port(); }
   void accept() {
-    acceptor_.async_accept(asio::make_strand(io_), [self = shared_from_this()](boost::system::error_code ec, tcp::socket s) {
-      if (ec == asio::error::operation_aborted || !self->acceptor_.is_open()) return;  // stopped
-      if (!ec) {
-        boost::system::error_code no_peer;
-        const std::string client = s.remote_endpoint(no_peer).address().to_string();
-        std::string why;
-        std::shared_ptr<void> ticket = self->state_.connections.admit(client, why);
-        std::make_shared<HttpSession>(std::move(s), self->state_, std::move(ticket), std::move(why))->run();
-        self->accept();
-        return;
-      }
-      // out of file descriptors, say: try again in a moment rather than spin
-      self->backoff_.expires_after(std::chrono::milliseconds(100));
-      self->backoff_.async_wait([self](boost::system::error_code) { self->accept(); });
-    });
+    acceptor_.async_accept(
+        asio::make_strand(io_), [self = shared_from_this()](boost::system::error_code ec, tcp::socket s) {
+          if (ec == asio::error::operation_aborted || !self->acceptor_.is_open()) return;  // stopped
+          if (!ec) {
+            boost::system::error_code no_peer;
+            const std::string client = s.remote_endpoint(no_peer).address().to_string();
+            std::string why;
+            std::shared_ptr<void> ticket = self->state_.connections.admit(client, why);
+            std::make_shared<HttpSession>(std::move(s), self->state_, std::move(ticket), std::move(why))->run();
+            self->accept();
+            return;
+          }
+          // out of file descriptors, say: try again in a moment rather than spin
+          self->backoff_.expires_after(std::chrono::milliseconds(100));
+          self->backoff_.async_wait([self](boost::system::error_code) { self->accept(); });
+        });
   }
   void stop() {
     asio::post(acceptor_.get_executor(), [self = shared_from_this()] {
@@ -116,14 +117,22 @@ int run_server(const ServerOptions& options) {
   JobManager jobs(manager_options, frames);
   ConnectionLimits connections(options.max_connections, options.max_connections_per_client);
   asio::thread_pool checks(2);  // submissions' checks; joined when the server returns
-  ServerState state{jobs,          frames,        openapi_json(), options.web, options.cases, options.token, options.max_body,
-                    connections,   checks,
+  ServerState state{jobs,
+                    frames,
+                    openapi_json(),
+                    options.web,
+                    options.cases,
+                    options.token,
+                    options.max_body,
+                    connections,
+                    checks,
                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                         std::chrono::duration<double>(options.request_timeout))};
 
   asio::io_context io(options.io_threads);
   boost::system::error_code ec;
-  const asio::ip::address address = asio::ip::make_address(options.address == "localhost" ? "127.0.0.1" : options.address, ec);
+  const asio::ip::address address =
+      asio::ip::make_address(options.address == "localhost" ? "127.0.0.1" : options.address, ec);
   if (ec) {
     std::fprintf(stderr, "dem-server: --address %s is not an IP address\n", options.address.c_str());
     return 2;
@@ -139,7 +148,8 @@ int run_server(const ServerOptions& options) {
   listener->accept();
   jobs.start();
   const std::string host = address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
-  std::printf("dem-server listening on http://%s:%u/ (data: %s)\n", host.c_str(), listener->port(), options.data.c_str());
+  std::printf("dem-server listening on http://%s:%u/ (data: %s)\n", host.c_str(), listener->port(),
+              options.data.c_str());
   std::fflush(stdout);
 
   asio::signal_set signals(io, SIGINT, SIGTERM);
@@ -153,7 +163,8 @@ int run_server(const ServerOptions& options) {
     grace.expires_after(std::chrono::milliseconds(200));  // time for the close frames to go out
     grace.async_wait([&](boost::system::error_code) { io.stop(); });
     signals.async_wait([](boost::system::error_code, int) {  // asked twice: do not wait any longer
-      std::fprintf(stderr, "dem-server: second signal: exiting now (running jobs resume from their last checkpoints)\n");
+      std::fprintf(stderr,
+                   "dem-server: second signal: exiting now (running jobs resume from their last checkpoints)\n");
       std::_Exit(1);
     });
   });

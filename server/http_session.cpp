@@ -42,7 +42,8 @@ void HttpSession::read() {
   stream_.expires_never();  // the request's own deadline, below
   start_deadline(state_.request_timeout);
   // the header first: the token and the body's size are checked before any body is read
-  http::async_read_header(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_header, shared_from_this()));
+  http::async_read_header(stream_, buffer_, *parser_,
+                          beast::bind_front_handler(&HttpSession::on_header, shared_from_this()));
 }
 
 // A request must arrive whole in time: one that stalls half sent (slowloris) is answered 408 and
@@ -64,10 +65,11 @@ bool HttpSession::timed_out(beast::error_code ec) {
   if (!deadline_passed_ || ec != boost::asio::error::operation_aborted) return false;
   if (parser_->got_some() || buffer_.size() > 0) {
     Request head;
-    refuse(error_response(head, http::status::request_timeout,
-                          "the request did not arrive whole within " +
-                              std::to_string(std::chrono::duration_cast<std::chrono::seconds>(state_.request_timeout).count()) +
-                              " s (--request-timeout; a body gets 60 s more)"));
+    refuse(error_response(
+        head, http::status::request_timeout,
+        "the request did not arrive whole within " +
+            std::to_string(std::chrono::duration_cast<std::chrono::seconds>(state_.request_timeout).count()) +
+            " s (--request-timeout; a body gets 60 s more)"));
   } else {
     close();
   }
@@ -92,38 +94,45 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   if (head.method() == http::verb::head) head_only.method(http::verb::head);
   if (head.method() == http::verb::unknown)
     return refuse(error_response(head_only, http::status::not_implemented,
-                                 printable(head.method_string()) + " is not a method this server knows (methods are "
-                                                                   "case-sensitive: GET, HEAD, POST, DELETE, OPTIONS)"));
+                                 printable(head.method_string()) +
+                                     " is not a method this server knows (methods are "
+                                     "case-sensitive: GET, HEAD, POST, DELETE, OPTIONS)"));
   if (head.version() >= 11 && head.find(http::field::host) == head.end())
     return refuse(error_response(head_only, http::status::bad_request, "an HTTP/1.1 request needs a Host header"));
   const std::optional<Target> target = parse_target(head.target());
-  if (!target) return refuse(error_response(head_only, http::status::bad_request, "malformed path: " + std::string(head.target())));
+  if (!target)
+    return refuse(
+        error_response(head_only, http::status::bad_request, "malformed path: " + std::string(head.target())));
   if (!state_.token.empty()) {
     Request for_token;
     for_token.base() = head;
     const std::string given = request_token(for_token, *target);
     if (!tokens_equal(given, state_.token)) {
-      auto res = error_response(head_only, http::status::unauthorized,
-                                given.empty() ? "this server needs an access token: send \"Authorization: Bearer TOKEN\""
-                                              : "the access token is wrong");
+      auto res =
+          error_response(head_only, http::status::unauthorized,
+                         given.empty() ? "this server needs an access token: send \"Authorization: Bearer TOKEN\""
+                                       : "the access token is wrong");
       res.set(http::field::www_authenticate, "Bearer");
       return refuse(std::move(res));
     }
     // a page of another site (or of another port of this host, which SameSite does not tell apart)
     // must not use the cookie this server gave its own pages
     if (!same_origin_or_none(head))
-      return refuse(error_response(head_only, http::status::forbidden,
-                                   "requests from pages of another origin are refused (the Origin is not this server)"));
+      return refuse(
+          error_response(head_only, http::status::forbidden,
+                         "requests from pages of another origin are refused (the Origin is not this server)"));
   } else if (!local_request(head)) {
     // without a token only this machine's pages may talk to the server: a foreign Host is DNS
     // rebinding, a foreign Origin another site's page driving the browser
-    return refuse(error_response(head_only, http::status::forbidden,
-                                 "this server has no access token, so it answers only requests to 127.0.0.1 or localhost "
-                                 "from pages of its own; give it --token to serve others"));
+    return refuse(
+        error_response(head_only, http::status::forbidden,
+                       "this server has no access token, so it answers only requests to 127.0.0.1 or localhost "
+                       "from pages of its own; give it --token to serve others"));
   }
   if (parser_->content_length() && *parser_->content_length() > state_.max_body)
-    return refuse(error_response(head_only, http::status::payload_too_large,
-                                 "the request body is over the limit of " + std::to_string(state_.max_body) + " bytes"));
+    return refuse(
+        error_response(head_only, http::status::payload_too_large,
+                       "the request body is over the limit of " + std::to_string(state_.max_body) + " bytes"));
   const auto expect = head.find(http::field::expect);
   if (expect != head.end()) {
     if (!beast::iequals(expect->value(), "100-continue"))
@@ -148,8 +157,9 @@ void HttpSession::read_body() {
 void HttpSession::on_read_error(beast::error_code ec) {
   if (ec == http::error::body_limit) {  // a chunked body that grew past the limit
     Request head;
-    return refuse(error_response(head, http::status::payload_too_large,
-                                 "the request body is over the limit of " + std::to_string(state_.max_body) + " bytes"));
+    return refuse(
+        error_response(head, http::status::payload_too_large,
+                       "the request body is over the limit of " + std::to_string(state_.max_body) + " bytes"));
   }
   if (ec != beast::error::timeout && ec != boost::asio::error::operation_aborted &&
       ec != boost::asio::error::connection_reset && ec != http::error::end_of_stream) {
@@ -166,16 +176,16 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
   Request req = parser_->release();
   Target target = *parse_target(req.target());  // checked with the header
   const bool api = !target.segments.empty() && target.segments[0] == "api";
-  if (api && websocket::is_upgrade(req)) return upgrade(std::move(req), target);
+  if (api && websocket::is_upgrade(req)) return upgrade(req, target);
   // Checking a submission builds its simulation (dem validate's checks), which for a large scene
   // takes a while: off the connections' threads, which must go on answering (two large
   // submissions once held /api/health for 2.6 s).
   if (api && req.method() == http::verb::post && target.segments.size() == 2 && target.segments[1] == "jobs") {
-    return boost::asio::post(state_.checks, [self = shared_from_this(), req = std::move(req), target = std::move(target)] {
-      boost::asio::post(self->stream_.get_executor(), [self, answer = self->answer(req, target)]() mutable {
-        self->send(std::move(answer));
-      });
-    });
+    return boost::asio::post(
+        state_.checks, [self = shared_from_this(), req = std::move(req), target = std::move(target)] {
+          boost::asio::post(self->stream_.get_executor(),
+                            [self, answer = self->answer(req, target)]() mutable { self->send(std::move(answer)); });
+        });
   }
   send(answer(req, target));
 }
@@ -189,14 +199,16 @@ http::message_generator HttpSession::answer(const Request& req, const Target& ta
     // a page opened with ?access_token= keeps the token in a cookie for its scripts and styles: the
     // server's own token (checked cookie-safe at start), never the value of the request
     std::string cookie;
-    if (!state_.token.empty() && target.query.count("access_token") && tokens_equal(target.query.at("access_token"), state_.token))
+    if (!state_.token.empty() && target.query.count("access_token") &&
+        tokens_equal(target.query.at("access_token"), state_.token))
       cookie = "dem_token=" + state_.token + "; Path=/; HttpOnly; SameSite=Strict";
     return serve_static(req, target, state_.web, cookie);
   } catch (const std::exception& e) {  // the store or the disk failed: say so, keep serving
     // a full data folder is for the operator to mend (delete jobs: that still works), not a fault
     const JobManager::StoreHealth store = state_.jobs.store_health();
     if (store.low_on_space)
-      return error_response(req, http::status::insufficient_storage, std::string("the data folder is full: ") + e.what());
+      return error_response(req, http::status::insufficient_storage,
+                            std::string("the data folder is full: ") + e.what());
     return error_response(req, http::status::internal_server_error, std::string("internal error: ") + e.what());
   }
 }
@@ -210,7 +222,8 @@ bool HttpSession::local_request(const http::request_header<>& head) {
   if (host != head.end() && !local(std::string_view(host->value().data(), host->value().size()))) return false;
   const auto origin = head.find(http::field::origin);
   if (origin != head.end()) {
-    const std::optional<std::string> authority = authority_of_origin(std::string_view(origin->value().data(), origin->value().size()));
+    const std::optional<std::string> authority =
+        authority_of_origin(std::string_view(origin->value().data(), origin->value().size()));
     if (!authority || !local(*authority)) return false;
   }
   return true;
@@ -220,11 +233,13 @@ bool HttpSession::same_origin_or_none(const http::request_header<>& head) {
   const auto origin = head.find(http::field::origin);
   if (origin == head.end()) return true;  // not sent by a page
   const auto host = head.find(http::field::host);
-  const std::optional<std::string> authority = authority_of_origin(std::string_view(origin->value().data(), origin->value().size()));
-  return authority && host != head.end() && same_authority(*authority, std::string_view(host->value().data(), host->value().size()));
+  const std::optional<std::string> authority =
+      authority_of_origin(std::string_view(origin->value().data(), origin->value().size()));
+  return authority && host != head.end() &&
+         same_authority(*authority, std::string_view(host->value().data(), host->value().size()));
 }
 
-void HttpSession::upgrade(Request request, const Target& target) {
+void HttpSession::upgrade(const Request& request, const Target& target) {
   const auto& s = target.segments;
   if (!(s.size() == 4 && s[1] == "jobs" && s[3] == "frames"))
     return send(error_response(request, http::status::not_found, "no WebSocket at " + std::string(request.target())));
@@ -240,7 +255,7 @@ void HttpSession::upgrade(Request request, const Target& target) {
   deadline_.cancel();
   auto session = std::make_shared<FrameSession>(stream_.release_socket(), chains);
   session->hold(ticket_);  // the connection stays counted while it streams
-  session->start(std::move(request), std::move(channel), std::move(why));
+  session->start(request, std::move(channel), std::move(why));
 }
 
 void HttpSession::send(http::message_generator message) {

@@ -33,14 +33,15 @@ struct ServerState {
   std::string token;
   std::size_t max_body;
   ConnectionLimits& connections;
-  boost::asio::thread_pool& checks;  // where submissions are checked (not the connections' threads)
+  boost::asio::thread_pool& checks;                     // where submissions are checked (not the connections' threads)
   std::chrono::steady_clock::duration request_timeout;  // for a request's header; its body gets 60 s more
 };
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
   // `ticket`: the connection's place within the limits; null: answer 503 and close.
-  HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& state, std::shared_ptr<void> ticket, std::string refused_why);
+  HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& state, std::shared_ptr<void> ticket,
+              std::string refused_why);
   void run();
 
  private:
@@ -55,7 +56,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void drain();
   void send(http::message_generator message);
   void on_write(bool keep_alive, boost::beast::error_code ec, std::size_t bytes);
-  void upgrade(Request request, const Target& target);
+  void upgrade(const Request& request, const Target& target);
   http::message_generator answer(const Request& req, const Target& target);  // the API's or the viewer's
   void close();
   void start_deadline(std::chrono::steady_clock::duration within);

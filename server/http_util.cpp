@@ -68,8 +68,8 @@ std::optional<Target> parse_target(std::string_view target) {
   return out;
 }
 
-http::response<http::string_body> text_response(const Request& req, http::status status, const std::string& content_type,
-                                                std::string body) {
+http::response<http::string_body> text_response(const Request& req, http::status status,
+                                                const std::string& content_type, std::string body) {
   http::response<http::string_body> res{status, req.version()};
   res.set(http::field::content_type, content_type);
   res.set(http::field::cache_control, "no-store");
@@ -83,7 +83,8 @@ http::response<http::string_body> text_response(const Request& req, http::status
 
 http::response<http::string_body> json_response(const Request& req, http::status status, const nlohmann::json& body) {
   // bytes that are not UTF-8 (from a request's target or headers) are replaced, never thrown on
-  return text_response(req, status, "application/json", body.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  return text_response(req, status, "application/json",
+                       body.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 http::response<http::string_body> error_response(const Request& req, http::status status, const std::string& message,
@@ -134,7 +135,8 @@ std::string printable(std::string_view bytes) {
 
 bool tokens_equal(std::string_view a, std::string_view b) {
   unsigned char differ = a.size() == b.size() ? 0 : 1;
-  for (std::size_t k = 0; k < a.size(); ++k) differ |= static_cast<unsigned char>(a[k] ^ b[k % (b.size() ? b.size() : 1)]);
+  for (std::size_t k = 0; k < a.size(); ++k)
+    differ |= static_cast<unsigned char>(a[k] ^ b[k % (b.size() ? b.size() : 1)]);
   return differ == 0 && !b.empty();
 }
 

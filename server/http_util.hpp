@@ -28,8 +28,8 @@ std::optional<Target> parse_target(std::string_view target);
 std::optional<std::string> percent_decode(std::string_view text);
 
 // A response with `body` (for HEAD: its headers alone, Content-Length included).
-http::response<http::string_body> text_response(const Request& req, http::status status, const std::string& content_type,
-                                                std::string body);
+http::response<http::string_body> text_response(const Request& req, http::status status,
+                                                const std::string& content_type, std::string body);
 http::response<http::string_body> json_response(const Request& req, http::status status, const nlohmann::json& body);
 // {"error": message} (plus "problems" when given).
 http::response<http::string_body> error_response(const Request& req, http::status status, const std::string& message,

@@ -27,12 +27,12 @@ struct JobRecord {
   std::int64_t particles = 0;
   std::int64_t step = 0;
   std::int64_t total_steps = 0;
-  double time_step = 0;         // s
-  double steps_per_second = 0;  // while running
-  double seconds_left = 0;      // while running
+  double time_step = 0;               // s
+  double steps_per_second = 0;        // while running
+  double seconds_left = 0;            // while running
   std::int64_t checkpoint_step = -1;  // step of the last checkpoint; -1: none
-  double run_seconds = 0;     // wall time of its stepping (summed over resumed runs)
-  double stream_seconds = 0;  // of which the engine spent making live frames
+  double run_seconds = 0;             // wall time of its stepping (summed over resumed runs)
+  double stream_seconds = 0;          // of which the engine spent making live frames
 
   double progress() const;
 };

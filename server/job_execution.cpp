@@ -115,6 +115,7 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     FramePublisher publisher(hooks.job, hooks.frames, hooks.max_frame_rate);
     Checkpointer checkpointer(folder, hooks.checkpoint_seconds, hooks.on_checkpoint);
     std::vector<Observer*> observers;
+    observers.reserve(writers.size());
     for (auto& w : writers) observers.push_back(w.get());
 
     RunOptions options;

@@ -15,13 +15,13 @@ namespace dem::server {
 
 struct ExecutionHooks {
   std::int64_t job = 0;
-  int threads = 0;                        // OpenMP threads for the job (0: all cores)
-  double checkpoint_seconds = 10;         // a checkpoint every this many seconds (checked each 0.5 s)
-  const std::atomic<bool>* stop = nullptr;              // cancel or shut down: stop between steps
+  int threads = 0;                                        // OpenMP threads for the job (0: all cores)
+  double checkpoint_seconds = 10;                         // a checkpoint every this many seconds (checked each 0.5 s)
+  const std::atomic<bool>* stop = nullptr;                // cancel or shut down: stop between steps
   const std::atomic<bool>* checkpoint_on_stop = nullptr;  // shut down: save the state where it stopped
-  std::shared_ptr<FrameChannel> frames;   // may be null
-  double max_frame_rate = 30;             // live frames a second at most; 0: every output frame
-  double max_output_bytes = 0;            // the job's files may hold at most this (0: no limit)
+  std::shared_ptr<FrameChannel> frames;                   // may be null
+  double max_frame_rate = 30;                             // live frames a second at most; 0: every output frame
+  double max_output_bytes = 0;                            // the job's files may hold at most this (0: no limit)
   std::function<void(const Simulation&)> on_start;
   std::function<void(const Progress&)> on_progress;
   std::function<void(std::int64_t step)> on_checkpoint;

@@ -46,7 +46,8 @@ fs::path unaccounted_place(const fs::path& data, const std::string& name) {
 void JobManager::refuse_outputs_past_limit(const Simulation& sim) const {
   const Scene& scene = sim.scene();
   if (!scene.outputs.animation || scene.outputs.every_steps <= 0) return;
-  const double frames = std::floor(static_cast<double>(sim.total_steps()) / static_cast<double>(scene.outputs.every_steps)) + 1;
+  const double frames =
+      std::floor(static_cast<double>(sim.total_steps()) / static_cast<double>(scene.outputs.every_steps)) + 1;
   const double bytes = frames * static_cast<double>(sim.particles().size()) * 100.0;
   if (bytes <= options_.max_output_bytes) return;
   char buf[400];
@@ -72,16 +73,17 @@ void JobManager::recover() {
     if (job.state == JobState::Running) {
       job.state = JobState::Interrupted;
       job.error = "the server stopped while the job ran (at step " + std::to_string(job.step) + "); " +
-                  (job.checkpoint_step >= 0 ? "resume it to continue from its checkpoint at step " +
-                                                  std::to_string(job.checkpoint_step)
-                                            : std::string("it had no checkpoint yet: resuming starts it again"));
+                  (job.checkpoint_step >= 0
+                       ? "resume it to continue from its checkpoint at step " + std::to_string(job.checkpoint_step)
+                       : std::string("it had no checkpoint yet: resuming starts it again"));
       save(job);  // on a full disk the table catches up later; the server starts all the same
     }
     if (!job.idempotency_key.empty()) by_key_[job.idempotency_key] = job.id;
     // half-written files of a crash (checkpoint.dat.tmp, outputs.tar.tmp): their whole versions
     // were never renamed over the real ones
     std::error_code ignored;
-    for (const std::string& temporary : {folder(job.id).checkpoint().string() + ".tmp", folder(job.id).archive().string() + ".tmp"})
+    for (const std::string& temporary :
+         {folder(job.id).checkpoint().string() + ".tmp", folder(job.id).archive().string() + ".tmp"})
       fs::remove(temporary, ignored);
     jobs_[job.id] = std::move(job);
   }
@@ -100,8 +102,10 @@ void JobManager::recover() {
     const fs::path aside = unaccounted_place(options_.data, name);
     fs::create_directories(aside.parent_path());
     fs::rename(e.path(), aside);
-    std::fprintf(stderr, "dem-server: %s holds a job's files but the job table (%s) has no row for it: moved to %s, "
-                 "nothing deleted\n", e.path().c_str(), (options_.data / "jobs.db").c_str(), aside.c_str());
+    std::fprintf(stderr,
+                 "dem-server: %s holds a job's files but the job table (%s) has no row for it: moved to %s, "
+                 "nothing deleted\n",
+                 e.path().c_str(), (options_.data / "jobs.db").c_str(), aside.c_str());
   }
 }
 
@@ -186,7 +190,8 @@ JobManager::StoreHealth JobManager::store_health() const {
   h.low_on_space = h.free_bytes < std::min(64.0 * 1024 * 1024, 0.02 * h.total_bytes);
   if (h.low_on_space && h.problem.empty()) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "%.0f bytes free of %.0f: jobs may fail to write their files; delete jobs to free space",
+    std::snprintf(buf, sizeof buf,
+                  "%.0f bytes free of %.0f: jobs may fail to write their files; delete jobs to free space",
                   h.free_bytes, h.total_bytes);
     h.problem = options_.data.string() + ": " + buf;
   }
@@ -210,7 +215,8 @@ JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::st
   std::vector<std::string> files = spec::file_references(spec);
   if (!files.empty()) {
     for (std::string& f : files)
-      f += ": the server reads no files of the client's; give its content inline (`dem submit` inlines the files a spec names)";
+      f += ": the server reads no files of the client's; give its content inline (`dem submit` inlines the files a "
+           "spec names)";
     throw spec::SpecError(files);
   }
   JobRecord job;
@@ -311,7 +317,8 @@ ActionResult JobManager::resume(std::int64_t id) {
   JobRecord& job = it->second;
   if (job.state != JobState::Interrupted)
     return {Outcome::Conflict,
-            "job " + std::to_string(id) + " is " + to_string(job.state) + ": only an interrupted job can be resumed", job};
+            "job " + std::to_string(id) + " is " + to_string(job.state) + ": only an interrupted job can be resumed",
+            job};
   JobRecord queued = job;
   queued.state = JobState::Queued;
   queued.error.clear();
@@ -410,7 +417,7 @@ void JobManager::work() {
   }
 }
 
-void JobManager::run_one(JobRecord job) {
+void JobManager::run_one(const JobRecord& job) {
   const std::int64_t id = job.id;
   std::shared_ptr<Running> control;
   {
@@ -432,9 +439,7 @@ void JobManager::run_one(JobRecord job) {
   hooks.stop = &control->stop;
   hooks.checkpoint_on_stop = &control->checkpoint_on_stop;
   hooks.frames = frames_.open(id);
-  hooks.on_start = [&](const Simulation& sim) {
-    update([&](JobRecord& j) { j.step = sim.step_count(); });
-  };
+  hooks.on_start = [&](const Simulation& sim) { update([&](JobRecord& j) { j.step = sim.step_count(); }); };
   hooks.on_progress = [&](const Progress& p) {
     update([&](JobRecord& j) {
       j.step = p.step;

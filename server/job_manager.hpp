@@ -29,13 +29,13 @@ class Simulation;
 namespace dem::server {
 
 struct ManagerOptions {
-  std::filesystem::path data;     // the data folder: jobs.db and jobs/
-  int concurrency = 1;            // jobs running at once
-  int threads_per_job = 0;        // 0: the cores divided among the running jobs
+  std::filesystem::path data;  // the data folder: jobs.db and jobs/
+  int concurrency = 1;         // jobs running at once
+  int threads_per_job = 0;     // 0: the cores divided among the running jobs
   double checkpoint_seconds = 10;
-  double max_frame_rate = 30;     // live frames a second per job; 0: every output frame
+  double max_frame_rate = 30;                       // live frames a second per job; 0: every output frame
   double max_output_bytes = 10000.0 * 1024 * 1024;  // what one job's files may hold (--max-output-mb)
-  RetentionPolicy retention;  // finished jobs deleted by age or count; none by default
+  RetentionPolicy retention;                        // finished jobs deleted by age or count; none by default
 };
 
 // What a request on a job came to.
@@ -89,19 +89,19 @@ class JobManager {
  private:
   struct Running {
     std::atomic<bool> stop{false};
-    std::atomic<bool> cancelled{false};           // by a request: wins over a shutdown
+    std::atomic<bool> cancelled{false};  // by a request: wins over a shutdown
     std::atomic<bool> checkpoint_on_stop{false};
   };
 
   void recover();
   void work();
-  void run_one(JobRecord job);
+  void run_one(const JobRecord& job);
   // Into the table; the caller holds mutex_. Never throws: a row that cannot be written (a full
   // disk) is kept in memory, listed in unsaved_, and written with the next write that succeeds.
   void save(const JobRecord& job);
-  void save_unsaved();  // the caller holds mutex_
-  ActionResult remove_locked(std::int64_t id);  // the caller holds mutex_
-  void sweep();  // applies the retention policy, until shutdown
+  void save_unsaved();                                          // the caller holds mutex_
+  ActionResult remove_locked(std::int64_t id);                  // the caller holds mutex_
+  void sweep();                                                 // applies the retention policy, until shutdown
   void refuse_outputs_past_limit(const Simulation& sim) const;  // throws spec::SpecError
   int threads_per_job() const;
 

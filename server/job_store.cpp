@@ -53,8 +53,8 @@ constexpr const char* kColumns =
 }  // namespace
 
 JobStore::JobStore(const std::string& path) : path_(path) {
-  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr) !=
-      SQLITE_OK) {
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
+                      nullptr) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
@@ -116,7 +116,9 @@ std::vector<JobRecord> JobStore::load_all() {
     j.name = q.column_text(1);
     const std::string state = q.column_text(2);
     const std::optional<JobState> s = job_state_from(state);
-    if (!s) throw StoreError("job table " + path_ + ": job " + std::to_string(j.id) + " has an unknown state \"" + state + "\"");
+    if (!s)
+      throw StoreError("job table " + path_ + ": job " + std::to_string(j.id) + " has an unknown state \"" + state +
+                       "\"");
     j.state = *s;
     j.created_at = q.column_text(3);
     j.started_at = q.column_text(4);
@@ -139,10 +141,11 @@ std::vector<JobRecord> JobStore::load_all() {
 void JobStore::insert(JobRecord& job, const std::function<void(std::int64_t)>& before_commit) {
   exec("BEGIN IMMEDIATE");
   try {
-    Statement q(db_,
-                "INSERT INTO jobs (name, state, created_at, idempotency_key, particles, total_steps, time_step, length_unit)"
-                " VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
-                path_);
+    Statement q(
+        db_,
+        "INSERT INTO jobs (name, state, created_at, idempotency_key, particles, total_steps, time_step, length_unit)"
+        " VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
+        path_);
     q.text(1, job.name).text(2, to_string(job.state)).text(3, job.created_at);
     if (!job.idempotency_key.empty()) q.text(4, job.idempotency_key);  // unbound stays NULL: unique only when given
     q.integer(5, job.particles).integer(6, job.total_steps).real(7, job.time_step).text(8, job.length_unit);
@@ -157,10 +160,11 @@ void JobStore::insert(JobRecord& job, const std::function<void(std::int64_t)>& b
 }
 
 void JobStore::update(const JobRecord& job) {
-  Statement q(db_,
-              "UPDATE jobs SET name = ?, state = ?, started_at = ?, finished_at = ?, error = ?, particles = ?, step = ?,"
-              " total_steps = ?, time_step = ?, checkpoint_step = ?, run_seconds = ?, stream_seconds = ? WHERE id = ?",
-              path_);
+  Statement q(
+      db_,
+      "UPDATE jobs SET name = ?, state = ?, started_at = ?, finished_at = ?, error = ?, particles = ?, step = ?,"
+      " total_steps = ?, time_step = ?, checkpoint_step = ?, run_seconds = ?, stream_seconds = ? WHERE id = ?",
+      path_);
   q.text(1, job.name).text(2, to_string(job.state)).text(3, job.started_at).text(4, job.finished_at).text(5, job.error);
   q.integer(6, job.particles).integer(7, job.step).integer(8, job.total_steps).real(9, job.time_step);
   q.integer(10, job.checkpoint_step).real(11, job.run_seconds).real(12, job.stream_seconds).integer(13, job.id);

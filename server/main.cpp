@@ -64,21 +64,29 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (k + 1 >= args.size()) {
-      std::fprintf(stderr, "dem-server: %s\n%s", a.rfind("--", 0) == 0 ? (a + " needs a value").c_str() : ("unexpected " + a).c_str(), kUsage);
+      std::fprintf(stderr, "dem-server: %s\n%s",
+                   a.rfind("--", 0) == 0 ? (a + " needs a value").c_str() : ("unexpected " + a).c_str(), kUsage);
       return 2;
     }
     const std::string& v = args[++k];
     double x = 0;
-    auto whole = [&](double lo, double hi) { return number(v, x) && x == static_cast<long long>(x) && x >= lo && x <= hi; };
+    auto whole = [&](double lo, double hi) {
+      return number(v, x) && x == static_cast<long long>(x) && x >= lo && x <= hi;
+    };
     auto bad = [&](const char* what) {
       std::fprintf(stderr, "dem-server: %s must be %s (got \"%s\")\n", a.c_str(), what, v.c_str());
       return 2;
     };
-    if (a == "--data") options.data = v;
-    else if (a == "--address") options.address = v;
-    else if (a == "--token") options.token = v;
-    else if (a == "--web") options.web = v;
-    else if (a == "--cases") options.cases = v;
+    if (a == "--data")
+      options.data = v;
+    else if (a == "--address")
+      options.address = v;
+    else if (a == "--token")
+      options.token = v;
+    else if (a == "--web")
+      options.web = v;
+    else if (a == "--cases")
+      options.cases = v;
     else if (a == "--port") {
       if (!whole(0, 65535)) return bad("a port number 0-65535");
       options.port = static_cast<unsigned short>(x);
@@ -126,8 +134,9 @@ int main(int argc, char** argv) {
   }
   // the viewer's page keeps the token in a cookie, where it must go unquoted
   if (!options.token.empty() && !dem::server::is_cookie_safe(options.token)) {
-    std::fprintf(stderr, "dem-server: the token must be printable ASCII without blanks, quotes, commas, semicolons or "
-                         "backslashes\n");
+    std::fprintf(stderr,
+                 "dem-server: the token must be printable ASCII without blanks, quotes, commas, semicolons or "
+                 "backslashes\n");
     return 2;
   }
   try {

@@ -16,7 +16,8 @@ std::string lower(std::string_view s) {
 }
 
 bool is_port(std::string_view p) {
-  return !p.empty() && p.size() <= 5 && std::all_of(p.begin(), p.end(), [](unsigned char c) { return std::isdigit(c); }) &&
+  return !p.empty() && p.size() <= 5 &&
+         std::all_of(p.begin(), p.end(), [](unsigned char c) { return std::isdigit(c); }) &&
          std::stoi(std::string(p)) <= 65535;
 }
 

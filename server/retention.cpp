@@ -35,14 +35,14 @@ std::vector<std::int64_t> jobs_past_retention(const std::vector<JobRecord>& jobs
   };
   std::vector<Finished> finished;
   for (const JobRecord& j : jobs)
-    if (is_final(j.state)) finished.push_back({parse_utc(j.finished_at).value_or(std::chrono::system_clock::time_point{}), j.id});
+    if (is_final(j.state))
+      finished.push_back({parse_utc(j.finished_at).value_or(std::chrono::system_clock::time_point{}), j.id});
   // oldest first; the same end time (to the millisecond): the older id first
   std::sort(finished.begin(), finished.end(),
             [](const Finished& a, const Finished& b) { return a.at != b.at ? a.at < b.at : a.id < b.id; });
   std::vector<std::int64_t> out;
-  const std::size_t over = policy.max_finished > 0 && finished.size() > policy.max_finished
-                               ? finished.size() - policy.max_finished
-                               : 0;
+  const std::size_t over =
+      policy.max_finished > 0 && finished.size() > policy.max_finished ? finished.size() - policy.max_finished : 0;
   for (std::size_t k = 0; k < finished.size(); ++k) {
     const double age = std::chrono::duration<double>(now - finished[k].at).count();
     if (k < over || (policy.max_age_seconds > 0 && age > policy.max_age_seconds)) out.push_back(finished[k].id);

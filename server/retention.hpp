@@ -14,7 +14,7 @@
 namespace dem::server {
 
 struct RetentionPolicy {
-  double max_age_seconds = 0;  // 0: no age limit
+  double max_age_seconds = 0;    // 0: no age limit
   std::size_t max_finished = 0;  // 0: no count limit
   bool active() const { return max_age_seconds > 0 || max_finished > 0; }
   // How often the server applies it: often enough that a job outlives its age by a tenth at most.

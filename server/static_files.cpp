@@ -7,12 +7,18 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string mime_type(const fs::path& path) {
-  static const std::map<std::string, std::string> types = {
-      {".html", "text/html; charset=utf-8"}, {".js", "text/javascript; charset=utf-8"},
-      {".mjs", "text/javascript; charset=utf-8"}, {".css", "text/css; charset=utf-8"},
-      {".json", "application/json"}, {".svg", "image/svg+xml"}, {".png", "image/png"},
-      {".ico", "image/x-icon"}, {".wasm", "application/wasm"}, {".map", "application/json"},
-      {".dat", "text/plain; charset=utf-8"}, {".txt", "text/plain; charset=utf-8"}};
+  static const std::map<std::string, std::string> types = {{".html", "text/html; charset=utf-8"},
+                                                           {".js", "text/javascript; charset=utf-8"},
+                                                           {".mjs", "text/javascript; charset=utf-8"},
+                                                           {".css", "text/css; charset=utf-8"},
+                                                           {".json", "application/json"},
+                                                           {".svg", "image/svg+xml"},
+                                                           {".png", "image/png"},
+                                                           {".ico", "image/x-icon"},
+                                                           {".wasm", "application/wasm"},
+                                                           {".map", "application/json"},
+                                                           {".dat", "text/plain; charset=utf-8"},
+                                                           {".txt", "text/plain; charset=utf-8"}};
   const auto it = types.find(path.extension().string());
   return it == types.end() ? "application/octet-stream" : it->second;
 }

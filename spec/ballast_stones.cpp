@@ -105,6 +105,7 @@ void add_ballast_stones(const StoneRequest& r, Scene& scene) {
   std::mt19937_64 rng(r.seed);
   std::uniform_int_distribution<int> size(r.min_spheres, r.max_spheres);
   std::vector<StoneShape> shapes;
+  shapes.reserve(static_cast<std::size_t>(std::max(0, r.shapes)));
   for (int k = 0; k < r.shapes; ++k) shapes.push_back(random_shape(size(rng), rng));
   const std::vector<double> masses = sample_stone_masses(r, rng);
   std::uniform_int_distribution<int> pick(0, r.shapes - 1);
@@ -119,7 +120,8 @@ void add_ballast_stones(const StoneRequest& r, Scene& scene) {
     if (breakable) {
       filled = fill_stone(shape, masses[s], r.density, r.bonded_sphere_radius);
       if (filled.centres.size() < 2)
-        throw std::runtime_error("a stone of " + std::to_string(masses[s]) + " kg holds fewer than 2 bonded spheres of radius " +
+        throw std::runtime_error("a stone of " + std::to_string(masses[s]) +
+                                 " kg holds fewer than 2 bonded spheres of radius " +
                                  std::to_string(r.bonded_sphere_radius) + " m: make bonded.sphereRadius smaller");
     }
     const double scale = breakable ? filled.scale : std::cbrt(masses[s] / (r.density * shape.volume));

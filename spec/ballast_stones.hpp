@@ -15,11 +15,11 @@ namespace dem::spec {
 
 struct StoneRequest {
   int count = 0;
-  double log_mean = 0;   // mean of ln(mass / 1 kg)
-  double log_sigma = 0;  // standard deviation of ln(mass / 1 kg)
+  double log_mean = 0;                // mean of ln(mass / 1 kg)
+  double log_sigma = 0;               // standard deviation of ln(mass / 1 kg)
   double mass_min = 0, mass_max = 0;  // kg
   int min_spheres = 3, max_spheres = 12;
-  int shapes = 32;       // distinct shapes the stones are drawn from (each scaled to its stone's mass)
+  int shapes = 32;  // distinct shapes the stones are drawn from (each scaled to its stone's mass)
   Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
   int material = 0;
   double density = 0;

@@ -33,9 +33,8 @@ std::vector<MemberSphere> read_clump_template(const std::string& path) {
     if (words.empty()) continue;  // blank or comment
     double v[4];
     const auto where = path + " line " + std::to_string(number);
-    if (words.size() != 4 || !std::all_of(words.begin(), words.end(), [&, k = 0](const std::string& w) mutable {
-          return parse_number(w, v[k++]);
-        }))
+    if (words.size() != 4 || !std::all_of(words.begin(), words.end(),
+                                          [&, k = 0](const std::string& w) mutable { return parse_number(w, v[k++]); }))
       throw std::runtime_error(where + ": expected four numbers \"x y z r\"");
     if (!(v[3] > 0)) throw std::runtime_error(where + ": the radius must be positive");
     spheres.push_back({Vec3(v[0], v[1], v[2]), v[3]});

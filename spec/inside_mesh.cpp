@@ -51,7 +51,8 @@ bool ClosedMesh::holds(const Vec3& centre, double r) const {
   mesh_.grid.for_each_in_box(centre - Vec3::Constant(r), centre + Vec3::Constant(r), [&](int t) {
     if (!clear) return;
     const auto& tri = mesh_.triangles[t];
-    const Vec3 q = closest_on_triangle(centre, mesh_.vertices[tri[0]], mesh_.vertices[tri[1]], mesh_.vertices[tri[2]]).point;
+    const Vec3 q =
+        closest_on_triangle(centre, mesh_.vertices[tri[0]], mesh_.vertices[tri[1]], mesh_.vertices[tri[2]]).point;
     clear = (centre - q).squaredNorm() >= r * r;
   });
   return clear;

@@ -44,8 +44,8 @@ class KeyWalker : public nlohmann::json_sax<nlohmann::json> {
  private:
   struct Level {
     bool object = true;
-    std::string key;           // the object's current key
-    long index = -1;           // the array's current element
+    std::string key;  // the object's current key
+    long index = -1;  // the array's current element
     std::set<std::string> fields;
   };
   std::vector<Level> levels_;

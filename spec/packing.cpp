@@ -76,7 +76,8 @@ std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<dou
   for (int k = 0; k < n; ++k) {
     const double r = diameters[k] / 2;
     const Vec3 a = lo + Vec3::Constant(r), b = hi - Vec3::Constant(r);
-    if ((b.array() < a.array()).any()) throw std::runtime_error("a sphere of diameter " + std::to_string(diameters[k]) + " does not fit in the box");
+    if ((b.array() < a.array()).any())
+      throw std::runtime_error("a sphere of diameter " + std::to_string(diameters[k]) + " does not fit in the box");
     bool ok = false;
     for (int attempt = 0; attempt < kAttempts && !ok; ++attempt) {
       Vec3 x;
@@ -100,8 +101,9 @@ std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<dou
       }
     }
     if (!ok)
-      throw std::runtime_error("placed only " + std::to_string(k) + " of " + std::to_string(n) +
-                               " spheres: the region is too full for random placement (it stalls near a solid fraction of 0.35)");
+      throw std::runtime_error(
+          "placed only " + std::to_string(k) + " of " + std::to_string(n) +
+          " spheres: the region is too full for random placement (it stalls near a solid fraction of 0.35)");
   }
   return placed;
 }

@@ -1,5 +1,5 @@
-// Random loose packings (LOS, the PDEM-EGD manual's packing pattern, section 4.2.1) and particle size distributions (its
-// IPATTERN: one size, two sizes, uniform, normal, lognormal), reproducible from a seed.
+// Random loose packings (LOS, the PDEM-EGD manual's packing pattern, section 4.2.1) and particle size distributions
+// (its IPATTERN: one size, two sizes, uniform, normal, lognormal), reproducible from a seed.
 #pragma once
 
 #include <cstdint>

@@ -13,7 +13,8 @@ namespace {
 // Calls `visit` with each mesh of the spec and its JSON path.
 void for_each_mesh(api::JobSpec& spec, const std::function<void(api::Mesh&, const std::string&)>& visit) {
   for (int k = 0; k < spec.walls_size(); ++k)
-    if (spec.walls(k).has_mesh()) visit(*spec.mutable_walls(k)->mutable_mesh(), "walls[" + std::to_string(k) + "].mesh");
+    if (spec.walls(k).has_mesh())
+      visit(*spec.mutable_walls(k)->mutable_mesh(), "walls[" + std::to_string(k) + "].mesh");
   for (int k = 0; k < spec.packings_size(); ++k)
     if (spec.packings(k).has_inside())
       visit(*spec.mutable_packings(k)->mutable_inside(), "packings[" + std::to_string(k) + "].inside");
@@ -44,9 +45,12 @@ void inline_files(api::JobSpec& spec, const std::string& base_dir) {
     const std::filesystem::path file = resolve_file(mesh.file(), base_dir);
     TriangleMesh read;
     try {
-      if (mesh.format() == api::Mesh::STL) read = read_stl(file.string());
-      else if (mesh.format() == api::Mesh::LEGACY) read = read_legacy_mesh(file.string());
-      else read = read_mesh(file.string());
+      if (mesh.format() == api::Mesh::STL)
+        read = read_stl(file.string());
+      else if (mesh.format() == api::Mesh::LEGACY)
+        read = read_legacy_mesh(file.string());
+      else
+        read = read_mesh(file.string());
     } catch (const MeshError& e) {
       problems.push_back(path + ".file: " + e.what());
       return;

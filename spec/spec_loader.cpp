@@ -68,7 +68,8 @@ class Checker {
   // The problems as reported: the first ones, then how many more there were.
   std::vector<std::string> listed() const {
     std::vector<std::string> out = problems;
-    if (found > problems.size()) out.push_back("(" + std::to_string(found - problems.size()) + " more problems not listed)");
+    if (found > problems.size())
+      out.push_back("(" + std::to_string(found - problems.size()) + " more problems not listed)");
     return out;
   }
   bool failed() const { return found > 0; }
@@ -78,8 +79,8 @@ class Checker {
   // `path` when not.
   bool room(const std::string& path, std::size_t already, double more) {
     if (static_cast<double>(already) + more <= static_cast<double>(limits.max_particles)) return true;
-    fail(path, "would make " + num(std::round(static_cast<double>(already) + more)) + " particles in all, more than the limit of " +
-                   std::to_string(limits.max_particles));
+    fail(path, "would make " + num(std::round(static_cast<double>(already) + more)) +
+                   " particles in all, more than the limit of " + std::to_string(limits.max_particles));
     return false;
   }
 
@@ -100,17 +101,22 @@ class Checker {
     const double largest = std::max({std::abs(v.x()), std::abs(v.y()), std::abs(v.z())});
     if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z()))
       fail(path, "must be finite (got (" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "))");
-    else if (largest > q.max) fail(path, beyond(largest, q));
+    else if (largest > q.max)
+      fail(path, beyond(largest, q));
   }
   // A quantity >= 0 within its range's largest value (0 switches a feature off).
   void non_negative(const std::string& path, double v, const Quantity& q) {
-    if (!(v >= 0) || !std::isfinite(v)) fail(path, "must be >= 0 (got " + num(v) + ")");
-    else if (v > q.max) fail(path, beyond(v, q));
+    if (!(v >= 0) || !std::isfinite(v))
+      fail(path, "must be >= 0 (got " + num(v) + ")");
+    else if (v > q.max)
+      fail(path, beyond(v, q));
   }
   // A positive quantity within its range.
   void positive(const std::string& path, double v, const Quantity& q) {
-    if (!(v > 0) || !std::isfinite(v)) fail(path, "must be a positive number (got " + num(v) + ")");
-    else if (v > q.max) fail(path, beyond(v, q));
+    if (!(v > 0) || !std::isfinite(v))
+      fail(path, "must be a positive number (got " + num(v) + ")");
+    else if (v > q.max)
+      fail(path, beyond(v, q));
     else if (v < q.min)
       fail(path, "must be at least " + num(q.min) + (q.unit[0] ? " " : "") + q.unit + " (got " + num(v) +
                      "): far below any scene; check the units");
@@ -138,8 +144,7 @@ Eigen::Matrix3d rotation(const api::Vec3& axis, double degrees, const std::strin
   return Eigen::AngleAxisd(degrees * std::numbers::pi / 180, a.normalized()).toRotationMatrix();
 }
 
-void load_mesh(const api::Mesh& in, const std::string& path, const std::string& base_dir, Checker& check,
-               WallInit& w) {
+void load_mesh(const api::Mesh& in, const std::string& path, const std::string& base_dir, Checker& check, WallInit& w) {
   TriangleMesh mesh;
   std::string source = "inline";
   const bool inline_mesh = in.vertices_size() > 0 || in.triangles_size() > 0;
@@ -150,9 +155,12 @@ void load_mesh(const api::Mesh& in, const std::string& path, const std::string& 
   try {
     if (!in.file().empty()) {
       source = resolve_file(in.file(), base_dir).string();
-      if (in.format() == api::Mesh::STL) mesh = read_stl(source);
-      else if (in.format() == api::Mesh::LEGACY) mesh = read_legacy_mesh(source);
-      else mesh = read_mesh(source);
+      if (in.format() == api::Mesh::STL)
+        mesh = read_stl(source);
+      else if (in.format() == api::Mesh::LEGACY)
+        mesh = read_legacy_mesh(source);
+      else
+        mesh = read_mesh(source);
     } else if (inline_mesh) {
       for (const auto& v : in.vertices()) mesh.vertices.push_back(vec(v));
       for (const auto& t : in.triangles()) mesh.triangles.push_back({t.i() - 1, t.j() - 1, t.k() - 1});
@@ -166,7 +174,8 @@ void load_mesh(const api::Mesh& in, const std::string& path, const std::string& 
     return;
   }
   const double scale = in.scale() == 0 ? 1.0 : in.scale();
-  if (!(scale > 0) || !std::isfinite(scale)) check.fail(path + ".scale", "must be a positive number (got " + num(scale) + ")");
+  if (!(scale > 0) || !std::isfinite(scale))
+    check.fail(path + ".scale", "must be a positive number (got " + num(scale) + ")");
   check.vector(path + ".translation", in.translation(), kLength);
   mesh.transform(scale, rotation(in.rotation_axis(), in.rotation_degrees(), path, check), vec(in.translation()));
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
@@ -204,8 +213,10 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
   if (in.has_direction()) {
     check.vector(path + ".direction", in.direction(), kDirection);
     const Vec3 d = vec(in.direction());
-    if (!(d.stableNorm() > 0)) check.fail(path + ".direction", "must not be zero");
-    else l.direction = unit(d);
+    if (!(d.stableNorm() > 0))
+      check.fail(path + ".direction", "must not be zero");
+    else
+      l.direction = unit(d);
   }
   if (in.has_cyclic()) {
     const auto& c = in.cyclic();
@@ -213,7 +224,8 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
     check.positive(path + ".mass", in.mass(), kMass);
     check.non_negative(path + ".cyclic.fMin", c.f_min(), kForce);
     check.non_negative(path + ".cyclic.fMax", c.f_max(), kForce);
-    if (c.f_max() < c.f_min()) check.fail(path + ".cyclic.fMax", "must be >= fMin (got " + num(c.f_max()) + " < " + num(c.f_min()) + ")");
+    if (c.f_max() < c.f_min())
+      check.fail(path + ".cyclic.fMax", "must be >= fMin (got " + num(c.f_max()) + " < " + num(c.f_min()) + ")");
     check.positive(path + ".cyclic.frequency", c.frequency(), kFrequency);
     if (c.cycles() < 1) check.fail(path + ".cyclic.cycles", "must be >= 1 (got " + std::to_string(c.cycles()) + ")");
     l.mass = in.mass();
@@ -253,7 +265,8 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
     const MeshShape& shape = std::get<MeshShape>(holder.shape);
     region.emplace(shape);
     double six_v = 0;  // the enclosed volume by the divergence theorem: signed tetrahedra from the origin
-    for (const auto& t : shape.triangles) six_v += shape.vertices[t[0]].dot(shape.vertices[t[1]].cross(shape.vertices[t[2]]));
+    for (const auto& t : shape.triangles)
+      six_v += shape.vertices[t[0]].dot(shape.vertices[t[1]].cross(shape.vertices[t[2]]));
     region_volume = std::abs(six_v) / 6;
   }
   const bool box_given = in.has_min() || in.has_max();
@@ -269,7 +282,8 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
   d.d_max = sz.d_max();
   d.small_fraction = sz.small_fraction() == 0 ? 0.5 : sz.small_fraction();
   const std::string sp = path + ".sizes";
-  if (d.kind == SizeKind::One || d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) check.positive(sp + ".mean", d.mean, kRadius);
+  if (d.kind == SizeKind::One || d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal)
+    check.positive(sp + ".mean", d.mean, kRadius);
   if (d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) check.positive(sp + ".spread", d.spread);
   if (d.kind != SizeKind::One) {
     check.positive(sp + ".dMin", d.d_min, kRadius);
@@ -279,10 +293,10 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
   if ((d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal) && !(d.mean >= d.d_min && d.mean <= d.d_max))
     check.fail(sp + ".mean", "must lie in [dMin, dMax] (got " + num(d.mean) + ")");
   check.in_range(sp + ".smallFraction", d.small_fraction, 0, 1, false, false);
-  if ((in.count() > 0) == (in.solid_fraction() > 0))
-    check.fail(path, "give count or solidFraction (one of them)");
+  if ((in.count() > 0) == (in.solid_fraction() > 0)) check.fail(path, "give count or solidFraction (one of them)");
   check.in_range(path + ".solidFraction", in.solid_fraction(), 0, 0.74, false, false);
-  if (in.count() < 0 || in.count() > 10000000) check.fail(path + ".count", "must be in [1, 10000000] (got " + std::to_string(in.count()) + ")");
+  if (in.count() < 0 || in.count() > 10000000)
+    check.fail(path + ".count", "must be in [1, 10000000] (got " + std::to_string(in.count()) + ")");
   if (check.count() != before) return;
   std::mt19937_64 rng(in.seed() == 0 ? 1u : in.seed());
   std::vector<double> diameters;
@@ -322,8 +336,8 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
 struct ClumpBody {
   std::vector<MemberSphere> spheres;
   bool usable = false;
-  double given_mass = 0;                 // kg; 0: density x volume
-  double volume = 0;                     // m^3 (subdivision)
+  double given_mass = 0;  // kg; 0: density x volume
+  double volume = 0;      // m^3 (subdivision)
   Vec3 centroid = Vec3::Zero();
   Vec3 principal_moments = Vec3::Zero();  // per unit density (subdivision) or in kg m^2 (given)
   Eigen::Matrix3d principal_axes = Eigen::Matrix3d::Identity();
@@ -346,7 +360,7 @@ void given_body(const api::GivenMassProperties& in, const std::string& path, Che
     return;
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia);
-  const Vec3 moments = solver.eigenvalues();  // ascending
+  const Vec3& moments = solver.eigenvalues();  // ascending
   if (!(moments[0] > 0)) {
     check.fail(path + ".inertia", "is not positive definite (principal moments " + num(moments[0]) + ", " +
                                       num(moments[1]) + ", " + num(moments[2]) + ")");
@@ -417,14 +431,17 @@ ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const s
 // Rigid clumps: each clump's members become particles of the scene (after the others), with the
 // clump's body (its mass properties, principal axes) in Scene::clumps.
 template <class MaterialOf>
-void add_clumps(const api::JobSpec& spec, const std::string& base_dir, Checker& check, Scene& scene, MaterialOf&& material_of) {
+void add_clumps(const api::JobSpec& spec, const std::string& base_dir, Checker& check, Scene& scene,
+                MaterialOf&& material_of) {
   std::map<std::string, int> shape_index;
   std::vector<ClumpBody> bodies;
   for (int k = 0; k < spec.clump_shapes_size(); ++k) {
     const api::ClumpShape& in = spec.clump_shapes(k);
     const std::string path = "clumpShapes[" + std::to_string(k) + "]";
-    if (in.name().empty()) check.fail(path + ".name", "a clump shape needs a name");
-    else if (!shape_index.emplace(in.name(), k).second) check.fail(path + ".name", "\"" + in.name() + "\" is given twice");
+    if (in.name().empty())
+      check.fail(path + ".name", "a clump shape needs a name");
+    else if (!shape_index.emplace(in.name(), k).second)
+      check.fail(path + ".name", "\"" + in.name() + "\" is given twice");
     bodies.push_back(clump_body(in, path, base_dir, check));
   }
   for (int k = 0; k < spec.clumps_size(); ++k) {
@@ -493,7 +510,9 @@ void add_stones(const api::BallastStones& in, const std::string& path, bool has_
   check.in_range(path + ".shapes", r.shapes, 1, 1000, false, false);
   if (!((r.hi - r.lo).minCoeff() > 0)) check.fail(path + ".max", "must be above min in x, y and z");
   // the bounded distribution must not be (nearly) empty: the sampler redraws until it hits it
-  const auto cdf = [&](double m) { return 0.5 * std::erfc(-(std::log(m) - r.log_mean) / (r.log_sigma * std::sqrt(2.0))); };
+  const auto cdf = [&](double m) {
+    return 0.5 * std::erfc(-(std::log(m) - r.log_mean) / (r.log_sigma * std::sqrt(2.0)));
+  };
   if (r.mass_min > 0 && r.mass_max > r.mass_min && r.log_sigma > 0 && cdf(r.mass_max) - cdf(r.mass_min) < 1e-3)
     check.fail(path + ".massMin", "and massMax hold less than 0.1% of the lognormal distribution: check massLogMean");
   const double only_mass = std::exp(r.log_mean);  // massLogSigma 0: every stone has this mass
@@ -504,7 +523,8 @@ void add_stones(const api::BallastStones& in, const std::string& path, bool has_
     r.bonded_sphere_radius = in.bonded().sphere_radius();
     check.positive(path + ".bonded.sphereRadius", r.bonded_sphere_radius, kRadius);
     if (!has_bonds)
-      check.fail(path + ".bonded", "breakable stones need the spec's \"bonds\" block (the bonds' stiffness and strength)");
+      check.fail(path + ".bonded",
+                 "breakable stones need the spec's \"bonds\" block (the bonds' stiffness and strength)");
   }
   r.material = material;
   if (check.failed() || r.material < 0) return;  // generation needs a sound spec
@@ -623,10 +643,16 @@ void check_required_properties(const ModelInfo& model, const Material& m, const 
   for (MaterialProperty property : model.required) {
     const std::string field = path + "." + std::string(material_property_name(property));
     switch (property) {
-      case MaterialProperty::Density: break;       // checked for every particle material
-      case MaterialProperty::YoungsModulus: check.positive(field, m.youngs_modulus, kModulus); break;
-      case MaterialProperty::PoissonRatio: break;  // checked for every material
-      case MaterialProperty::NormalStiffness: check.positive(field, m.normal_stiffness, kStiffness); break;
+      case MaterialProperty::Density:
+        break;  // checked for every particle material
+      case MaterialProperty::YoungsModulus:
+        check.positive(field, m.youngs_modulus, kModulus);
+        break;
+      case MaterialProperty::PoissonRatio:
+        break;  // checked for every material
+      case MaterialProperty::NormalStiffness:
+        check.positive(field, m.normal_stiffness, kStiffness);
+        break;
     }
   }
 }
@@ -660,8 +686,8 @@ std::string reword_protobuf_error(const std::string& message) {
   if (std::regex_match(message, m, bad_value)) {
     const std::string type = m[3].str();
     const std::string expected = type == "DOUBLE" || type == "FLOAT"     ? "a number"
-                                 : type == "BOOL"                       ? "true or false"
-                                 : type == "STRING"                     ? "a string"
+                                 : type == "BOOL"                        ? "true or false"
+                                 : type == "STRING"                      ? "a string"
                                  : type.find("INT") != std::string::npos ? "a whole number"
                                                                          : "a value of type " + type;
     return m[1].str() + ": expected " + expected + ", got " + m[2].str();
@@ -713,7 +739,8 @@ api::JobSpec read_json_file(const std::string& path) {
 Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const SpecLimits& limits) {
   Checker check(limits);
   if (spec.name().size() > limits.max_name)
-    check.fail("name", "must be at most " + std::to_string(limits.max_name) + " bytes (got " + std::to_string(spec.name().size()) + ")");
+    check.fail("name", "must be at most " + std::to_string(limits.max_name) + " bytes (got " +
+                           std::to_string(spec.name().size()) + ")");
   Scene scene;
   scene.name = spec.name();
 
@@ -734,7 +761,8 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
     out.poisson_ratio = in.poisson_ratio();
     out.normal_stiffness = in.normal_stiffness();
     out.rigid = in.rigid();
-    if (in.name().empty()) check.fail(path + ".name", "a material needs a name");
+    if (in.name().empty())
+      check.fail(path + ".name", "a material needs a name");
     else if (!material_index.emplace(in.name(), m).second)
       check.fail(path + ".name", "duplicate material name \"" + in.name() + "\"");
     if (!out.rigid) {
@@ -896,7 +924,8 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
 
   if (spec.has_growth()) {
     check.in_range("growth.factor", spec.growth().factor(), 1, 3, false, false);
-    if (spec.growth().steps() < 1) check.fail("growth.steps", "must be >= 1 (got " + std::to_string(spec.growth().steps()) + ")");
+    if (spec.growth().steps() < 1)
+      check.fail("growth.steps", "must be >= 1 (got " + std::to_string(spec.growth().steps()) + ")");
     scene.growth = Scene::Growth{spec.growth().factor(), spec.growth().steps()};
   }
 
@@ -984,8 +1013,8 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
   scene.outputs.length_unit = length_unit(o.length_unit(), check);
   scene.outputs.length_unit_name = o.length_unit().empty() ? "m" : o.length_unit();
   scene.outputs.number_format = o.number_format() == api::Outputs::LEGACY_FIXED ? FileNumberFormat::LegacyFixed
-                                 : o.number_format() == api::Outputs::FULL       ? FileNumberFormat::Full
-                                                                                 : FileNumberFormat::Scientific;
+                                : o.number_format() == api::Outputs::FULL       ? FileNumberFormat::Full
+                                                                                : FileNumberFormat::Scientific;
   scene.outputs.every_steps = o.every_steps();
   scene.outputs.interval_seconds = o.interval();
 
@@ -1005,8 +1034,8 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
   }
   if (n.search_interval() < 0) check.fail("numerics.searchInterval", "must be >= 0");
   if (n.threads() < 0 || n.threads() > check.limits.max_threads)
-    check.fail("numerics.threads", "must be in [0, " + std::to_string(check.limits.max_threads) + "] (0 = all cores; got " +
-                                       std::to_string(n.threads()) + ")");
+    check.fail("numerics.threads", "must be in [0, " + std::to_string(check.limits.max_threads) +
+                                       "] (0 = all cores; got " + std::to_string(n.threads()) + ")");
   if (n.check_interval() < 0) check.fail("numerics.checkInterval", "must be >= 0");
   if (n.reorder_interval() < 0) check.fail("numerics.reorderInterval", "must be >= 0");
   scene.numerics.search_interval = n.search_interval();

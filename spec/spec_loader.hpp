@@ -32,9 +32,9 @@ api::JobSpec read_json_file(const std::string& path);
 struct SpecLimits {
   std::int64_t max_particles = 50'000'000;
   std::int64_t max_triangles = 50'000'000;
-  int max_threads = 256;          // numerics.threads
-  std::size_t max_name = 200;     // name, in bytes
-  std::size_t max_problems = 100; // problems listed in a SpecError (then "N more")
+  int max_threads = 256;           // numerics.threads
+  std::size_t max_name = 200;      // name, in bytes
+  std::size_t max_problems = 100;  // problems listed in a SpecError (then "N more")
 };
 
 // Checks the spec and builds the scene; throws SpecError listing every problem found. Mesh files

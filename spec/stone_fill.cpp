@@ -36,9 +36,18 @@ std::vector<Vec3> fill_with_spheres(const std::vector<MemberSphere>& shape, doub
       }
 
   // connected pieces through the 12 touching neighbours; the largest wins (ties: the first found)
-  static const std::array<std::array<int, 3>, 12> kNeighbours{{{1, 1, 0}, {1, -1, 0}, {-1, 1, 0}, {-1, -1, 0},
-                                                                {1, 0, 1}, {1, 0, -1}, {-1, 0, 1}, {-1, 0, -1},
-                                                                {0, 1, 1}, {0, 1, -1}, {0, -1, 1}, {0, -1, -1}}};
+  static const std::array<std::array<int, 3>, 12> kNeighbours{{{1, 1, 0},
+                                                               {1, -1, 0},
+                                                               {-1, 1, 0},
+                                                               {-1, -1, 0},
+                                                               {1, 0, 1},
+                                                               {1, 0, -1},
+                                                               {-1, 0, 1},
+                                                               {-1, 0, -1},
+                                                               {0, 1, 1},
+                                                               {0, 1, -1},
+                                                               {0, -1, 1},
+                                                               {0, -1, -1}}};
   std::vector<int> piece(inside.size(), -1);
   std::vector<int> piece_size;
   for (std::size_t start = 0; start < inside.size(); ++start) {

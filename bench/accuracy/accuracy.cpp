@@ -55,10 +55,10 @@ struct Errors {
 
 struct Scenario {
   std::string name;
-  double contact_time;                          // the reference t_c of the sweep, s
-  std::function<Scene(int seed)> scene;         // at the engine's automatic step; seed: many-body only
+  double contact_time;                             // the reference t_c of the sweep, s
+  std::function<Scene(int seed)> scene;            // at the engine's automatic step; seed: many-body only
   std::function<Quantities(Simulation&)> measure;  // runs the simulation and measures
-  bool many_body = false;                       // an ensemble against its own ensemble at N = 800
+  bool many_body = false;                          // an ensemble against its own ensemble at N = 800
 };
 
 double sphere_mass(double rho, double r) { return rho * 4.0 / 3.0 * kPi * r * r * r; }
@@ -146,7 +146,8 @@ Scenario normal_pair() {
           },
           [=](Simulation& sim) {
             const Impact i = impact(sim);
-            return Quantities{{kNormal, i.contact_time, t_c}, {kNormal, i.max_overlap, alpha}, {kNormal, i.max_force, force}};
+            return Quantities{
+                {kNormal, i.contact_time, t_c}, {kNormal, i.max_overlap, alpha}, {kNormal, i.max_force, force}};
           }};
 }
 
@@ -164,7 +165,8 @@ Scenario normal_plane() {
           },
           [=](Simulation& sim) {
             const Impact i = impact(sim);
-            return Quantities{{kNormal, i.contact_time, t_c}, {kNormal, i.max_overlap, alpha}, {kNormal, i.max_force, force}};
+            return Quantities{
+                {kNormal, i.contact_time, t_c}, {kNormal, i.max_overlap, alpha}, {kNormal, i.max_force, force}};
           }};
 }
 
@@ -191,7 +193,8 @@ Scenario oblique(std::string_view law) {
   const double r = 0.0025, rho = 4000, e_mod = 3.8e11, nu = 0.23, v = 3.9, mu = 0.092, e = 0.98, kn = 1e7;
   const double th = 40 * kPi / 180, vn = v * std::cos(th), vt = v * std::sin(th);
   const double m = sphere_mass(rho, r);
-  const double t_c = law == HertzNormal::kName ? hertz_time(m, r, e_mod / (1 - nu * nu), v) : kPi * std::sqrt(m / (2 * kn));
+  const double t_c =
+      law == HertzNormal::kName ? hertz_time(m, r, e_mod / (1 - nu * nu), v) : kPi * std::sqrt(m / (2 * kn));
   const double vt_after = vt - mu * (1 + e) * vn, spin = 5 * mu * (1 + e) * vn / (2 * r);
   const double angle = std::atan((std::tan(th) - 3.5 * mu * (1 + e)) / e);
   return {"oblique-" + std::string(law == HertzNormal::kName ? "hertz" : "linear"), t_c,
@@ -218,9 +221,11 @@ Scenario sliding(std::string_view law, bool pair) {
   const double m = sphere_mass(rho, r), inertia = 0.4 * m * r * r;
   const double m_eff = pair ? m * (m / 8) / (m + m / 8) : m, r_eff = pair ? r * (r / 2) / (1.5 * r) : r;
   const double e_star = pair ? e_mod / (2 * (1 - nu * nu)) : e_mod / (1 - nu * nu);
-  const double t_c = law == HertzNormal::kName ? hertz_time(m_eff, r_eff, e_star, vn) : kPi * std::sqrt(m_eff / (pair ? kn : 2 * kn));
+  const double t_c =
+      law == HertzNormal::kName ? hertz_time(m_eff, r_eff, e_star, vn) : kPi * std::sqrt(m_eff / (pair ? kn : 2 * kn));
   const double pn = (1 + e) * m_eff * vn;
-  return {std::string(pair ? "sliding-pair-" : "sliding-plane-") + (law == HertzNormal::kName ? "hertz" : "linear"), t_c,
+  return {std::string(pair ? "sliding-pair-" : "sliding-plane-") + (law == HertzNormal::kName ? "hertz" : "linear"),
+          t_c,
           [=](int) {
             Scene s = base(law, rho, e_mod, nu, e, mu, kn);
             if (pair) {
@@ -239,7 +244,8 @@ Scenario sliding(std::string_view law, bool pair) {
             const double sign = pair ? -1 : 1;
             const Vec3 dv = sim.particles().v[0] - v0, dw = sim.particles().w[0] - w0;
             const double dvn = sign * pn / m, dvt = -mu * pn / m, dwy = mu * pn * r / inertia;
-            return Quantities{{kNormal, dv.z(), dvn}, {kTangential, dv.x(), dvt}, {kRotational, std::abs(dw.y()), std::abs(dwy)}};
+            return Quantities{
+                {kNormal, dv.z(), dvn}, {kTangential, dv.x(), dvt}, {kRotational, std::abs(dw.y()), std::abs(dwy)}};
           }};
 }
 
@@ -357,34 +363,35 @@ Scenario clump_rotation() {
 Scenario collapse(double duration) {
   const double r = 0.002, rho = 2500, kn = 1e4;
   const double m = sphere_mass(rho, r), t_c = kPi * std::sqrt(m / 2 / kn);
-  Scenario s{"collapse", t_c,
-             [=](int seed) {
-               Scene s = base(LinearNormal::kName, rho, 0, 0, 0.5, 0.5, kn);
-               s.gravity = {0, 0, -9.81};
-               // nudged sideways by 10 um (a perfect lattice never spreads), in a pattern the seed shifts
-               const double a = 1.37 * seed, b = 2.11 * seed;
-               for (int k = 0; k < 20; ++k)
-                 for (int j = 0; j < 10; ++j)
-                   for (int i = 0; i < 10; ++i)
-                     s.particles.push_back(sphere({(i - 4.5) * 2.02 * r + 1e-5 * std::sin(1.7 * i + 2.3 * j + 3.1 * k + a),
-                                                   (j - 4.5) * 2.02 * r + 1e-5 * std::cos(2.9 * i + 1.3 * j + 0.7 * k + b),
-                                                   r + 2e-5 + k * 2.02 * r},
-                                                  r));
-               s.walls = {plane()};
-               s.numerics.threads = 1;
-               return s;
-             },
-             [=](Simulation& sim) {
-               while (sim.time() < duration) sim.step();
-               const Particles& p = sim.particles();
-               double z = 0, spread = 0;
-               for (std::size_t i = 0; i < p.size(); ++i) {
-                 z += p.x[i].z();
-                 spread += p.x[i].x() * p.x[i].x() + p.x[i].y() * p.x[i].y();
-               }
-               return Quantities{{kNormal, z / p.size(), 0}, {kTangential, std::sqrt(spread / p.size()), 0}};
-             },
-             true};
+  Scenario s{
+      "collapse", t_c,
+      [=](int seed) {
+        Scene s = base(LinearNormal::kName, rho, 0, 0, 0.5, 0.5, kn);
+        s.gravity = {0, 0, -9.81};
+        // nudged sideways by 10 um (a perfect lattice never spreads), in a pattern the seed shifts
+        const double a = 1.37 * seed, b = 2.11 * seed;
+        for (int k = 0; k < 20; ++k)
+          for (int j = 0; j < 10; ++j)
+            for (int i = 0; i < 10; ++i)
+              s.particles.push_back(sphere(
+                  {(i - 4.5) * 2.02 * r + 1e-5 * std::sin(1.7 * i + 2.3 * j + 3.1 * k + a),
+                   (j - 4.5) * 2.02 * r + 1e-5 * std::cos(2.9 * i + 1.3 * j + 0.7 * k + b), r + 2e-5 + k * 2.02 * r},
+                  r));
+        s.walls = {plane()};
+        s.numerics.threads = 1;
+        return s;
+      },
+      [=](Simulation& sim) {
+        while (sim.time() < duration) sim.step();
+        const Particles& p = sim.particles();
+        double z = 0, spread = 0;
+        for (std::size_t i = 0; i < p.size(); ++i) {
+          z += p.x[i].z();
+          spread += p.x[i].x() * p.x[i].x() + p.x[i].y() * p.x[i].y();
+        }
+        return Quantities{{kNormal, z / p.size(), 0}, {kTangential, std::sqrt(spread / p.size()), 0}};
+      },
+      true};
   return s;
 }
 
@@ -397,7 +404,8 @@ Scenario bonded_block() {
             Scene s = base(LinearNormal::kName, rho, 0, 0, 0.5, 0.5, kn);
             for (int k = 0; k < 13; ++k)
               for (int j = 0; j < 13; ++j)
-                for (int i = 0; i < 13; ++i) s.particles.push_back(sphere(Vec3(i, j, k) * 2 * r + Vec3(0, 0, r + 1e-4), r, {0, 0, -2}));
+                for (int i = 0; i < 13; ++i)
+                  s.particles.push_back(sphere(Vec3(i, j, k) * 2 * r + Vec3(0, 0, r + 1e-4), r, {0, 0, -2}));
             s.walls = {plane()};
             BondSettings b;
             b.youngs_modulus = 2e7;
@@ -488,7 +496,8 @@ std::string cell(double e) {
 void print_row(const std::string& code, const Scenario& sc, const Timed& t, const Errors& e) {
   const double worst = std::max({e.normal, e.tangential, e.rotational});
   std::printf("%s,%s,%.6e,%.4g,%.6e,%s,%s,%s,%s\n", sc.name.c_str(), code.c_str(), t.dt, sc.contact_time / t.dt,
-              t.seconds, cell(e.normal).c_str(), cell(e.tangential).c_str(), cell(e.rotational).c_str(), cell(worst).c_str());
+              t.seconds, cell(e.normal).c_str(), cell(e.tangential).c_str(), cell(e.rotational).c_str(),
+              cell(worst).c_str());
   std::fflush(stdout);
 }
 
@@ -500,8 +509,8 @@ void print_run(std::FILE* out, const std::string& code, const Scenario& sc, int 
     std::snprintf(buf, sizeof buf, "%.10e", q.value);
     values[q.kind] = buf;
   }
-  std::fprintf(out, "%s,%s,%d,%.6e,%.4g,%.6e,%s,%s,%s\n", sc.name.c_str(), code.c_str(), seed, t.dt, sc.contact_time / t.dt,
-               t.seconds, values[0].c_str(), values[1].c_str(), values[2].c_str());
+  std::fprintf(out, "%s,%s,%d,%.6e,%.4g,%.6e,%s,%s,%s\n", sc.name.c_str(), code.c_str(), seed, t.dt,
+               sc.contact_time / t.dt, t.seconds, values[0].c_str(), values[1].c_str(), values[2].c_str());
   std::fflush(out);
 }
 
@@ -512,7 +521,8 @@ int main(int argc, char** argv) {
   std::set<std::string> only;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
-    if (arg == "--quick") quick = true;
+    if (arg == "--quick")
+      quick = true;
     else if (arg == "--only" && a + 1 < argc) {
       std::stringstream list(argv[++a]);
       for (std::string name; std::getline(list, name, ',');) only.insert(name);
@@ -539,13 +549,16 @@ int main(int argc, char** argv) {
   all.push_back(clump_rotation());
   all.push_back(collapse(quick ? 0.02 : 0.15));
   all.push_back(bonded_block());
-  const std::vector<double> sweep = quick ? std::vector<double>{20, 50} : std::vector<double>{10, 20, 50, 100, 200, 400};
+  const std::vector<double> sweep =
+      quick ? std::vector<double>{20, 50} : std::vector<double>{10, 20, 50, 100, 200, 400};
   std::FILE* runs = nullptr;
   if (!runs_path.empty() && !(runs = std::fopen(runs_path.c_str(), "w"))) {
     std::fprintf(stderr, "bench_accuracy: cannot write %s\n", runs_path.c_str());
     return 1;
   }
-  if (runs) std::fprintf(runs, "scenario,code,seed,dt,steps_per_contact,seconds,value_normal,value_tangential,value_rotational\n");
+  if (runs)
+    std::fprintf(runs,
+                 "scenario,code,seed,dt,steps_per_contact,seconds,value_normal,value_tangential,value_rotational\n");
   std::printf("scenario,code,dt,steps_per_contact,seconds,error_normal,error_tangential,error_rotational,error\n");
   for (const Scenario& sc : all) {
     if (!only.empty() && !only.count(sc.name)) continue;
@@ -557,7 +570,8 @@ int main(int argc, char** argv) {
       steps_per_contact.push_back(0);                  // the automatic step
       for (double n : steps_per_contact)
         for (int seed = 0; seed < seeds; ++seed)
-          print_run(runs, n > 0 ? "dem" : "dem-default", sc, seed, timed_run(sc, n > 0 ? sc.contact_time / n : 0, seed));
+          print_run(runs, n > 0 ? "dem" : "dem-default", sc, seed,
+                    timed_run(sc, n > 0 ? sc.contact_time / n : 0, seed));
       continue;
     }
     const Timed self = timed_run(sc, sc.contact_time / (quick ? 200 : 3200));

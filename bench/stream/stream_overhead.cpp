@@ -67,10 +67,14 @@ int main(int argc, char** argv) {
   int viewers = 20, pairs = 3;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string a = argv[k], v = argv[k + 1];
-    if (a == "--server") server = v;
-    else if (a == "--spec") spec_path = v;
-    else if (a == "--viewers") viewers = std::stoi(v);
-    else if (a == "--pairs") pairs = std::stoi(v);
+    if (a == "--server")
+      server = v;
+    else if (a == "--spec")
+      spec_path = v;
+    else if (a == "--viewers")
+      viewers = std::stoi(v);
+    else if (a == "--pairs")
+      pairs = std::stoi(v);
   }
   if (server.empty() || spec_path.empty()) {
     std::fprintf(stderr, "usage: bench_stream_overhead --server URL --spec SPEC.json [--viewers N] [--pairs K]\n");
@@ -89,9 +93,10 @@ int main(int argc, char** argv) {
       const double watched = run_job(client, spec.str(), viewers, frames, share);
       ratios.push_back(watched / alone);
       shares.push_back(share);
-      std::printf("pair %d: no viewers %.3f s, %d viewers %.3f s (%ld frames received), ratio %.4f; "
-                  "the engine's own time on frames: %.2f%% of its loop\n",
-                  p + 1, alone, viewers, watched, frames, watched / alone, 100 * share);
+      std::printf(
+          "pair %d: no viewers %.3f s, %d viewers %.3f s (%ld frames received), ratio %.4f; "
+          "the engine's own time on frames: %.2f%% of its loop\n",
+          p + 1, alone, viewers, watched, frames, watched / alone, 100 * share);
       std::fflush(stdout);
     }
   } catch (const std::exception& e) {

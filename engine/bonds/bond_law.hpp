@@ -21,10 +21,10 @@
 namespace dem {
 
 struct BondGeometry {
-  double radius = 0;  // Rb
-  double area = 0;    // A = pi Rb^2
-  double inertia = 0; // I = pi Rb^4 / 4 (bending)
-  double polar = 0;   // J = pi Rb^4 / 2 (twist)
+  double radius = 0;   // Rb
+  double area = 0;     // A = pi Rb^2
+  double inertia = 0;  // I = pi Rb^4 / 4 (bending)
+  double polar = 0;    // J = pi Rb^4 / 2 (twist)
 
   static BondGeometry of(double bond_radius);
 };
@@ -43,11 +43,11 @@ struct BondEnd {
 struct Bond {
   int i = 0, j = 0;
   BondGeometry geometry;
-  double kn = 0;               // normal stiffness per area, N/m^3 (Eb / (RA + RB))
-  double ks = 0;               // shear stiffness per area, N/m^3
-  double tensile_strength = 0; // Pa
-  double shear_strength = 0;   // Pa
-  bool moments = true;         // false: a contact bond (forces only)
+  double kn = 0;                // normal stiffness per area, N/m^3 (Eb / (RA + RB))
+  double ks = 0;                // shear stiffness per area, N/m^3
+  double tensile_strength = 0;  // Pa
+  double shear_strength = 0;    // Pa
+  bool moments = true;          // false: a contact bond (forces only)
   // The bonded state, from which the loads are measured: the distance of the centres, each centre's
   // distance to the bond centre along the bond, the direction to the other particle in each
   // particle's own frame, and the rotation from j's frame to i's (q_i^-1 q_j).
@@ -56,21 +56,21 @@ struct Bond {
   Vec3 anchor_i = Vec3::Zero(), anchor_j = Vec3::Zero();
   Quat relative = Quat::Identity();
   // The loads of the last evaluation.
-  double normal_force = 0;     // on i along n: positive pushes i away (compression)
+  double normal_force = 0;  // on i along n: positive pushes i away (compression)
   Vec3 shear_force = Vec3::Zero();
-  Vec3 twist = Vec3::Zero();   // moment on i along n
-  Vec3 bending = Vec3::Zero(); // moment on i in the bond plane
+  Vec3 twist = Vec3::Zero();    // moment on i along n
+  Vec3 bending = Vec3::Zero();  // moment on i in the bond plane
   BondBreak state = BondBreak::Intact;
-  double broken_at = -1;       // time of the break, s
+  double broken_at = -1;  // time of the break, s
 };
 
 // Records the pair's state now as the bond's unloaded state.
 void glue(Bond& bond, const BondEnd& i, const BondEnd& j);
 
 struct BondLoad {
-  Vec3 force;          // on i (j: -force)
-  Vec3 moment_i;       // about i's centre, including the lever of the force
-  Vec3 moment_j;       // about j's centre
+  Vec3 force;     // on i (j: -force)
+  Vec3 moment_i;  // about i's centre, including the lever of the force
+  Vec3 moment_j;  // about j's centre
 };
 
 // The bond's loads for the ends as they are now (kept in the bond), then the break criterion: a

@@ -49,7 +49,8 @@ auto with_model(std::string_view name, ModelList<Models...>, F&& f) {
 }  // namespace
 
 Bond bond_between(const BondSettings& s, double ri, double rj, double strength_scale) {
-  return with_model(s.model, BondModels{}, [&](auto model) { return decltype(model)::between(s, ri, rj, strength_scale); });
+  return with_model(s.model, BondModels{},
+                    [&](auto model) { return decltype(model)::between(s, ri, rj, strength_scale); });
 }
 
 double bond_shortest_time(const BondSettings& s, double r, double m) {

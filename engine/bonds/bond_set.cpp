@@ -14,14 +14,15 @@ BondEnd end_of(const Particles& p, int i) { return {p.x[i], p.q[i], p.radius[i]}
 
 }  // namespace
 
-BondSet::BondSet(const BondSettings& settings, const Particles& p, const NeighborList& pairs, const std::vector<int>& stone) {
+BondSet::BondSet(const BondSettings& settings, const Particles& p, const NeighborList& pairs,
+                 const std::vector<int>& stone) {
   std::mt19937_64 rng(settings.seed);
   std::normal_distribution<double> spread(1.0, settings.strength_spread);
   const int n = static_cast<int>(p.size());
   for (int i = 0; i < n; ++i) {
     for (int k = pairs.row_start[i]; k < pairs.row_start[i + 1]; ++k) {
       const int j = pairs.partner[k];
-      if (stone[p.id[i]] != stone[p.id[j]]) continue;  // two stones touching: not one body
+      if (stone[p.id[i]] != stone[p.id[j]]) continue;                       // two stones touching: not one body
       if (!p.body.empty() && (p.body[i] >= 0 || p.body[j] >= 0)) continue;  // a clump is rigid already
       const double r_min = std::min(p.radius[i], p.radius[j]);
       const double gap = (p.x[i] - p.x[j]).norm() - p.radius[i] - p.radius[j];
@@ -64,7 +65,8 @@ void BondSet::renumber(const std::vector<int>& new_to_old) {
     if (b.i > b.j) swap_ends(b);  // keep i < j: the bond's state is i's
   }
   // bond order decides the order of the force sums: keep it a function of the particle order
-  std::stable_sort(bonds_.begin(), bonds_.end(), [](const Bond& a, const Bond& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
+  std::stable_sort(bonds_.begin(), bonds_.end(),
+                   [](const Bond& a, const Bond& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
 }
 
 double BondSet::elastic_energy() const {
@@ -76,9 +78,12 @@ double BondSet::elastic_energy() const {
 BondCounts BondSet::counts() const {
   BondCounts c;
   for (const Bond& b : bonds_) {
-    if (b.state == BondBreak::Intact) ++c.intact;
-    else if (b.state == BondBreak::Tension) ++c.tension;
-    else ++c.shear;
+    if (b.state == BondBreak::Intact)
+      ++c.intact;
+    else if (b.state == BondBreak::Tension)
+      ++c.tension;
+    else
+      ++c.shear;
   }
   return c;
 }

@@ -71,18 +71,32 @@ void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p) {
   move_members(bodies, p, true);
 }
 
-double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt) {
+double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt,
+                    std::vector<Vec3>& half_kick, std::vector<Vec3>& spin_kick) {
   const int nb = static_cast<int>(bodies.size());
+  std::vector<Vec3> kick(bodies.size()), spin(bodies.size());
   for_ranges(nb, kParallelMinBodies, [&](int begin, int end) {
     for (int b = begin; b < end; ++b) {
-      bodies.v[b] += (0.5 * dt / bodies.mass[b]) * bodies.force[b];
+      kick[b] = (0.5 * dt / bodies.mass[b]) * bodies.force[b];
+      bodies.v[b] += kick[b];
       bodies.x[b] += dt * bodies.v[b];
       bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
       rotate_free(bodies.rotation[b], bodies.moments[b], dt);
+      // the spin the half kick's angular momentum adds, at the orientation the contacts see
+      spin[b] = angular_velocity(RigidRotation{bodies.rotation[b].orientation, 0.5 * dt * bodies.torque[b]},
+                                 bodies.moments[b]);
     }
   });
   move_members(bodies, p, true);
   const int n = static_cast<int>(p.size());
+  for_ranges(n, kParallelMinBodies, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      const int b = p.body[i];
+      if (b < 0) continue;
+      half_kick[i] = kick[b] + spin[b].cross(p.x[i] - bodies.x[b]);
+      spin_kick[i] = spin[b];
+    }
+  });
   return reduce_ranges(
       n, kParallelMinBodies, 0.0,
       [&](int begin, int end) {

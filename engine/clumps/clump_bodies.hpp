@@ -13,11 +13,11 @@
 namespace dem {
 
 struct ClumpBodies {
-  std::vector<Vec3> x, v;              // centroid and its velocity
+  std::vector<Vec3> x, v;  // centroid and its velocity
   std::vector<RigidRotation> rotation;
   std::vector<double> mass;
-  std::vector<Vec3> moments;           // principal, body frame
-  std::vector<Vec3> force, torque;     // of the last force evaluation (space frame)
+  std::vector<Vec3> moments;        // principal, body frame
+  std::vector<Vec3> force, torque;  // of the last force evaluation (space frame)
 
   bool empty() const { return x.empty(); }
   std::size_t size() const { return x.size(); }
@@ -31,8 +31,11 @@ ClumpBodies make_bodies(const Scene& scene);
 void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p);
 
 // The first half kick and the drift of every body, then its members placed; returns the largest
-// squared move of a member since `x_at_build` (for the neighbour-list rebuild).
-double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt);
+// squared move of a member since `x_at_build` (for the neighbour-list rebuild). A member's kicks
+// (`half_kick`, `spin_kick`: the velocity and spin changes of the half kick, which the dashpots
+// add to predict the full-step velocities) are its body's at its place.
+double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt,
+                    std::vector<Vec3>& half_kick, std::vector<Vec3>& spin_kick);
 
 // Sums the members' forces and torques (the force kernel added gravity to each member as if it had
 // the body's mass: that is taken out and the body's weight put in once), then the second half

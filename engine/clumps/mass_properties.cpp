@@ -49,9 +49,13 @@ bool inside_any(const std::vector<MemberSphere>& spheres, const Vec3& p) {
 // Cells cut by the surface at the finest level count by their centre (the midpoint rule).
 void integrate(const std::vector<MemberSphere>& spheres, const Vec3& c, double h, int levels_left, Moments& out) {
   switch (classify(spheres, c, h)) {
-    case Cover::Outside: return;
-    case Cover::Inside: out.add_cube(c, h); return;
-    case Cover::Cut: break;
+    case Cover::Outside:
+      return;
+    case Cover::Inside:
+      out.add_cube(c, h);
+      return;
+    case Cover::Cut:
+      break;
   }
   if (levels_left == 0) {
     if (inside_any(spheres, c)) out.add_cube(c, h);

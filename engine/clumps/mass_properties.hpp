@@ -20,10 +20,10 @@ struct MemberSphere {
 struct MassProperties {
   double volume = 0;
   Vec3 centroid = Vec3::Zero();
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the centroid, for density 1
-  Vec3 principal_moments = Vec3::Zero();              // ascending, for density 1
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();             // about the centroid, for density 1
+  Vec3 principal_moments = Vec3::Zero();                         // ascending, for density 1
   Eigen::Matrix3d principal_axes = Eigen::Matrix3d::Identity();  // columns, right-handed
-  double relative_accuracy = 0;                       // the change of the last refinement
+  double relative_accuracy = 0;                                  // the change of the last refinement
 };
 
 // Refines until the volume and the principal moments change by less than `relative_accuracy`

@@ -15,7 +15,7 @@ namespace dem {
 
 struct RigidRotation {
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // body frame -> space frame
-  Vec3 angular_momentum = Vec3::Zero();                              // space frame
+  Vec3 angular_momentum = Vec3::Zero();                             // space frame
 };
 
 // Advances the free rotation by dt (no torque). `moments`: principal moments of inertia, in the body

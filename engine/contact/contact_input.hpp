@@ -41,19 +41,19 @@ struct ContactInput {
 
 template <class T>
 struct ContactOutput {
-  V3<T> force;       // on i
-  V3<T> shear_force; // tangential part of force (its lever torque is the force loop's)
-  V3<T> roll_moment; // on i (j gets the opposite)
-  T fn;              // normal force magnitude (>= 0 unless tension is allowed)
+  V3<T> force;        // on i
+  V3<T> shear_force;  // tangential part of force (its lever torque is the force loop's)
+  V3<T> roll_moment;  // on i (j gets the opposite)
+  T fn;               // normal force magnitude (>= 0 unless tension is allowed)
 };
 
 // What a normal model tells the tangential and rolling models.
 template <class T>
 struct NormalResponse {
-  T fn;         // normal force, positive = repulsive
-  T kn_tangent; // dFn/d(delta), for the rolling spring
-  T kt;         // tangential stiffness
-  T ct;         // tangential damping
+  T fn;          // normal force, positive = repulsive
+  T kn_tangent;  // dFn/d(delta), for the rolling spring
+  T kt;          // tangential stiffness
+  T ct;          // tangential damping
 };
 
 // Contact boundaries: a dashpot force jumps at first touch (from 0 to C_n v) and, when tension is

@@ -36,7 +36,8 @@ struct ContactLaw {
   static double stored_energy(const Pair& p, double delta, double r_eff, const Vec3& shear, const Vec3& roll) {
     double e = Normal::elastic_energy(p.normal, delta, r_eff);
     if constexpr (kFriction) e += 0.5 * Normal::tangential_stiffness(p.normal, delta, r_eff) * shear.squaredNorm();
-    if constexpr (kRollingSpring) e += Rolling::spring_energy(p.rolling, Normal::normal_stiffness(p.normal, delta, r_eff), r_eff, roll);
+    if constexpr (kRollingSpring)
+      e += Rolling::spring_energy(p.rolling, Normal::normal_stiffness(p.normal, delta, r_eff), r_eff, roll);
     return e;
   }
 
@@ -72,7 +73,7 @@ struct ContactLaw {
   DEM_HOT static NormalResponse<T> settle_parting(const typename Normal::template Lanes<T>& p, ContactInput<T> c,
                                                   NormalResponse<T> nr) {
     const T vn = dot(c.v_rel, c.n);
-    const auto parting = lane_and(c.delta < c.travel, vn > T{});
+    const auto parting = lane_and(c.delta<c.travel, vn> T{});
     if (!any_lane(parting)) return nr;
     const T mass = c.sqrt_m_eff * c.sqrt_m_eff;
     const T gap = c.delta / c.dt;  // the separation speed that parts the bodies at the next evaluation
@@ -142,8 +143,10 @@ struct ContactLaw {
       out.shear_force = V3<T>::zero();
     }
     out.force = fn * c.n + out.shear_force;
-    if constexpr (kRolling) out.roll_moment = Rolling::evaluate(p.rolling, nr, fn, c, roll);
-    else out.roll_moment = V3<T>::zero();
+    if constexpr (kRolling)
+      out.roll_moment = Rolling::evaluate(p.rolling, nr, fn, c, roll);
+    else
+      out.roll_moment = V3<T>::zero();
     return out;
   }
 };

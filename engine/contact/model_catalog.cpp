@@ -6,10 +6,14 @@ namespace dem {
 
 std::string_view material_property_name(MaterialProperty p) {
   switch (p) {
-    case MaterialProperty::Density: return "density";
-    case MaterialProperty::YoungsModulus: return "youngsModulus";
-    case MaterialProperty::PoissonRatio: return "poissonRatio";
-    case MaterialProperty::NormalStiffness: return "normalStiffness";
+    case MaterialProperty::Density:
+      return "density";
+    case MaterialProperty::YoungsModulus:
+      return "youngsModulus";
+    case MaterialProperty::PoissonRatio:
+      return "poissonRatio";
+    case MaterialProperty::NormalStiffness:
+      return "normalStiffness";
   }
   return "?";
 }

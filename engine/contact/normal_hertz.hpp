@@ -43,9 +43,9 @@ struct HertzNormal {
   template <class T>
   DEM_HOT static NormalResponse<T> evaluate(const Lanes<T>& p, const ContactInput<T>& c) {
     const T sqrt_rd = lane_sqrt(c.r_eff * c.delta);
-    const T f_elastic = spring_with_first_touch(
-        (4.0 / 3.0) * p.e_star * sqrt_rd * c.delta, c.delta, c.first_touch,
-        [&](T x) { return spring_energy(p.e_star, c.r_eff, x); }, [&](T x) { return spring_force(p.e_star, c.r_eff, x); });
+    const T f_elastic = spring_with_first_touch((4.0 / 3.0) * p.e_star * sqrt_rd * c.delta, c.delta, c.first_touch,
+                                                [&](T x) { return spring_energy(p.e_star, c.r_eff, x); },
+                                                [&](T x) { return spring_force(p.e_star, c.r_eff, x); });
     // C_n = eta sqrt(m* 4/3 E* sqrt(R* d)); C_t = eta sqrt(2/3 k_t m*) (LIGGGHTS' gamma_t, beta -> eta)
     const T quarter = lane_sqrt(sqrt_rd);  // (R* d)^(1/4)
     const T scale = quarter * c.sqrt_m_eff;
@@ -73,11 +73,17 @@ struct HertzNormal {
   DEM_HOT static T spring_force(T e_star, T r_eff, T delta) {
     return (4.0 / 3.0) * e_star * lane_sqrt(r_eff * delta) * delta;
   }
-  static double elastic_energy(const Pair& p, double delta, double r_eff) { return spring_energy(p.e_star, r_eff, delta); }
+  static double elastic_energy(const Pair& p, double delta, double r_eff) {
+    return spring_energy(p.e_star, r_eff, delta);
+  }
   static double spring_force(const Pair& p, double delta, double r_eff) { return spring_force(p.e_star, r_eff, delta); }
   // The stiffnesses evaluate() gives at this overlap: dF_n/d(delta) and the tangential spring's.
-  static double normal_stiffness(const Pair& p, double delta, double r_eff) { return 2.0 * p.e_star * std::sqrt(r_eff * delta); }
-  static double tangential_stiffness(const Pair& p, double delta, double r_eff) { return 8.0 * p.g_star * std::sqrt(r_eff * delta); }
+  static double normal_stiffness(const Pair& p, double delta, double r_eff) {
+    return 2.0 * p.e_star * std::sqrt(r_eff * delta);
+  }
+  static double tangential_stiffness(const Pair& p, double delta, double r_eff) {
+    return 8.0 * p.g_star * std::sqrt(r_eff * delta);
+  }
 
   // t_c = 2.9432 alpha_max / V, alpha_max = (15 m* V^2 / (16 sqrt(R*) E*))^(2/5) (docs/validation.md).
   // A damping number eta > 1 (e < 0.4 without tension) makes the dashpot the faster process: the

@@ -52,13 +52,16 @@ struct LinearNormal {
   template <class T>
   DEM_HOT static NormalResponse<T> evaluate(const Lanes<T>& p, const ContactInput<T>& c) {
     const T cn = p.cn_per_sqrt_mass * c.sqrt_m_eff;
-    const T spring = spring_with_first_touch(p.kn * c.delta, c.delta, c.first_touch,
-                                             [&](T x) { return spring_energy(p.kn, x); }, [&](T x) { return p.kn * x; });
+    const T spring = spring_with_first_touch(
+        p.kn * c.delta, c.delta, c.first_touch, [&](T x) { return spring_energy(p.kn, x); },
+        [&](T x) { return p.kn * x; });
     return {spring - c.onset * cn * c.vn_now, p.kn, p.kt_ratio * p.kn, p.ct_ratio * cn};
   }
 
   template <class T>
-  DEM_HOT static T spring_energy(T kn, T delta) { return 0.5 * kn * delta * delta; }
+  DEM_HOT static T spring_energy(T kn, T delta) {
+    return 0.5 * kn * delta * delta;
+  }
   static double elastic_energy(const Pair& p, double delta, double /*r_eff*/) { return spring_energy(p.kn, delta); }
   static double spring_force(const Pair& p, double delta, double /*r_eff*/) { return p.kn * delta; }
   // The stiffnesses evaluate() gives at this overlap: dF_n/d(delta) and the tangential spring's.

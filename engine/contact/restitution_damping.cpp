@@ -46,7 +46,10 @@ double invert_decreasing(const std::function<double(double)>& e_of, double e, do
   while (e_of(hi) > e) hi *= 2;
   for (int it = 0; it < 45; ++it) {  // bracket / 2^45: far below the 1e-7 integration error
     const double mid = 0.5 * (lo + hi);
-    if (e_of(mid) > e) lo = mid; else hi = mid;
+    if (e_of(mid) > e)
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi);
 }
@@ -70,14 +73,12 @@ double remembered(int law, double e, bool no_tensile, const std::function<double
 }  // namespace
 
 double linear_restitution(double zeta, bool no_tensile_force) {
-  return dimensionless_rebound([zeta](double x, double xd) { return x + 2 * zeta * xd; },
-                               no_tensile_force);
+  return dimensionless_rebound([zeta](double x, double xd) { return x + 2 * zeta * xd; }, no_tensile_force);
 }
 
 double hertz_restitution(double eta, bool no_tensile_force) {
   return dimensionless_rebound(
-      [eta](double x, double xd) { return x * std::sqrt(x) + eta * std::sqrt(std::sqrt(x)) * xd; },
-      no_tensile_force);
+      [eta](double x, double xd) { return x * std::sqrt(x) + eta * std::sqrt(std::sqrt(x)) * xd; }, no_tensile_force);
 }
 
 double linear_damping_ratio(double e, bool no_tensile_force) {
@@ -86,7 +87,8 @@ double linear_damping_ratio(double e, bool no_tensile_force) {
     const double l = std::log(e);
     return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
   }
-  return remembered(0, e, true, [e] { return invert_decreasing([](double z) { return linear_restitution(z, true); }, e, 1.0); });
+  return remembered(0, e, true,
+                    [e] { return invert_decreasing([](double z) { return linear_restitution(z, true); }, e, 1.0); });
 }
 
 double hertz_damping_number(double e, bool no_tensile_force) {

@@ -36,7 +36,9 @@ struct CoulombFriction {
   struct Pair {
     double mu = 0;
   };
-  static Pair mix(const Material&, const Material&, const Interaction& in, const ContactSettings&) { return {in.friction}; }
+  static Pair mix(const Material&, const Material&, const Interaction& in, const ContactSettings&) {
+    return {in.friction};
+  }
 
   template <class T>
   struct Lanes {
@@ -60,7 +62,8 @@ struct CoulombFriction {
     T moved_for = c.dt;
     const auto fresh = c.first_touch > T{};
     if (any_lane(fresh))  // rare: skip the division
-      moved_for = select(fresh, c.dt * lane_min(c.delta / select(fresh, c.first_touch, splat<T>(1.0)), splat<T>(1.0)), c.dt);
+      moved_for =
+          select(fresh, c.dt * lane_min(c.delta / select(fresh, c.first_touch, splat<T>(1.0)), splat<T>(1.0)), c.dt);
     shear = in_plane(shear, n) + v_t * moved_for;
     const T limit = p.mu * fn;
     const T limit2 = limit * limit;

@@ -42,15 +42,19 @@ DEM_LANES_INLINE Lanes2 load_pair(const double* p) {
 
 template <class T>
 constexpr int lane_count() {
-  if constexpr (std::is_same_v<T, double>) return 1;
-  else return sizeof(T) / sizeof(double);
+  if constexpr (std::is_same_v<T, double>)
+    return 1;
+  else
+    return sizeof(T) / sizeof(double);
 }
 
 // The same value in every lane.
 template <class T>
 DEM_LANES_INLINE T splat(double value) {
-  if constexpr (std::is_same_v<T, double>) return value;
-  else return T{} + value;
+  if constexpr (std::is_same_v<T, double>)
+    return value;
+  else
+    return T{} + value;
 }
 
 template <class T>
@@ -98,33 +102,43 @@ DEM_LANES_INLINE bool any_lane(M mask) {
 // Lane-wise a and b of two masks (for one lane, bool && bool: & would give an int).
 template <class M>
 DEM_LANES_INLINE M lane_and(M a, M b) {
-  if constexpr (std::is_same_v<M, bool>) return a && b;
-  else return a & b;
+  if constexpr (std::is_same_v<M, bool>)
+    return a && b;
+  else
+    return a & b;
 }
 
 // Mask of the lanes below `count`.
 template <class T>
 DEM_LANES_INLINE auto lanes_below(int count) {
-  if constexpr (std::is_same_v<T, double>) return count > 0;
-  else return T{0, 1, 2, 3} < splat<T>(count);
+  if constexpr (std::is_same_v<T, double>)
+    return count > 0;
+  else
+    return T{0, 1, 2, 3} < splat<T>(count);
 }
 
 template <class M>
 DEM_LANES_INLINE bool lane_on(M mask, int l) {
-  if constexpr (std::is_same_v<M, bool>) return mask;
-  else return mask[l] != 0;
+  if constexpr (std::is_same_v<M, bool>)
+    return mask;
+  else
+    return mask[l] != 0;
 }
 
 template <class T>
 DEM_LANES_INLINE double lane(const T& a, int l) {
-  if constexpr (std::is_same_v<T, double>) return a;
-  else return a[l];
+  if constexpr (std::is_same_v<T, double>)
+    return a;
+  else
+    return a[l];
 }
 
 template <class T>
 DEM_LANES_INLINE void set_lane(T& a, int l, double value) {
-  if constexpr (std::is_same_v<T, double>) a = value;
-  else a[l] = value;
+  if constexpr (std::is_same_v<T, double>)
+    a = value;
+  else
+    a[l] = value;
 }
 
 // A 3-vector of lanes (x, y and z each hold one component of every lane's vector).
@@ -159,8 +173,10 @@ DEM_LANES_INLINE V3<T> broadcast(const Vec3& v) {
 // values[index[l]] in lane l.
 template <class T>
 DEM_LANES_INLINE T gather(const double* values, const int* index) {
-  if constexpr (std::is_same_v<T, double>) return values[index[0]];
-  else return T{values[index[0]], values[index[1]], values[index[2]], values[index[3]]};
+  if constexpr (std::is_same_v<T, double>)
+    return values[index[0]];
+  else
+    return T{values[index[0]], values[index[1]], values[index[2]], values[index[3]]};
 }
 // Vectors: x and y of each lane as one 16-byte load, two of them joined and interleaved (4 shuffles
 // for x and y of four lanes instead of 8 single loads and their inserts); z as four single loads.

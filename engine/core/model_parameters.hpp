@@ -13,9 +13,9 @@ constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
 // One parameter of a model: a double field of the schema's ContactModel message.
 struct ModelParameter {
-  std::string_view field;    // the schema's field name, e.g. "tangential_stiffness_ratio"
+  std::string_view field;  // the schema's field name, e.g. "tangential_stiffness_ratio"
   double default_value;
-  double min;                // allowed range [min, max]
+  double min;  // allowed range [min, max]
   double max;
   std::string_view meaning;  // for the docs and for error messages
 };

@@ -24,8 +24,8 @@ struct Particles {
   std::vector<double> inv_mass;     // 0 for a fixed particle
   std::vector<double> inv_inertia;  // 0 for a fixed particle
   std::vector<int> material;
-  std::vector<int> id;              // index in the scene (files and observers use it)
-  std::vector<Vec3> external;       // constant external force; empty when no particle has one
+  std::vector<int> id;         // index in the scene (files and observers use it)
+  std::vector<Vec3> external;  // constant external force; empty when no particle has one
   // Members of rigid clumps (empty when the scene has none): the body, -1 for a free sphere, and
   // the member's centre in the body frame. A member's x, v and w are set from its body each step.
   std::vector<int> body;
@@ -43,7 +43,8 @@ struct Particles {
 // A particle's state is usable: its position, velocity and spin are finite and so are the squares
 // the energies and files take of them (a speed past ~1e154 m/s overflows m v^2 before it overflows).
 inline bool state_is_finite(const Vec3& x, const Vec3& v, const Vec3& w, double mass) {
-  return std::isfinite(x.squaredNorm()) && std::isfinite(mass * v.squaredNorm()) && std::isfinite(mass * w.squaredNorm());
+  return std::isfinite(x.squaredNorm()) && std::isfinite(mass * v.squaredNorm()) &&
+         std::isfinite(mass * w.squaredNorm());
 }
 
 // Applies new_to_old to one array (used for per-particle history kept outside Particles too).

@@ -16,8 +16,8 @@ namespace dem {
 
 struct Material {
   std::string name;
-  double density = 0;           // kg/m^3
-  double youngs_modulus = 0;    // Pa
+  double density = 0;         // kg/m^3
+  double youngs_modulus = 0;  // Pa
   double poisson_ratio = 0;
   double normal_stiffness = 0;  // N/m, linear model
   bool rigid = false;           // infinitely stiff: contributes nothing to the compliance
@@ -36,7 +36,7 @@ struct ContactSettings {
   // A contact never pulls: impact theory's assumption, and the one under which friction's impulse is
   // mu times the normal impulse (with tension, the pull at parting has no friction: docs/physics.md).
   bool no_tensile_force = true;
-  ModelParameters parameters;    // by field name; a model's default where absent
+  ModelParameters parameters;  // by field name; a model's default where absent
 };
 
 struct ParticleInit {
@@ -57,8 +57,8 @@ struct ClumpInit {
   int first = 0;
   int count = 0;
   double mass = 0;
-  Vec3 moments = Vec3::Zero();  // principal moments of inertia, kg m^2
-  Vec3 position = Vec3::Zero();  // of the centroid
+  Vec3 moments = Vec3::Zero();                                      // principal moments of inertia, kg m^2
+  Vec3 position = Vec3::Zero();                                     // of the centroid
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // body frame -> space
   Vec3 velocity = Vec3::Zero();
   Vec3 angular_velocity = Vec3::Zero();
@@ -86,8 +86,8 @@ struct MeshShape {
 struct PrescribedMotion {
   Vec3 velocity = Vec3::Zero();
   Vec3 amplitude = Vec3::Zero();
-  double frequency = 0;  // Hz
-  double phase = 0;      // rad
+  double frequency = 0;                  // Hz
+  double phase = 0;                      // rad
   Vec3 angular_velocity = Vec3::Zero();  // rad/s
   std::optional<Vec3> center;            // rotation centre at t = 0; default the wall's centroid
 };
@@ -143,7 +143,7 @@ struct BondSettings {
   std::optional<Box> region;
   struct Zone {
     Box box;
-    double strength_ratio = 1;       // BRATIO: strengths of bonds with their centre here are scaled
+    double strength_ratio = 1;  // BRATIO: strengths of bonds with their centre here are scaled
   };
   std::vector<Zone> zones;
 };
@@ -155,15 +155,15 @@ struct OutputSettings {
   double interval_seconds = 0;   // turned into every_steps once the time step is known
   bool animation = true;
   bool force_chains = false;
-  double length_unit = 1.0;      // metres per file length unit (1e-3 for mm)
+  double length_unit = 1.0;  // metres per file length unit (1e-3 for mm)
   std::string length_unit_name = "m";
   FileNumberFormat number_format = FileNumberFormat::Scientific;
 };
 
 struct NumericsSettings {
-  double skin_fraction = 0.1;       // of the mean diameter
-  int search_interval = 0;          // 0: rebuild only when needed
-  int threads = 0;                  // 0: all cores
+  double skin_fraction = 0.1;  // of the mean diameter
+  int search_interval = 0;     // 0: rebuild only when needed
+  int threads = 0;             // 0: all cores
   double max_overlap_fraction = 0.25;
   int check_interval = 100;
   int reorder_interval = 10;
@@ -177,7 +177,7 @@ struct TimeSettings {
   double dt = 0;                    // 0: automatic
   double dt_fraction = 1.0 / 50.0;  // of the shortest contact time (the PDEM-EGD manual's 1/50, section 4.1.1)
   double duration = 0;
-  std::int64_t steps = 0;           // derived from duration when 0
+  std::int64_t steps = 0;  // derived from duration when 0
   bool allow_unstable_dt = false;
 };
 

@@ -6,4 +6,4 @@
 namespace dem {
 using Vec3 = Eigen::Vector3d;
 using Quat = Eigen::Quaterniond;  // a rotation, body frame to space
-}
+}  // namespace dem

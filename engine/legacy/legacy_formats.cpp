@@ -35,9 +35,12 @@ constexpr RealStyle full{std::chars_format::scientific, 16};  // 17 significant 
 // The style of a real: scientific (7 digits), full (17) or the legacy fixed width of that column.
 RealStyle style_of(NumberFormat format, RealStyle legacy_width) {
   switch (format) {
-    case NumberFormat::Scientific: return scientific;
-    case NumberFormat::Full: return full;
-    case NumberFormat::LegacyFixed: return legacy_width;
+    case NumberFormat::Scientific:
+      return scientific;
+    case NumberFormat::Full:
+      return full;
+    case NumberFormat::LegacyFixed:
+      return legacy_width;
   }
   return scientific;
 }
@@ -105,8 +108,9 @@ struct AnimationStyles {
 
 AnimationStyles animation_styles(NumberFormat format) {
   // The fixed widths are those of BallastDEM's sample frame (manual figure 3.5).
-  return {style_of(format, fixed(3)), style_of(format, fixed(4)), style_of(format, fixed(3)), style_of(format, fixed(2)),
-          style_of(format, fixed(4)), style_of(format, fixed(2)), style_of(format, fixed(2))};
+  return {style_of(format, fixed(3)), style_of(format, fixed(4)), style_of(format, fixed(3)),
+          style_of(format, fixed(2)), style_of(format, fixed(4)), style_of(format, fixed(2)),
+          style_of(format, fixed(2))};
 }
 
 RealStyle force_style(NumberFormat format) {
@@ -215,9 +219,7 @@ class LineValues {
     return *value;
   }
 
-  Vec3 vec3(std::size_t first_column) {
-    return {real(first_column), real(first_column + 1), real(first_column + 2)};
-  }
+  Vec3 vec3(std::size_t first_column) { return {real(first_column), real(first_column + 1), real(first_column + 2)}; }
 
   std::int64_t integer64(std::size_t column) {
     const std::optional<std::int64_t> value = parse_integer(lines_.token(column));
@@ -288,15 +290,17 @@ struct Expected {
 // Reads the lines of one frame after its header, with messages that say where the frame began.
 class FrameLines {
  public:
-  FrameLines(TokenLines& lines, std::string_view header) : lines_(lines), header_(header), first_line_(lines.line_number()) {}
+  FrameLines(TokenLines& lines, std::string_view header)
+      : lines_(lines), header_(header), first_line_(lines.line_number()) {}
 
   // Moves to the next line and checks its column count; on failure, says why in a Stop.
   std::optional<Stop> next(const Expected& expected) {
     if (!lines_.next()) return ended(expected);
     if (lines_.token_count() == expected.columns) return std::nullopt;
     if (lines_.token(0) == header_) {
-      return malformed(line_prefix(lines_.line_number()) + "a new frame starts here, but the frame that starts at line " +
-                       std::to_string(first_line_) + " is incomplete: its " + expected.describe() + " is missing");
+      return malformed(line_prefix(lines_.line_number()) +
+                       "a new frame starts here, but the frame that starts at line " + std::to_string(first_line_) +
+                       " is incomplete: its " + expected.describe() + " is missing");
     }
     return malformed(line_prefix(lines_.line_number()) + "expected " + std::to_string(expected.columns) +
                      " values on the " + expected.describe() + " (" + std::string(expected.layout) + "), found " +
@@ -308,8 +312,9 @@ class FrameLines {
   std::optional<Stop> next_any(const Expected& expected) {
     if (!lines_.next()) return ended(expected);
     if (lines_.token(0) == header_) {
-      return malformed(line_prefix(lines_.line_number()) + "a new frame starts here, but the frame that starts at line " +
-                       std::to_string(first_line_) + " is incomplete: its " + expected.describe() + " is missing");
+      return malformed(line_prefix(lines_.line_number()) +
+                       "a new frame starts here, but the frame that starts at line " + std::to_string(first_line_) +
+                       " is incomplete: its " + expected.describe() + " is missing");
     }
     return std::nullopt;
   }
@@ -329,8 +334,8 @@ class FrameLines {
 
  private:
   Stop ended(const Expected& expected) const {
-    std::string problem = "the file ends inside the frame that starts at line " + std::to_string(first_line_) + ": its " +
-                          expected.describe() + " is missing";
+    std::string problem = "the file ends inside the frame that starts at line " + std::to_string(first_line_) +
+                          ": its " + expected.describe() + " is missing";
     if (lines_.unfinished_last_line()) {
       problem += "; the last line (line " + std::to_string(lines_.line_number()) +
                  ") has no line end, the writer was stopped while writing it";
@@ -348,8 +353,8 @@ class FrameLines {
 std::optional<Stop> check_frame_header(const TokenLines& lines, std::string_view header, std::size_t columns,
                                        std::string_view layout) {
   if (lines.token(0) == header && lines.token_count() == columns) return std::nullopt;
-  return malformed(line_prefix(lines.line_number()) + "expected the frame header '" + std::string(layout) + "', found " +
-                   quoted(lines.token(0)) + (lines.token_count() > 1 ? " and more" : ""));
+  return malformed(line_prefix(lines.line_number()) + "expected the frame header '" + std::string(layout) +
+                   "', found " + quoted(lines.token(0)) + (lines.token_count() > 1 ? " and more" : ""));
 }
 
 // Reads frames until the input ends or a frame cannot be read. `read_frame` reads one frame whose
@@ -499,8 +504,9 @@ std::optional<Stop> read_wall_frame(TokenLines& lines, WallFrame& frame) {
     const bool triangle = frame_lines.token_count() >= 2 && frame_lines.token(1) == triangle_word;
     const std::size_t corners = plate ? 4 : 3;
     if ((!plate && !triangle) || frame_lines.token_count() != 2 + 3 * corners)
-      return malformed(line_prefix(frame_lines.line_number()) + "expected a wall line (" + std::string(wall_line_layout) +
-                       "), found " + std::to_string(frame_lines.token_count()) + " values");
+      return malformed(line_prefix(frame_lines.line_number()) + "expected a wall line (" +
+                       std::string(wall_line_layout) + "), found " + std::to_string(frame_lines.token_count()) +
+                       " values");
     LineValues values = frame_lines.values();
     if (plate) {
       AnimationPlate& p = frame.plates.emplace_back();
@@ -599,7 +605,7 @@ void write_wall_frame(std::FILE* out, const WallFrame& frame, NumberFormat forma
   FrameText text(1 + frame.plates.size() + frame.triangles.size());
   text.word(wall_header);
   text.integer(frame.step);
-  text.integer(static_cast<long long>(frame.plates.size() + frame.triangles.size()));
+  text.integer(static_cast<long long>(frame.plates.size()) + static_cast<long long>(frame.triangles.size()));
   text.end_line();
   write_polygons(text, frame.plates, frame.triangles, style);
   text.write_to(out);

@@ -52,22 +52,23 @@ std::vector<TokenLine> token_lines(const std::string& text) {
 double real_at(const std::string& name, const TokenLine& line, int k) {
   const auto value = legacy::parse_fortran_real(line.tokens[k]);
   if (!value)
-    throw MeshError(name + " line " + std::to_string(line.number) + ": expected a number, got \"" + line.tokens[k] + "\"");
+    throw MeshError(name + " line " + std::to_string(line.number) + ": expected a number, got \"" + line.tokens[k] +
+                    "\"");
   return *value;
 }
 
 int count_at(const std::string& name, const TokenLine& line, int k, const char* what) {
   const double value = real_at(name, line, k);
   if (value < 0 || value != std::floor(value) || value > 2e9)
-    throw MeshError(name + " line " + std::to_string(line.number) + ": " + what + " must be a whole number >= 0, got \"" +
-                    line.tokens[k] + "\"");
+    throw MeshError(name + " line " + std::to_string(line.number) + ": " + what +
+                    " must be a whole number >= 0, got \"" + line.tokens[k] + "\"");
   return static_cast<int>(value);
 }
 
 void expect_tokens(const std::string& name, const TokenLine& line, std::size_t count, const char* what) {
   if (line.tokens.size() != count)
-    throw MeshError(name + " line " + std::to_string(line.number) + ": expected " + std::to_string(count) + " values (" +
-                    what + "), got " + std::to_string(line.tokens.size()));
+    throw MeshError(name + " line " + std::to_string(line.number) + ": expected " + std::to_string(count) +
+                    " values (" + what + "), got " + std::to_string(line.tokens.size()));
 }
 
 TriangleMesh parse_ascii_stl(const std::string& text, const std::string& name) {
@@ -116,8 +117,8 @@ TriangleMesh parse_binary_stl(const std::string& bytes, const std::string& name)
   std::memcpy(&count, bytes.data() + 80, 4);
   const std::size_t need = 84 + 50 * static_cast<std::size_t>(count);
   if (bytes.size() < need)
-    throw MeshError(name + ": binary STL header says " + std::to_string(count) + " triangles, but the file holds only " +
-                    std::to_string((bytes.size() - 84) / 50) + " (truncated)");
+    throw MeshError(name + ": binary STL header says " + std::to_string(count) +
+                    " triangles, but the file holds only " + std::to_string((bytes.size() - 84) / 50) + " (truncated)");
   if (count == 0) throw MeshError(name + ": binary STL with no triangles");
   TriangleMesh mesh;
   std::map<std::tuple<float, float, float>, int> index_of;
@@ -126,7 +127,8 @@ TriangleMesh parse_binary_stl(const std::string& bytes, const std::string& name)
     std::array<int, 3> tri{};
     for (int k = 0; k < 3; ++k) {
       float xyz[3];
-      std::memcpy(xyz, record + 12 + 12 * k, 12);  // after the facet normal, which is recomputed
+      std::memcpy(xyz, record + 12 + 12 * static_cast<std::size_t>(k),
+                  12);  // after the facet normal, which is recomputed
       auto [it, added] = index_of.try_emplace({xyz[0], xyz[1], xyz[2]}, static_cast<int>(mesh.vertices.size()));
       if (added) mesh.vertices.emplace_back(xyz[0], xyz[1], xyz[2]);
       tri[k] = it->second;
@@ -208,7 +210,8 @@ void write_legacy_mesh(std::FILE* out, const TriangleMesh& mesh, double length_u
   char digits[64];
   for (const Vec3& v : mesh.vertices) {
     for (int axis = 0; axis < 3; ++axis) {
-      const auto r = std::to_chars(digits, digits + sizeof digits, v[axis] / length_unit, std::chars_format::scientific, 6);
+      const auto r =
+          std::to_chars(digits, digits + sizeof digits, v[axis] / length_unit, std::chars_format::scientific, 6);
       text.append(digits, r.ptr);
       text.push_back(axis < 2 ? ' ' : '\n');
     }

@@ -79,7 +79,7 @@ MeshWall MeshWall::from(const WallInit& init, int boundary) {
       const int first = m.topology.edge_triangle_start[e], count = m.topology.edge_triangle_start[e + 1] - first;
       if (count != 2) continue;  // an open edge, or one of more than two triangles: no valley
       const int u = m.topology.edge_triangles[first] == static_cast<int>(t) ? m.topology.edge_triangles[first + 1]
-                                                                             : m.topology.edge_triangles[first];
+                                                                            : m.topology.edge_triangles[first];
       const auto& edge = m.topology.edges[e];
       int far = m.triangles[u][0];
       for (int v : m.triangles[u])
@@ -164,7 +164,8 @@ bool triangle_has_vertex(const MeshWall& mesh, int t, int v) {
 // In-plane unit normal of triangle t's edge j pointing into t.
 Vec3 inward_normal(const MeshWall& mesh, int t, int j) {
   const auto& tri = mesh.triangles[t];
-  const Vec3 p0 = mesh.vertices[tri[j]], p1 = mesh.vertices[tri[(j + 1) % 3]], opposite = mesh.vertices[tri[(j + 2) % 3]];
+  const Vec3 p0 = mesh.vertices[tri[j]], p1 = mesh.vertices[tri[(j + 1) % 3]],
+             opposite = mesh.vertices[tri[(j + 2) % 3]];
   Vec3 m = mesh.normals[t].cross(p1 - p0).normalized();
   return m.dot(opposite - p0) < 0 ? Vec3(-m) : m;
 }
@@ -387,8 +388,8 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
     bool in_touched_plane = false;
     for (int k = 0; k < planes && !in_touched_plane; ++k) {
       const int f = face_tri[k];
-      in_touched_plane = mesh.normals[t].dot(mesh.normals[f]) > 1 - 1e-12 &&
-                         std::abs(mesh.offsets[t] - mesh.offsets[f]) <= kSlack * r;
+      in_touched_plane =
+          mesh.normals[t].dot(mesh.normals[f]) > 1 - 1e-12 && std::abs(mesh.offsets[t] - mesh.offsets[f]) <= kSlack * r;
     }
     if (in_touched_plane) continue;
     const auto& tri = mesh.triangles[t];
@@ -413,7 +414,9 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
       touch.normal = (x - n.cp.point) / dist;
     } else {  // centre on the surface: the face normal, either side will do
       const auto& tri = mesh.triangles[n.triangle];
-      touch.normal = (mesh.vertices[tri[1]] - mesh.vertices[tri[0]]).cross(mesh.vertices[tri[2]] - mesh.vertices[tri[0]]).normalized();
+      touch.normal = (mesh.vertices[tri[1]] - mesh.vertices[tri[0]])
+                         .cross(mesh.vertices[tri[2]] - mesh.vertices[tri[0]])
+                         .normalized();
     }
     touch.delta = r - dist;
     touch.weight = weight;
@@ -471,10 +474,12 @@ int mesh_touches(const MeshWall& mesh, const int* candidates, int candidate_coun
     const int v = mesh.triangles[near[k].triangle][near[k].cp.index];
     bool covered = false;
     for (int o = 0; o < written && !covered; ++o) {
-      if (out[o].feature == Feature::Face) covered = triangle_has_vertex(mesh, out[o].key, v);
+      if (out[o].feature == Feature::Face)
+        covered = triangle_has_vertex(mesh, out[o].key, v);
       else if (out[o].feature == Feature::Edge)
         covered = mesh.topology.edges[out[o].key][0] == v || mesh.topology.edges[out[o].key][1] == v;
-      else covered = out[o].key == v;
+      else
+        covered = out[o].key == v;
     }
     if (!covered && in_vertex_region(mesh, v, x - near[k].cp.point)) accept(near[k], v);
   }

@@ -33,7 +33,8 @@ class TriangleGrid {
     for (int iz = a[2]; iz <= b[2]; ++iz)
       for (int iy = a[1]; iy <= b[1]; ++iy)
         for (int ix = a[0]; ix <= b[0]; ++ix) {
-          const std::size_t c = ix + static_cast<std::size_t>(dims_[0]) * (iy + static_cast<std::size_t>(dims_[1]) * iz);
+          const std::size_t c =
+              ix + static_cast<std::size_t>(dims_[0]) * (iy + static_cast<std::size_t>(dims_[1]) * iz);
           for (int k = start_[c]; k < start_[c + 1]; ++k) visit(items_[k]);
         }
   }
@@ -50,7 +51,7 @@ class TriangleGrid {
 
 struct MeshWall {
   int material = 0;
-  int boundary = 0;  // index of the wall in Scene::walls
+  int boundary = 0;             // index of the wall in Scene::walls
   std::vector<Vec3> vertices0;  // at the start
   std::vector<std::array<int, 3>> triangles;
   MeshTopology topology;
@@ -64,8 +65,8 @@ struct MeshWall {
   std::vector<std::array<double, 3>> fold;
   std::vector<std::array<int, 3>> across;  // the other triangle on each edge where fold is not 0, else -1
   WallPose pose;
-  TriangleGrid grid;            // of `vertices` when it was built
-  bool grid_stale = true;       // the mesh moved since (a fixed mesh is binned once)
+  TriangleGrid grid;       // of `vertices` when it was built
+  bool grid_stale = true;  // the mesh moved since (a fixed mesh is binned once)
 
   static MeshWall from(const WallInit& init, int boundary);
   Vec3 centroid() const;
@@ -77,12 +78,12 @@ struct MeshWall {
 // distance from the sphere's centre to the mesh surface, or a face beside a valley (below).
 struct MeshTouch {
   Feature feature;
-  int key;       // triangle (face), edge id (edge) or vertex index (vertex)
-  int triangle;  // a triangle the point lies on
-  Vec3 point;    // closest point on the mesh (a face's: the centre's projection on its plane)
-  Vec3 normal;   // unit, mesh -> sphere
-  double delta;  // overlap
-  double weight = 1;  // the share of the contact's force (below 1 only for faces at a valley)
+  int key;                              // triangle (face), edge id (edge) or vertex index (vertex)
+  int triangle;                         // a triangle the point lies on
+  Vec3 point;                           // closest point on the mesh (a face's: the centre's projection on its plane)
+  Vec3 normal;                          // unit, mesh -> sphere
+  double delta;                         // overlap
+  double weight = 1;                    // the share of the contact's force (below 1 only for faces at a valley)
   Vec3 weight_gradient = Vec3::Zero();  // of the weight in the sphere's centre (1 / m)
 };
 

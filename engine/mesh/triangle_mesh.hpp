@@ -32,11 +32,11 @@ void check_mesh(const TriangleMesh& mesh, Where&& where);
 
 // Connectivity of a mesh, built once.
 struct MeshTopology {
-  std::vector<std::array<int, 2>> edges;      // vertex pairs, lower index first
+  std::vector<std::array<int, 2>> edges;           // vertex pairs, lower index first
   std::vector<std::array<int, 3>> triangle_edges;  // edge ids of (v0 v1), (v1 v2), (v2 v0)
-  std::vector<int> edge_triangle_start;       // triangles of edge e: edge_triangles[start[e] .. start[e+1])
+  std::vector<int> edge_triangle_start;            // triangles of edge e: edge_triangles[start[e] .. start[e+1])
   std::vector<int> edge_triangles;
-  std::vector<int> vertex_neighbor_start;     // vertices joined to v by an edge, the same layout
+  std::vector<int> vertex_neighbor_start;  // vertices joined to v by an edge, the same layout
   std::vector<int> vertex_neighbors;
 
   explicit MeshTopology(const TriangleMesh& mesh);

@@ -120,7 +120,8 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
       throw CrowdedError("more than " + std::to_string(kMostPairsPerParticle) +
                          " neighbours within reach of each particle around particle " + std::to_string(p.id[i] + 1) +
                          " (at " + std::to_string(p.x[i].x()) + ", " + std::to_string(p.x[i].y()) + ", " +
-                         std::to_string(p.x[i].z()) + "): particles there overlap far past contact, or lie on top of "
+                         std::to_string(p.x[i].z()) +
+                         "): particles there overlap far past contact, or lie on top of "
                          "each other");
     }
   for (const auto& found : block_pairs)
@@ -152,8 +153,10 @@ void build_neighbor_list(const Particles& p, const NeighborBuildOptions& options
   // Carry the history of pairs that were already listed.
   next.shear.assign(pairs, Vec3::Zero());
   next.touched.assign(pairs, 0);
-  if (options.keep_rolling_history) next.roll.assign(pairs, Vec3::Zero());
-  else next.roll.clear();
+  if (options.keep_rolling_history)
+    next.roll.assign(pairs, Vec3::Zero());
+  else
+    next.roll.clear();
   if (previous.partner.empty()) return;
   const bool keep_roll = options.keep_rolling_history && !previous.roll.empty();
 #pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)

@@ -64,9 +64,8 @@ struct NeighborBuildOptions {
 // Builds `next` from the particles; history is carried over from `previous` (whose indices are old
 // indices: new index k was old index new_to_old[k]; pass an empty map when nothing was re-sorted).
 // When the roles of a pair swap (old j < old i), its stored vectors change sign.
-void build_neighbor_list(const Particles& particles, const NeighborBuildOptions& options,
-                         const NeighborList& previous, const std::vector<int>& new_to_old,
-                         NeighborList& next);
+void build_neighbor_list(const Particles& particles, const NeighborBuildOptions& options, const NeighborList& previous,
+                         const std::vector<int>& new_to_old, NeighborList& next);
 
 // A permutation (new_to_old) that orders particles along a cell grid, for memory locality.
 std::vector<int> spatial_order(const Particles& particles, double cell_size);

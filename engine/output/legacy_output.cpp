@@ -12,9 +12,12 @@ namespace dem {
 
 legacy::NumberFormat file_format(const Simulation& sim) {
   switch (sim.scene().outputs.number_format) {
-    case FileNumberFormat::LegacyFixed: return legacy::NumberFormat::LegacyFixed;
-    case FileNumberFormat::Full: return legacy::NumberFormat::Full;
-    case FileNumberFormat::Scientific: break;
+    case FileNumberFormat::LegacyFixed:
+      return legacy::NumberFormat::LegacyFixed;
+    case FileNumberFormat::Full:
+      return legacy::NumberFormat::Full;
+    case FileNumberFormat::Scientific:
+      break;
   }
   return legacy::NumberFormat::Scientific;
 }
@@ -160,9 +163,8 @@ legacy::WallForceChainFrame WallForceChainWriter::make_frame(const Simulation& s
   legacy::WallForceChainFrame frame;
   frame.step = sim.step_count();
   for (const WallContact& c : sim.wall_contacts()) frame.chains.push_back({id[c.i] + 1, c.wall + 1, c.fn, c.ft});
-  std::stable_sort(frame.chains.begin(), frame.chains.end(), [](const auto& a, const auto& b) {
-    return a.i != b.i ? a.i < b.i : a.wall < b.wall;
-  });
+  std::stable_sort(frame.chains.begin(), frame.chains.end(),
+                   [](const auto& a, const auto& b) { return a.i != b.i ? a.i < b.i : a.wall < b.wall; });
   return frame;
 }
 
@@ -171,8 +173,7 @@ void WallForceChainWriter::frame(const Simulation& sim) {
   file_.flush();
 }
 
-ForceDisplacementWriter::ForceDisplacementWriter(const std::string& path, bool append)
-    : file_(path, append) {}
+ForceDisplacementWriter::ForceDisplacementWriter(const std::string& path, bool append) : file_(path, append) {}
 
 int ForceDisplacementWriter::loading_wall(const Simulation& sim) {
   for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k)
@@ -207,8 +208,9 @@ legacy::ForceChainFrame ForceChainWriter::make_frame(const Simulation& sim) {
     const int a = id[c.i] + 1, b = id[c.j] + 1;
     frame.chains.push_back({std::min(a, b), std::max(a, b), c.fn, c.ft});
   }
-  std::sort(frame.chains.begin(), frame.chains.end(),
-            [](const legacy::ForceChain& x, const legacy::ForceChain& y) { return x.i != y.i ? x.i < y.i : x.j < y.j; });
+  std::sort(frame.chains.begin(), frame.chains.end(), [](const legacy::ForceChain& x, const legacy::ForceChain& y) {
+    return x.i != y.i ? x.i < y.i : x.j < y.j;
+  });
   return frame;
 }
 

@@ -96,7 +96,8 @@ void StatisticsWriter::frame(const Simulation& sim) {
       return x.time != y.time ? x.time < y.time : (x.i != y.i ? x.i < y.i : x.j < y.j);
     });
     for (const Break& b : fresh)
-      legacy::write_row(breaks_.get(), {b.time, static_cast<double>(b.i), static_cast<double>(b.j), static_cast<double>(b.mode)},
+      legacy::write_row(breaks_.get(),
+                        {b.time, static_cast<double>(b.i), static_cast<double>(b.j), static_cast<double>(b.mode)},
                         counts);
     breaks_.flush();
   }

@@ -24,8 +24,10 @@ class ForceKernelImpl final : public ForceKernel {
 
   void compute_and_kick(SimState& s) override {
     s.deep_overlap.store(false, std::memory_order_relaxed);
-    if (s.record_contacts) evaluate_pairs<true>(s, table_);
-    else evaluate_pairs<false>(s, table_);
+    if (s.record_contacts)
+      evaluate_pairs<true>(s, table_);
+    else
+      evaluate_pairs<false>(s, table_);
     const bool bonded = !s.bonds.empty();
     if (bonded) {  // bonds add to f_next and particles.t; the kick adds those to the pairs' sums
       std::fill(s.f_next.begin(), s.f_next.end(), Vec3::Zero());
@@ -95,8 +97,8 @@ class ForceKernelImpl final : public ForceKernel {
           const double delta = slot.delta + (ri - p.radius[i]);
           if (delta <= 0) continue;
           note(i, -1, delta, ri,
-               slot.weight * Law::stored_energy(table_(p.material[i], s.meshes[slot.mesh].material), delta, ri, slot.shear,
-                                                slot.roll),
+               slot.weight * Law::stored_energy(table_(p.material[i], s.meshes[slot.mesh].material), delta, ri,
+                                                slot.shear, slot.roll),
                mc.constants[i].sqrt_m_eff);
         }
       }
@@ -107,7 +109,8 @@ class ForceKernelImpl final : public ForceKernel {
   // A listed pair parted since the last sample: the spring's impulse that sample could not see
   // (spring_boundary_correction), along the line of the centres so that both momenta stay. Rare:
   // kept out of the force loop.
-  [[gnu::noinline]] static void add_parting_push(SimState& s, const PairTable<Pair>& table, int k, int i, int j, int to) {
+  [[gnu::noinline]] static void add_parting_push(SimState& s, const PairTable<Pair>& table, int k, int i, int j,
+                                                 int to) {
     const Particles& p = s.particles;
     const Vec3 d = p.x[i] - p.x[j];
     const double rs = p.radius[i] + p.radius[j], dist = d.norm();
@@ -156,7 +159,7 @@ class ForceKernelImpl final : public ForceKernel {
   // region stays outside it), and it runs only where the CPU has AVX2 (pair_lanes()).
   template <bool kRecord>
   [[gnu::target("avx2"), gnu::noinline]] static void pairs_of_block_avx2(SimState& s, const PairTable<Pair>& table,
-                                                                          int begin, int end) {
+                                                                         int begin, int end) {
     pairs_of_block<4, kRecord>(s, table, begin, end);
   }
 #endif
@@ -431,10 +434,10 @@ class ForceKernelImpl final : public ForceKernel {
   // torque to f and t. shear and roll are the contact's springs, updated in place. `weight` (a mesh
   // face's share at a valley, mesh/mesh_wall.hpp) scales what the contact applies, not its springs.
   DEM_HOT static ContactOutput<double> wall_contact(SimState& s, const PairTable<Pair>& table, int i,
-                                                    const Vec3& normal, double delta,
-                                                    const Vec3& point, const WallPose& pose, int wall_material,
-                                                    const PairConstants& pc, Vec3& shear, Vec3& roll, Vec3& f,
-                                                    Vec3& t, bool first_sample, double weight = 1) {
+                                                    const Vec3& normal, double delta, const Vec3& point,
+                                                    const WallPose& pose, int wall_material, const PairConstants& pc,
+                                                    Vec3& shear, Vec3& roll, Vec3& f, Vec3& t, bool first_sample,
+                                                    double weight = 1) {
     const Particles& p = s.particles;
     if (delta > s.overlap_limit * p.radius[i]) s.deep_overlap.store(true, std::memory_order_relaxed);
     const double li = p.radius[i] - 0.5 * delta;  // to the contact point, as for a pair
@@ -516,9 +519,8 @@ class ForceKernelImpl final : public ForceKernel {
       Vec3 unused_roll = Vec3::Zero();
       Vec3& roll = Law::kRollingSpring ? wc.roll[e] : unused_roll;
       const Vec3 point = p.x[i] - (ri - 0.5 * delta) * normal;  // the middle of the overlap
-      const ContactOutput<double> r =
-          wall_contact(s, table, i, normal, delta, point, wall.pose, wall.material, wc.constants[e], wc.shear[e], roll, f, t,
-                       !wc.touching[e]);
+      const ContactOutput<double> r = wall_contact(s, table, i, normal, delta, point, wall.pose, wall.material,
+                                                   wc.constants[e], wc.shear[e], roll, f, t, !wc.touching[e]);
       wc.fn[e] = r.fn;
       if (s.record_contacts) wc.ft[e] = std::sqrt(squared_norm(r.shear_force));
       wc.force[e] = r.force.get(0);
@@ -550,7 +552,8 @@ class ForceKernelImpl final : public ForceKernel {
     } before[kSlots];
     bool taken[kSlots] = {};
     int had = 0;
-    for (; mc.used[i] && had < kSlots && now[had].mesh >= 0; ++had) before[had] = {now[had].mesh, now[had].normal, now[had].shear, now[had].roll, now[had].delta, now[had].weight};
+    for (; mc.used[i] && had < kSlots && now[had].mesh >= 0; ++had)
+      before[had] = {now[had].mesh, now[had].normal, now[had].shear, now[had].roll, now[had].delta, now[had].weight};
     const double ri = p.radius[i];
     const PairConstants& pc = mc.constants[i];
     int filled = 0;
@@ -588,7 +591,8 @@ class ForceKernelImpl final : public ForceKernel {
         slot.normal = touch.normal;
         slot.force = r.force.get(0);
         if (touch.weight != 1) {  // a face shared at a valley: the pull of its weight, through the centre
-          const double stored = Normal::elastic_energy(table(p.material[i], s.meshes[m].material).normal, touch.delta, ri);
+          const double stored =
+              Normal::elastic_energy(table(p.material[i], s.meshes[m].material).normal, touch.delta, ri);
           const Vec3 pull = -stored * touch.weight_gradient;
           f += pull;
           slot.force += pull;
@@ -614,8 +618,8 @@ class ForceKernelImpl final : public ForceKernel {
       if (parting.mesh >= 0 && parting.mesh != h.mesh) continue;
       const double vn = leaving_speed(s, i, h.normal, s.meshes[h.mesh].pose);
       if (!(vn > 0 && h.delta <= vn * s.dt)) continue;
-      const double push = Law::parting_correction(table(p.material[i], s.meshes[h.mesh].material), h.delta,
-                                                  vn * s.dt, pc.r_eff, vn, pc.sqrt_m_eff);
+      const double push = Law::parting_correction(table(p.material[i], s.meshes[h.mesh].material), h.delta, vn * s.dt,
+                                                  pc.r_eff, vn, pc.sqrt_m_eff);
       const Vec3 force = (h.weight * push) * h.normal;
       f += force;
       parting.mesh = h.mesh;

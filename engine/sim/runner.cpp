@@ -48,7 +48,8 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
         const double since = std::chrono::duration<double>(now - last_report).count();
         if (since >= options.progress_seconds || s == total) {
           const double rate = static_cast<double>(s - steps_at_report) / std::max(since, 1e-9);
-          if (options.on_progress) options.on_progress({s, total, rate, rate > 0 ? static_cast<double>(total - s) / rate : 0});
+          if (options.on_progress)
+            options.on_progress({s, total, rate, rate > 0 ? static_cast<double>(total - s) / rate : 0});
           if (options.periodically) {
             guard.check_writable(sim);  // the server saves a checkpoint here
             options.periodically(sim);

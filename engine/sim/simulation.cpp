@@ -79,9 +79,11 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   state_.gravity = scene_.gravity;
   state_.overlap_limit = scene_.numerics.max_overlap_fraction;
   state_.local_damping = scene_.numerics.local_damping;
-  for (const ParticleInit& init : scene_.particles) largest_given_radius_ = std::max(largest_given_radius_, init.radius);
+  for (const ParticleInit& init : scene_.particles)
+    largest_given_radius_ = std::max(largest_given_radius_, init.radius);
   smallest_given_radius_ = largest_given_radius_;
-  for (const ParticleInit& init : scene_.particles) smallest_given_radius_ = std::min(smallest_given_radius_, init.radius);
+  for (const ParticleInit& init : scene_.particles)
+    smallest_given_radius_ = std::min(smallest_given_radius_, init.radius);
   refuse_positions_past_precision();
   const int boundaries = static_cast<int>(scene_.walls.size());
   plane_index_.assign(boundaries, -1);
@@ -140,19 +142,21 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
     const double move = fastest_wall_speed(scene_, scene_.walls[k]) * state_.dt;
     if (move <= wall_reach) continue;
     char buf[480];
-    std::snprintf(buf, sizeof buf,
-                  "walls[%d] (%s): its motion moves it up to %.3e m in one step of %.6e s, more than %.3g of the smallest "
-                  "particle radius (%.3e m): it would pass through particles unseen; make it slower, or the step smaller "
-                  "(time.dt or time.dtFraction)",
-                  k, scene_.walls[k].name.c_str(), move, state_.dt, 0.5 * scene_.numerics.max_overlap_fraction,
-                  smallest_given_radius_);
+    std::snprintf(
+        buf, sizeof buf,
+        "walls[%d] (%s): its motion moves it up to %.3e m in one step of %.6e s, more than %.3g of the smallest "
+        "particle radius (%.3e m): it would pass through particles unseen; make it slower, or the step smaller "
+        "(time.dt or time.dtFraction)",
+        k, scene_.walls[k].name.c_str(), move, state_.dt, 0.5 * scene_.numerics.max_overlap_fraction,
+        smallest_given_radius_);
     throw SceneError(buf);
   }
   // Step counts are int64 and times step * dt: past 2^53 steps neither is exact any more.
   constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
   if (scene_.time.steps > 0) {
     if (scene_.time.steps > (std::int64_t{1} << 53))
-      throw SceneError("time.steps: " + std::to_string(scene_.time.steps) + " is more than a run can count (at most 2^53)");
+      throw SceneError("time.steps: " + std::to_string(scene_.time.steps) +
+                       " is more than a run can count (at most 2^53)");
     total_steps_ = scene_.time.steps;
   } else {
     // at least one step for any positive duration (5e-324 s once ran none)
@@ -212,8 +216,10 @@ void Simulation::move_walls(double t_new, double dt) {
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
     if (!drivers_[k].moves()) continue;
     drivers_[k].begin_step(t_new, dt);
-    if (plane_index_[k] >= 0) state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
-    else state_.meshes[mesh_index_[k]].move_to(drivers_[k].pose());
+    if (plane_index_[k] >= 0)
+      state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
+    else
+      state_.meshes[mesh_index_[k]].move_to(drivers_[k].pose());
   }
 }
 
@@ -254,8 +260,10 @@ void Simulation::settle_walls(double t_new, double dt) {
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
     if (!drivers_[k].load_controlled()) continue;
     drivers_[k].end_step(t_new, dt, boundary_loads_[k].force);
-    if (plane_index_[k] >= 0) state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
-    else state_.meshes[mesh_index_[k]].move_to(drivers_[k].pose());
+    if (plane_index_[k] >= 0)
+      state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
+    else
+      state_.meshes[mesh_index_[k]].move_to(drivers_[k].pose());
   }
 }
 
@@ -286,8 +294,9 @@ void Simulation::check_wall_moves(const std::vector<WallPose>& before) {
     const double angle = std::acos(std::clamp((turn.trace() - 1) / 2, -1.0, 1.0));
     const double moved = (now.displacement - before[k].displacement).norm() + angle * wall_extent_[k];
     if (moved > reach) {
-      first_too_fast_ = TooFast{step_ + 1, static_cast<double>(step_ + 1) * state_.dt, -1, moved, smallest_given_radius_,
-                               static_cast<int>(k)};
+      first_too_fast_ =
+          TooFast{step_ + 1,          static_cast<double>(step_ + 1) * state_.dt, -1, moved, smallest_given_radius_,
+                  static_cast<int>(k)};
       return;
     }
   }
@@ -329,10 +338,11 @@ void Simulation::refuse_coincident_particles() const {
       if ((p.x[i] - p.x[j]).squaredNorm() > close * close) continue;
       const int a = std::min(p.id[i], p.id[j]) + 1, b = std::max(p.id[i], p.id[j]) + 1;
       char buf[300];
-      std::snprintf(buf, sizeof buf,
-                    "particles: particles %d and %d are at the same place (centres %.3e m apart, radii %.3e and %.3e m): "
-                    "a contact between them has no direction; move one of them",
-                    a, b, (p.x[i] - p.x[j]).norm(), p.radius[i], p.radius[j]);
+      std::snprintf(
+          buf, sizeof buf,
+          "particles: particles %d and %d are at the same place (centres %.3e m apart, radii %.3e and %.3e m): "
+          "a contact between them has no direction; move one of them",
+          a, b, (p.x[i] - p.x[j]).norm(), p.radius[i], p.radius[j]);
       throw SceneError(buf);
     }
 }
@@ -373,7 +383,8 @@ void Simulation::step() {
   state_.time = t_new;
   double moved2 = half_kick_and_drift();
   if (!state_.bodies.empty())  // the members move with their bodies, not as the drift above moved them
-    moved2 = std::max(moved2, drift_bodies(state_.bodies, state_.particles, x_at_build_, state_.dt));
+    moved2 = std::max(moved2, drift_bodies(state_.bodies, state_.particles, x_at_build_, state_.dt, state_.half_kick,
+                                           state_.spin_kick));
   const double grown = grow(growth_at_start);
   const double half_skin = 0.5 * skin_;
   const int interval = scene_.numerics.search_interval;
@@ -444,9 +455,9 @@ double Simulation::grow(double contacts_work_at_start) {
   // (the elastic energy the ledger counts) at the positions of the step's start and of its end,
   // averaged (the step moves the particles with the forces of the old radii, then of the new: either
   // end alone is off by half the change of force times the move; in a packing grown without damping
-  // the energy then missed the work by 3e-3 of it, with the average by 4e-5); and each free particle's energies changing with its mass at its speed,
-  // spin and height (1/2 dm v^2 + 1/2 dI w^2 - dm g.x). Not the contact forces times the overlaps'
-  // growth: their dashpots pull while grown spheres push apart, and counting that pull made damped
+  // the energy then missed the work by 3e-3 of it, with the average by 4e-5); and each free particle's energies
+  // changing with its mass at its speed, spin and height (1/2 dm v^2 + 1/2 dI w^2 - dm g.x). Not the contact forces
+  // times the overlaps' growth: their dashpots pull while grown spheres push apart, and counting that pull made damped
   // contacts look like sources (the guard stopped the PDEM-EGD manual's set-up at eps 0.2).
   const std::vector<double> radius = grown_radii();
   const double work_at_end = kernel_->elastic_energy(state_, radius) - kernel_->elastic_energy(state_, p.radius);
@@ -662,7 +673,8 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
     std::vector<MeshSlot> moved(mc.slots.size());
     for (int i = 0; i < n; ++i)
       for (int k = 0; k < kSlots; ++k)
-        moved[static_cast<std::size_t>(i) * kSlots + k] = mc.slots[static_cast<std::size_t>(new_to_old[i]) * kSlots + k];
+        moved[static_cast<std::size_t>(i) * kSlots + k] =
+            mc.slots[static_cast<std::size_t>(new_to_old[i]) * kSlots + k];
     mc.slots.swap(moved);
     permute_array(mc.used, new_to_old);
   }
@@ -799,7 +811,8 @@ std::vector<WallContact> Simulation::wall_contacts() const {
         if (wc.touching[e]) mine.push_back({i, boundary_of_plane[wc.wall[e]], wc.fn[e], wc.ft[e]});
     for (int k = 0, used = mc.count(i); k < used; ++k)
       mine.push_back({i, state_.meshes[mc.slot(i, k).mesh].boundary, mc.slot(i, k).fn, mc.slot(i, k).ft});
-    std::stable_sort(mine.begin(), mine.end(), [](const WallContact& a, const WallContact& b) { return a.wall < b.wall; });
+    std::stable_sort(mine.begin(), mine.end(),
+                     [](const WallContact& a, const WallContact& b) { return a.wall < b.wall; });
     out.insert(out.end(), mine.begin(), mine.end());
   }
   return out;

@@ -31,7 +31,7 @@ struct WallContact {
 };
 
 struct PairContact {
-  int i;      // particle index (not id)
+  int i;  // particle index (not id)
   int j;
   double fn;  // normal force, N
   double ft;  // tangential force magnitude, N
@@ -67,7 +67,7 @@ struct EnergyLedger {
   double external = 0;
   double growth = 0;
   double total() const { return walls + external + growth; }
-  double magnitude = 0;  // sum of the sizes of every step's contributions (for the guard's slack)
+  double magnitude = 0;       // sum of the sizes of every step's contributions (for the guard's slack)
   double initial_energy = 0;  // the mechanical energy at t = 0 (kinetic, elastic, gravitational)
 };
 
@@ -119,7 +119,7 @@ class Simulation {
   // Per wall of the scene, updated every step.
   const std::vector<BoundaryLoad>& boundary_loads() const { return boundary_loads_; }
   const WallDriver& wall_driver(int wall) const { return drivers_[wall]; }
-  const std::vector<Wall>& walls() const { return state_.walls; }     // planes and plates
+  const std::vector<Wall>& walls() const { return state_.walls; }  // planes and plates
   const std::vector<MeshWall>& meshes() const { return state_.meshes; }
   // Index in walls() or meshes() of scene wall k (-1 when it is the other kind).
   int plane_index(int k) const { return plane_index_[k]; }
@@ -147,15 +147,15 @@ class Simulation {
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);
   void plan_blocks();
   void build_mesh_contacts(const std::vector<int>& new_to_old);
-  void move_walls(double t_new, double dt);  // the walls' first half of the step
+  void move_walls(double t_new, double dt);    // the walls' first half of the step
   void settle_walls(double t_new, double dt);  // loads from this step's forces, then their second half
   double wall_shift_since_build() const;
   // The growth of this step (Scene::growth), given its work on the contacts at the step's start
   // positions; returns how much the largest radius grew since the last build.
   double grow(double contacts_work_at_start);
-  bool growing() const;                      // this step grows the radii
-  double grown_scale() const;                // the radii's scale after this step's growth
-  std::vector<double> grown_radii() const;   // the radii after this step's growth
+  bool growing() const;                     // this step grows the radii
+  double grown_scale() const;               // the radii's scale after this step's growth
+  std::vector<double> grown_radii() const;  // the radii after this step's growth
   // What this step's growth adds to the contacts' stored energy at the particles' positions now.
   double growth_energy_at_positions_now() const;
   // The contacts' reduced masses, radii and rolling inertias from the particles' radii and masses
@@ -173,19 +173,19 @@ class Simulation {
   int builds_ = 0;
   bool contacts_recorded_ = true;
   std::int64_t last_build_step_ = 0;
-  std::vector<WallDriver> drivers_;         // per scene wall
+  std::vector<WallDriver> drivers_;  // per scene wall
   std::vector<int> plane_index_, mesh_index_;
-  std::vector<int> boundary_of_plane_;      // scene wall of each plane or plate
-  std::vector<WallPose> pose_at_build_;     // per scene wall
-  std::vector<double> wall_extent_;         // largest distance of a wall's points from its centre
+  std::vector<int> boundary_of_plane_;   // scene wall of each plane or plate
+  std::vector<WallPose> pose_at_build_;  // per scene wall
+  std::vector<double> wall_extent_;      // largest distance of a wall's points from its centre
   std::vector<BoundaryLoad> boundary_loads_;
-  double largest_given_radius_ = 0;         // of the scene's particles (growth scales it)
-  double smallest_given_radius_ = 0;        // of the scene's particles
-  double growth_scale_ = 1;                 // radii now over their given sizes (Scene::growth)
-  double growth_at_build_ = 1;              // the same at the last build
+  double largest_given_radius_ = 0;   // of the scene's particles (growth scales it)
+  double smallest_given_radius_ = 0;  // of the scene's particles
+  double growth_scale_ = 1;           // radii now over their given sizes (Scene::growth)
+  double growth_at_build_ = 1;        // the same at the last build
   std::optional<NonFinite> first_non_finite_;
   std::optional<TooFast> first_too_fast_;
-  bool moved_too_far_ = false;              // set by the last drift
+  bool moved_too_far_ = false;  // set by the last drift
   EnergyLedger ledger_;
 };
 

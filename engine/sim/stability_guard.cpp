@@ -35,7 +35,8 @@ StabilityGuard::StabilityGuard(const Simulation& sim) {
     hi = hi.cwiseMax(p.x[i]);
   }
   const double height = p.size() > 0 ? (hi - lo).norm() + 2 * p.radius[0] : 0;
-  energy_scale_ = sim.kinetic_energy() + contacts.elastic_energy + sim.bonds().elastic_energy() + mass * sim.state().gravity.norm() * height;
+  energy_scale_ = sim.kinetic_energy() + contacts.elastic_energy + sim.bonds().elastic_energy() +
+                  mass * sim.state().gravity.norm() * height;
   input_at_start_ = sim.energy_input();
 }
 
@@ -47,13 +48,13 @@ double StabilityGuard::mechanical_energy(const Simulation& sim, const ContactSum
 void StabilityGuard::check_finite(const Simulation& sim) const {
   if (const std::optional<TooFast>& fast = sim.first_too_fast(); fast && fast->wall >= 0) {
     char buf[480];
-    std::snprintf(buf, sizeof buf,
-                  "unstable: wall %d (%s) moved %.3e m in one step at step %lld (t = %.6e s), more than %.3g of the "
-                  "smallest particle radius (%.3e m): it could pass through particles unseen; likely cause: its load "
-                  "drives it faster than the time step resolves (a servo's maxSpeed, or a cyclic load on a light wall; ",
-                  fast->wall + 1, sim.scene().walls[fast->wall].name.c_str(), fast->distance,
-                  static_cast<long long>(fast->step), fast->time, 0.5 * sim.scene().numerics.max_overlap_fraction,
-                  fast->radius);
+    std::snprintf(
+        buf, sizeof buf,
+        "unstable: wall %d (%s) moved %.3e m in one step at step %lld (t = %.6e s), more than %.3g of the "
+        "smallest particle radius (%.3e m): it could pass through particles unseen; likely cause: its load "
+        "drives it faster than the time step resolves (a servo's maxSpeed, or a cyclic load on a light wall; ",
+        fast->wall + 1, sim.scene().walls[fast->wall].name.c_str(), fast->distance, static_cast<long long>(fast->step),
+        fast->time, 0.5 * sim.scene().numerics.max_overlap_fraction, fast->radius);
     throw InstabilityError(buf + sim.time_step().describe() + ")");
   }
   if (const std::optional<TooFast>& fast = sim.first_too_fast()) {
@@ -92,7 +93,8 @@ void StabilityGuard::check_writable(const Simulation& sim) const {
   }
   // finite states whose energies or wall loads overflow: the files would hold inf
   bool walls_finite = true;
-  for (const BoundaryLoad& load : sim.boundary_loads()) walls_finite = walls_finite && load.force.allFinite() && load.torque.allFinite();
+  for (const BoundaryLoad& load : sim.boundary_loads())
+    walls_finite = walls_finite && load.force.allFinite() && load.torque.allFinite();
   for (std::size_t k = 0; k < sim.scene().walls.size(); ++k) {
     const WallPose& pose = sim.wall_driver(static_cast<int>(k)).pose();
     walls_finite = walls_finite && pose.displacement.allFinite() && pose.rotation.allFinite();
@@ -106,8 +108,9 @@ void StabilityGuard::check_writable(const Simulation& sim) const {
     std::snprintf(buf, sizeof buf, "unstable: %s overflowed at step %lld (t = %.6e s)",
                   walls_finite ? "the kinetic, potential or stored elastic energy" : "a wall's load or position",
                   static_cast<long long>(sim.step_count()), sim.time());
-    throw InstabilityError(buf + std::string("; likely cause: the time step is too large for the contact stiffness, "
-                                             "or speeds or forces far beyond the scene's scale (") +
+    throw InstabilityError(buf +
+                           std::string("; likely cause: the time step is too large for the contact stiffness, "
+                                       "or speeds or forces far beyond the scene's scale (") +
                            sim.time_step().describe() + ")");
   }
 }
@@ -121,9 +124,9 @@ void StabilityGuard::check(const Simulation& sim) const {
     char buf[200];
     std::snprintf(buf, sizeof buf, "unstable: overlap of %.3g times the radius (limit %.3g) ",
                   contacts.max_overlap_fraction, limit);
-    const std::string partner = contacts.worst_partner >= 0
-                                    ? " (its contact with particle " + std::to_string(p.id[contacts.worst_partner] + 1) + ")"
-                                    : " (its contact with a wall)";
+    const std::string partner = contacts.worst_partner >= 0 ? " (its contact with particle " +
+                                                                  std::to_string(p.id[contacts.worst_partner] + 1) + ")"
+                                                            : " (its contact with a wall)";
     if (sim.step_count() == 0)  // before any step: the overlap is where the particles were put
       throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner +
                              " as placed, before the first step; likely cause: the scene's initial positions (move "
@@ -139,7 +142,8 @@ void StabilityGuard::check(const Simulation& sim) const {
     }
     throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner +
                            "; likely cause: the contact stiffness is too low for the load, or the time step "
-                           "too large (" + sim.time_step().describe() + ")");
+                           "too large (" +
+                           sim.time_step().describe() + ")");
   }
   // Damping and friction only take energy out; what walls, external forces and growth put in is
   // counted (Simulation::energy_input). Allow for integration error and unseen springs: 5% of the

@@ -17,16 +17,16 @@ namespace dem {
 
 // Particle-wall candidates of each particle (compressed rows), rebuilt with the neighbour list.
 struct WallContacts {
-  std::vector<int> row_start;  // size n + 1
-  std::vector<int> wall;       // wall index of each entry
-  std::vector<Vec3> shear;     // tangential spring per entry
-  std::vector<Vec3> roll;      // rolling spring per entry (EPSD only)
+  std::vector<int> row_start;            // size n + 1
+  std::vector<int> wall;                 // wall index of each entry
+  std::vector<Vec3> shear;               // tangential spring per entry
+  std::vector<Vec3> roll;                // rolling spring per entry (EPSD only)
   std::vector<PairConstants> constants;  // computed at the build, like the pairs'
-  std::vector<double> fn;      // normal force of the last step (0 when apart)
-  std::vector<double> ft;      // tangential force magnitude of the last step
+  std::vector<double> fn;                // normal force of the last step (0 when apart)
+  std::vector<double> ft;                // tangential force magnitude of the last step
   std::vector<std::uint8_t> touching;
-  std::vector<Vec3> force;     // on the particle, last step (zero when apart)
-  std::vector<Vec3> point;     // contact point (the middle of the overlap), last step
+  std::vector<Vec3> force;  // on the particle, last step (zero when apart)
+  std::vector<Vec3> point;  // contact point (the middle of the overlap), last step
 };
 
 // A particle's contact with a mesh, kept from step to step: the spring history follows the contact
@@ -46,7 +46,7 @@ struct MeshSlot {
 // The spring's push on a particle on the step after it parted from a mesh's face (the impulse the
 // last sample missed): kept for that step's wall load, so that the mesh's work counts it too.
 struct MeshParting {
-  int mesh = -1;  // -1: none this step
+  int mesh = -1;              // -1: none this step
   Vec3 force = Vec3::Zero();  // on the particle
   Vec3 point = Vec3::Zero();
 };
@@ -54,12 +54,12 @@ struct MeshParting {
 // Particle-mesh candidates (triangles within reach, rebuilt with the neighbour list, grouped by
 // mesh) and each particle's contact slots.
 struct MeshContacts {
-  static constexpr int kSlots = 4;  // contacts with history per particle; more still push, fresh each step
-  std::vector<int> row_start;  // size n + 1
-  std::vector<int> mesh;       // per candidate
-  std::vector<int> triangle;   // per candidate
-  std::vector<MeshSlot> slots; // n * kSlots; in use first, then (if room) one with mesh = -1
-  std::vector<std::uint8_t> used;  // per particle: any slot in use (the slots are not read otherwise)
+  static constexpr int kSlots = 4;       // contacts with history per particle; more still push, fresh each step
+  std::vector<int> row_start;            // size n + 1
+  std::vector<int> mesh;                 // per candidate
+  std::vector<int> triangle;             // per candidate
+  std::vector<MeshSlot> slots;           // n * kSlots; in use first, then (if room) one with mesh = -1
+  std::vector<std::uint8_t> used;        // per particle: any slot in use (the slots are not read otherwise)
   std::vector<PairConstants> constants;  // per particle, against any wall (computed at the build)
   // per particle: written by the force loop, read and cleared by the walls' loads of the same step
   // (so never saved: a saved state holds the loads themselves)
@@ -78,8 +78,8 @@ struct MeshContacts {
 
 // Results of the last force evaluation per listed pair, for observers (force chains, contact counts).
 struct PairResults {
-  std::vector<double> fn;             // normal force
-  std::vector<double> ft_squared;     // squared tangential force
+  std::vector<double> fn;          // normal force
+  std::vector<double> ft_squared;  // squared tangential force
   std::vector<std::uint8_t> touching;
 };
 
@@ -113,13 +113,13 @@ struct SimState {
   std::vector<Vec3> f_next;
   std::vector<Vec3> half_kick;  // velocity change of this step's first half kick, dt/2 f/m
   std::vector<Vec3> spin_kick;  // spin change of the same half kick, dt/2 t/I (made anew every drift)
-  std::vector<Wall> walls;         // planes and plates
+  std::vector<Wall> walls;      // planes and plates
   WallContacts wall_contacts;
   std::vector<MeshWall> meshes;
   MeshContacts mesh_contacts;
   BondSet bonds;
   ClumpBodies bodies;  // rigid clumps; their members are particles
-  double time = 0;  // of the forces being computed
+  double time = 0;     // of the forces being computed
   double local_damping = 0;
   Vec3 gravity = Vec3::Zero();
   double dt = 0;

@@ -31,7 +31,9 @@ class Writer {
     crc_.process_bytes(data, size);
   }
   template <class T>
-  void put(const T& value) { bytes(&value, sizeof(T)); }
+  void put(const T& value) {
+    bytes(&value, sizeof(T));
+  }
   template <class T>
   void put(const std::vector<T>& values) {
     const std::uint64_t n = values.size();
@@ -90,16 +92,18 @@ class Reader {
 template <class T>
 void expect_size(const std::vector<T>& values, std::size_t size, const char* what) {
   if (values.size() != size)
-    inconsistent(std::string(what) + " has " + std::to_string(values.size()) + " entries where " + std::to_string(size) +
-                 " belong");
+    inconsistent(std::string(what) + " has " + std::to_string(values.size()) + " entries where " +
+                 std::to_string(size) + " belong");
 }
 
 // Compressed rows over n particles: n + 1 starts from 0, never decreasing, ending at `entries`.
 void expect_rows(const std::vector<int>& row_start, std::size_t n, std::size_t entries, const char* what) {
   expect_size(row_start, n + 1, what);
-  if (row_start[0] != 0 || static_cast<std::size_t>(row_start[n]) != entries) inconsistent(std::string(what) + " do not span its entries");
+  if (row_start[0] != 0 || static_cast<std::size_t>(row_start[n]) != entries)
+    inconsistent(std::string(what) + " do not span its entries");
   for (std::size_t i = 0; i < n; ++i)
-    if (row_start[i + 1] < row_start[i]) inconsistent(std::string(what) + " go backwards at particle " + std::to_string(i));
+    if (row_start[i + 1] < row_start[i])
+      inconsistent(std::string(what) + " go backwards at particle " + std::to_string(i));
 }
 
 void expect_indices(const std::vector<int>& index, int lo, int hi, const char* what) {
@@ -113,8 +117,10 @@ template <class T>
 void expect_finite(const std::vector<T>& values, const char* what) {
   for (std::size_t k = 0; k < values.size(); ++k) {
     bool finite;
-    if constexpr (std::is_floating_point_v<T>) finite = std::isfinite(values[k]);
-    else finite = values[k].allFinite();
+    if constexpr (std::is_floating_point_v<T>)
+      finite = std::isfinite(values[k]);
+    else
+      finite = values[k].allFinite();
     if (!finite) inconsistent(std::string(what) + " " + std::to_string(k) + " is not finite");
   }
 }
@@ -135,22 +141,52 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   w.put(sim.contacts_recorded_);
   w.put(s.time);
   const Particles& p = s.particles;
-  w.put(p.x); w.put(p.v); w.put(p.w); w.put(p.f); w.put(p.t);
-  w.put(p.radius); w.put(p.mass); w.put(p.inv_mass); w.put(p.inv_inertia);
-  w.put(p.material); w.put(p.id); w.put(p.external);
+  w.put(p.x);
+  w.put(p.v);
+  w.put(p.w);
+  w.put(p.f);
+  w.put(p.t);
+  w.put(p.radius);
+  w.put(p.mass);
+  w.put(p.inv_mass);
+  w.put(p.inv_inertia);
+  w.put(p.material);
+  w.put(p.id);
+  w.put(p.external);
   w.put(s.half_kick);
   w.put(sim.x_at_build_);
   const NeighborList& nl = s.neighbors;
-  w.put(nl.row_start); w.put(nl.partner); w.put(nl.shear); w.put(nl.roll); w.put(nl.touched);
-  w.put(nl.sqrt_m_eff); w.put(nl.r_eff); w.put(nl.i_roll);
-  w.put(s.pairs.fn); w.put(s.pairs.ft_squared); w.put(s.pairs.touching);
+  w.put(nl.row_start);
+  w.put(nl.partner);
+  w.put(nl.shear);
+  w.put(nl.roll);
+  w.put(nl.touched);
+  w.put(nl.sqrt_m_eff);
+  w.put(nl.r_eff);
+  w.put(nl.i_roll);
+  w.put(s.pairs.fn);
+  w.put(s.pairs.ft_squared);
+  w.put(s.pairs.touching);
   const BlockPlan& b = s.blocks;
   w.put(b.block_size);  // the rest of the plan follows from the neighbour list (read: plan_blocks)
   const WallContacts& wc = s.wall_contacts;
-  w.put(wc.row_start); w.put(wc.wall); w.put(wc.shear); w.put(wc.roll); w.put(wc.constants);
-  w.put(wc.fn); w.put(wc.ft); w.put(wc.touching); w.put(wc.force); w.put(wc.point);
+  w.put(wc.row_start);
+  w.put(wc.wall);
+  w.put(wc.shear);
+  w.put(wc.roll);
+  w.put(wc.constants);
+  w.put(wc.fn);
+  w.put(wc.ft);
+  w.put(wc.touching);
+  w.put(wc.force);
+  w.put(wc.point);
   const MeshContacts& mc = s.mesh_contacts;
-  w.put(mc.row_start); w.put(mc.mesh); w.put(mc.triangle); w.put(mc.slots); w.put(mc.used); w.put(mc.constants);
+  w.put(mc.row_start);
+  w.put(mc.mesh);
+  w.put(mc.triangle);
+  w.put(mc.slots);
+  w.put(mc.used);
+  w.put(mc.constants);
   w.put(s.walls);
   for (const MeshWall& m : s.meshes) w.put(m.pose);
   for (const WallDriver& d : sim.drivers_) w.put(d.record());
@@ -159,10 +195,16 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   w.put(sim.growth_at_build_);
   w.put(sim.growth_scale_);
   w.put(s.bonds.bonds());
-  w.put(p.body); w.put(p.body_offset); w.put(p.q);
+  w.put(p.body);
+  w.put(p.body_offset);
+  w.put(p.q);
   w.put(sim.ledger_);
   const ClumpBodies& cb = s.bodies;
-  w.put(cb.x); w.put(cb.v); w.put(cb.rotation); w.put(cb.force); w.put(cb.torque);
+  w.put(cb.x);
+  w.put(cb.v);
+  w.put(cb.rotation);
+  w.put(cb.force);
+  w.put(cb.torque);
   w.seal();
   if (!out) throw std::runtime_error("cannot write the saved state");
 }
@@ -183,8 +225,9 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   std::uint32_t sum = 0;
   std::memcpy(&sum, data.data() + body, sizeof sum);
   if (sum != crc.checksum())
-    throw std::runtime_error("the saved state's checksum does not match its contents: the file was changed, damaged or "
-                             "cut short after it was written");
+    throw std::runtime_error(
+        "the saved state's checksum does not match its contents: the file was changed, damaged or "
+        "cut short after it was written");
 
   SimState& s = sim.state_;
   // What the job itself fixes, to hold the saved state against.
@@ -215,8 +258,10 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     throw std::runtime_error(std::string("the saved state was written for another job: ") + buf);
   };
   if (particles != n) mismatch("particles", static_cast<double>(particles), static_cast<double>(n));
-  if (walls != sim.drivers_.size()) mismatch("walls", static_cast<double>(walls), static_cast<double>(sim.drivers_.size()));
-  if (bonds != s.bonds.bonds().size()) mismatch("bonds", static_cast<double>(bonds), static_cast<double>(s.bonds.bonds().size()));
+  if (walls != sim.drivers_.size())
+    mismatch("walls", static_cast<double>(walls), static_cast<double>(sim.drivers_.size()));
+  if (bonds != s.bonds.bonds().size())
+    mismatch("bonds", static_cast<double>(bonds), static_cast<double>(s.bonds.bonds().size()));
   if (dt != s.dt) mismatch("time step", dt, s.dt);
   r.get(sim.step_, "the step count");
   r.get(sim.builds_, "the step count");
@@ -230,22 +275,31 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   if (!std::isfinite(s.time)) inconsistent("the time is not finite");
 
   Particles& p = s.particles;
-  r.get(p.x, "the particles"); r.get(p.v, "the particles"); r.get(p.w, "the particles");
-  r.get(p.f, "the particles"); r.get(p.t, "the particles");
-  r.get(p.radius, "the particles"); r.get(p.mass, "the particles"); r.get(p.inv_mass, "the particles");
-  r.get(p.inv_inertia, "the particles"); r.get(p.material, "the particles"); r.get(p.id, "the particles");
+  r.get(p.x, "the particles");
+  r.get(p.v, "the particles");
+  r.get(p.w, "the particles");
+  r.get(p.f, "the particles");
+  r.get(p.t, "the particles");
+  r.get(p.radius, "the particles");
+  r.get(p.mass, "the particles");
+  r.get(p.inv_mass, "the particles");
+  r.get(p.inv_inertia, "the particles");
+  r.get(p.material, "the particles");
+  r.get(p.id, "the particles");
   r.get(p.external, "the particles");
   r.get(s.half_kick, "the particles");
   s.spin_kick.assign(n, Vec3::Zero());  // not saved: the next drift makes it before any contact reads it
   r.get(sim.x_at_build_, "the particles");
-  for (const auto* v : {&p.x, &p.v, &p.w, &p.f, &p.t, &s.half_kick, &sim.x_at_build_}) expect_size(*v, n, "a particle array");
+  for (const auto* v : {&p.x, &p.v, &p.w, &p.f, &p.t, &s.half_kick, &sim.x_at_build_})
+    expect_size(*v, n, "a particle array");
   for (const auto* v : {&p.radius, &p.mass, &p.inv_mass, &p.inv_inertia}) expect_size(*v, n, "a particle array");
   expect_size(p.material, n, "the particles' materials");
   expect_size(p.id, n, "the particles' ids");
   expect_size(p.external, externals, "the particles' external forces");
   expect_finite(p.x, "the position of particle");
   expect_finite(sim.x_at_build_, "the position at the last build of particle");
-  for (const auto* v : {&p.v, &p.w, &p.f, &p.t, &s.half_kick}) expect_finite(*v, "a velocity, force or kick of particle");
+  for (const auto* v : {&p.v, &p.w, &p.f, &p.t, &s.half_kick})
+    expect_finite(*v, "a velocity, force or kick of particle");
   // no farther out than a spec may place a particle (Simulation::refuse_positions_past_precision)
   for (std::size_t i = 0; i < n; ++i)
     if (p.x[i].cwiseAbs().maxCoeff() > 1e9 * sim.smallest_given_radius_ ||
@@ -253,7 +307,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
       inconsistent("particle " + std::to_string(i) + " is farther out than 1e9 of the smallest radius");
   for (std::size_t i = 0; i < n; ++i)
     if (!(p.radius[i] > 0) || !std::isfinite(p.radius[i]) || !(p.mass[i] > 0) || !std::isfinite(p.mass[i]) ||
-        !(p.inv_mass[i] >= 0) || !std::isfinite(p.inv_mass[i]) || !(p.inv_inertia[i] >= 0) || !std::isfinite(p.inv_inertia[i]))
+        !(p.inv_mass[i] >= 0) || !std::isfinite(p.inv_mass[i]) || !(p.inv_inertia[i] >= 0) ||
+        !std::isfinite(p.inv_inertia[i]))
       inconsistent("particle " + std::to_string(i) + " has a radius, mass or inertia that is not a positive number");
   expect_indices(p.id, 0, static_cast<int>(n), "the id of particle");
   {
@@ -261,15 +316,23 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     for (std::size_t i = 0; i < n; ++i) {
       if (seen[p.id[i]]) inconsistent("two particles have the id " + std::to_string(p.id[i]));
       seen[p.id[i]] = 1;
-      if (p.material[i] != material_of_id[p.id[i]]) inconsistent("particle id " + std::to_string(p.id[i]) + " has another material");
+      if (p.material[i] != material_of_id[p.id[i]])
+        inconsistent("particle id " + std::to_string(p.id[i]) + " has another material");
     }
   }
 
   NeighborList& nl = s.neighbors;
-  r.get(nl.row_start, "the neighbour list"); r.get(nl.partner, "the neighbour list"); r.get(nl.shear, "the neighbour list");
-  r.get(nl.roll, "the neighbour list"); r.get(nl.touched, "the neighbour list"); r.get(nl.sqrt_m_eff, "the neighbour list"); r.get(nl.r_eff, "the neighbour list");
+  r.get(nl.row_start, "the neighbour list");
+  r.get(nl.partner, "the neighbour list");
+  r.get(nl.shear, "the neighbour list");
+  r.get(nl.roll, "the neighbour list");
+  r.get(nl.touched, "the neighbour list");
+  r.get(nl.sqrt_m_eff, "the neighbour list");
+  r.get(nl.r_eff, "the neighbour list");
   r.get(nl.i_roll, "the neighbour list");
-  r.get(s.pairs.fn, "the contacts"); r.get(s.pairs.ft_squared, "the contacts"); r.get(s.pairs.touching, "the contacts");
+  r.get(s.pairs.fn, "the contacts");
+  r.get(s.pairs.ft_squared, "the contacts");
+  r.get(s.pairs.touching, "the contacts");
   const std::size_t pairs = nl.partner.size();
   expect_rows(nl.row_start, n, pairs, "the neighbour list's rows");
   for (std::size_t i = 0; i < n; ++i)
@@ -291,9 +354,15 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   sim.plan_blocks();
 
   WallContacts& wc = s.wall_contacts;
-  r.get(wc.row_start, "the wall contacts"); r.get(wc.wall, "the wall contacts"); r.get(wc.shear, "the wall contacts");
-  r.get(wc.roll, "the wall contacts"); r.get(wc.constants, "the wall contacts"); r.get(wc.fn, "the wall contacts");
-  r.get(wc.ft, "the wall contacts"); r.get(wc.touching, "the wall contacts"); r.get(wc.force, "the wall contacts");
+  r.get(wc.row_start, "the wall contacts");
+  r.get(wc.wall, "the wall contacts");
+  r.get(wc.shear, "the wall contacts");
+  r.get(wc.roll, "the wall contacts");
+  r.get(wc.constants, "the wall contacts");
+  r.get(wc.fn, "the wall contacts");
+  r.get(wc.ft, "the wall contacts");
+  r.get(wc.touching, "the wall contacts");
+  r.get(wc.force, "the wall contacts");
   r.get(wc.point, "the wall contacts");
   const std::size_t entries = wc.wall.size();
   expect_rows(wc.row_start, n, entries, "the wall contacts' rows");
@@ -305,8 +374,12 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   expect_size(wc.touching, entries, "the wall contacts' values");
 
   MeshContacts& mc = s.mesh_contacts;
-  r.get(mc.row_start, "the mesh contacts"); r.get(mc.mesh, "the mesh contacts"); r.get(mc.triangle, "the mesh contacts");
-  r.get(mc.slots, "the mesh contacts"); r.get(mc.used, "the mesh contacts"); r.get(mc.constants, "the mesh contacts");
+  r.get(mc.row_start, "the mesh contacts");
+  r.get(mc.mesh, "the mesh contacts");
+  r.get(mc.triangle, "the mesh contacts");
+  r.get(mc.slots, "the mesh contacts");
+  r.get(mc.used, "the mesh contacts");
+  r.get(mc.constants, "the mesh contacts");
   if (!s.meshes.empty()) {
     const std::size_t candidates = mc.mesh.size();
     expect_rows(mc.row_start, n, candidates, "the mesh contacts' rows");
@@ -348,7 +421,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
       inconsistent("walls[" + std::to_string(k) + "]: " + e.what());
     }
   }
-  for (std::size_t m = 0; m < s.meshes.size(); ++m) {  // a mesh that never moved keeps its vertices as read from the spec
+  for (std::size_t m = 0; m < s.meshes.size();
+       ++m) {  // a mesh that never moved keeps its vertices as read from the spec
     const WallPose& pose = mesh_poses[m];
     const bool moved = saved_drivers[s.meshes[m].boundary].moves() || !pose.displacement.isZero(0) ||
                        !pose.rotation.isIdentity(0);  // a load dropped earlier leaves it still, but elsewhere
@@ -369,8 +443,10 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   for (int k : loads_starting) {  // a load that starts now feels the particles' push from the start, as at t = 0
     WallDriver& d = sim.drivers_[k];
     d.end_step(sim.time(), 0, sim.boundary_loads_[k].force);
-    if (sim.plane_index_[k] >= 0) s.walls[sim.plane_index_[k]].move_to(d.pose());
-    else s.meshes[sim.mesh_index_[k]].move_to(d.pose());
+    if (sim.plane_index_[k] >= 0)
+      s.walls[sim.plane_index_[k]].move_to(d.pose());
+    else
+      s.meshes[sim.mesh_index_[k]].move_to(d.pose());
   }
   r.get(sim.growth_at_build_, "the walls");
   r.get(sim.growth_scale_, "the walls");
@@ -384,25 +460,32 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   for (std::size_t k = 0; k < saved_bonds.size(); ++k) {
     const Bond& bond = saved_bonds[k];
     std::uint8_t state = 0, moments = 0;
-    std::memcpy(&state, &bond.state, 1);  // its byte, not yet an enumerator
+    std::memcpy(&state, &bond.state, 1);      // its byte, not yet an enumerator
     std::memcpy(&moments, &bond.moments, 1);  // a bool that is neither 0 nor 1 must not be read as one
-    if (bond.i < 0 || bond.j < 0 || bond.i >= static_cast<int>(n) || bond.j >= static_cast<int>(n) || bond.i == bond.j ||
-        state > static_cast<std::uint8_t>(BondBreak::Shear) || moments > 1)
+    if (bond.i < 0 || bond.j < 0 || bond.i >= static_cast<int>(n) || bond.j >= static_cast<int>(n) ||
+        bond.i == bond.j || state > static_cast<std::uint8_t>(BondBreak::Shear) || moments > 1)
       inconsistent("bond " + std::to_string(k) + " joins particles " + std::to_string(bond.i) + " and " +
-                   std::to_string(bond.j) + " (state " + std::to_string(state) + ", moments " + std::to_string(moments) + ")");
+                   std::to_string(bond.j) + " (state " + std::to_string(state) + ", moments " +
+                   std::to_string(moments) + ")");
   }
   s.bonds.restore(std::move(saved_bonds));
 
-  r.get(p.body, "the clumps"); r.get(p.body_offset, "the clumps"); r.get(p.q, "the orientations");
+  r.get(p.body, "the clumps");
+  r.get(p.body_offset, "the clumps");
+  r.get(p.q, "the orientations");
   expect_size(p.body, members, "the clump of each particle");
   expect_size(p.body_offset, offsets, "the clump offsets");
   expect_size(p.q, orientations, "the orientations");
   for (std::size_t i = 0; i < p.body.size(); ++i)  // the ids were checked above
-    if (p.body[i] != body_of_id[p.id[i]]) inconsistent("particle id " + std::to_string(p.id[i]) + " is in another clump");
+    if (p.body[i] != body_of_id[p.id[i]])
+      inconsistent("particle id " + std::to_string(p.id[i]) + " is in another clump");
   r.get(sim.ledger_, "the energy ledger");
   ClumpBodies& cb = s.bodies;
-  r.get(cb.x, "the clumps"); r.get(cb.v, "the clumps"); r.get(cb.rotation, "the clumps");
-  r.get(cb.force, "the clumps"); r.get(cb.torque, "the clumps");
+  r.get(cb.x, "the clumps");
+  r.get(cb.v, "the clumps");
+  r.get(cb.rotation, "the clumps");
+  r.get(cb.force, "the clumps");
+  r.get(cb.torque, "the clumps");
   for (const auto* v : {&cb.x, &cb.v, &cb.force, &cb.torque}) expect_size(*v, bodies, "the clumps");
   expect_size(cb.rotation, bodies, "the clumps' rotations");
   if (!r.at_end()) inconsistent("bytes follow its last value");
@@ -410,8 +493,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
 
 void StateIO::require_within_run(const Simulation& sim) {
   if (sim.step_count() > sim.total_steps())
-    throw std::runtime_error("the saved state is at step " + std::to_string(sim.step_count()) + " (t = " +
-                             std::to_string(sim.time()) + " s), past the end of this run at step " +
+    throw std::runtime_error("the saved state is at step " + std::to_string(sim.step_count()) +
+                             " (t = " + std::to_string(sim.time()) + " s), past the end of this run at step " +
                              std::to_string(sim.total_steps()) + ": it cannot be continued to this run's duration");
 }
 
@@ -420,8 +503,8 @@ void StateIO::write_file(const Simulation& sim, const std::string& path) {
   auto refuse = [&](int reason) {
     std::error_code ignored;
     std::filesystem::remove(part, ignored);  // the last whole state stays at `path`
-    throw std::runtime_error("cannot write " + part + " (the saved state, renamed to " + path + " when whole): " +
-                             std::strerror(reason != 0 ? reason : EIO));
+    throw std::runtime_error("cannot write " + part + " (the saved state, renamed to " + path +
+                             " when whole): " + std::strerror(reason != 0 ? reason : EIO));
   };
   {
     std::ofstream out(part, std::ios::binary | std::ios::trunc);

@@ -87,7 +87,8 @@ double fastest_wall_speed(const Scene& scene, const WallInit& w) {
     if (spin > 0) {
       const std::vector<Vec3> points = wall_points(w);
       Vec3 centre = Vec3::Zero();
-      if (m.center) centre = *m.center;
+      if (m.center)
+        centre = *m.center;
       else if (!points.empty()) {
         for (const Vec3& x : points) centre += x;
         centre /= static_cast<double>(points.size());
@@ -136,7 +137,8 @@ double contact_mass(const Scene& scene, const ParticleInit& p) {
   Eigen::Matrix3d cross;
   cross << 0, -arm.z(), arm.y(), arm.z(), 0, -arm.x(), -arm.y(), arm.x(), 0;
   const Eigen::Matrix3d turning = cross.transpose() * c.moments.cwiseInverse().asDiagonal() * cross;
-  const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(turning, Eigen::EigenvaluesOnly).eigenvalues()[2];
+  const double largest =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(turning, Eigen::EigenvaluesOnly).eigenvalues()[2];
   return 1.0 / (1.0 / c.mass + largest);
 }
 

@@ -11,11 +11,11 @@ namespace dem {
 struct TimeStepReport {
   double dt = 0;
   bool automatic = true;
-  double contact_time = 0;   // shortest binary contact time (the normal model's: linear eq. 7, Hertz at v_ref)
-  double rayleigh_time = 0;  // the normal model's wave time when it has one (Hertz: the Rayleigh time), else 0
+  double contact_time = 0;     // shortest binary contact time (the normal model's: linear eq. 7, Hertz at v_ref)
+  double rayleigh_time = 0;    // the normal model's wave time when it has one (Hertz: the Rayleigh time), else 0
   double reference_speed = 0;  // impact speed the contact time is taken at (a law whose time depends on it)
-  double bond_time = 0;      // bonded scenes: shortest half-period of a bond's springs (0 without bonds)
-  double stable_limit = 0;   // largest dt accepted without allow_unstable_dt
+  double bond_time = 0;        // bonded scenes: shortest half-period of a bond's springs (0 without bonds)
+  double stable_limit = 0;     // largest dt accepted without allow_unstable_dt
   std::string describe() const;
 };
 

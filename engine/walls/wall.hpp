@@ -13,10 +13,10 @@ struct Wall {
   enum class Kind { Plane, Plate };
   Kind kind = Kind::Plane;
   int material = 0;
-  Vec3 point = Vec3::Zero();   // plane: a point; plate: corner 1
-  Vec3 normal = Vec3::UnitZ(); // unit
-  std::array<Vec3, 4> corners; // plate only, counter-clockwise about `normal`
-  WallPose pose;               // where it is relative to its start, and how fast it moves
+  Vec3 point = Vec3::Zero();    // plane: a point; plate: corner 1
+  Vec3 normal = Vec3::UnitZ();  // unit
+  std::array<Vec3, 4> corners;  // plate only, counter-clockwise about `normal`
+  WallPose pose;                // where it is relative to its start, and how fast it moves
 
   static Wall from(const WallInit& init);
 

@@ -110,7 +110,8 @@ WallDriver WallDriver::from_record(const Record& r) {
     throw std::runtime_error("a wall's flags are not 0 or 1 (" + std::to_string(r.has_motion) + ", " +
                              std::to_string(r.has_center) + ", " + std::to_string(r.has_load) + ")");
   if (r.load.kind != LoadControl::Kind::Cyclic && r.load.kind != LoadControl::Kind::Servo)
-    throw std::runtime_error("a wall's load is of no known kind (" + std::to_string(static_cast<int>(r.load.kind)) + ")");
+    throw std::runtime_error("a wall's load is of no known kind (" + std::to_string(static_cast<int>(r.load.kind)) +
+                             ")");
   WallDriver d;
   if (r.has_motion) {
     const PlainMotion& m = r.motion;
@@ -129,8 +130,9 @@ WallDriver WallDriver::from_record(const Record& r) {
 
 bool WallDriver::continue_from(const WallDriver& saved, double now) {
   if (!same_motion(motion_, saved.motion_))
-    throw std::runtime_error("its prescribed motion differs from the saved run's: a continued run may change a wall's "
-                             "load, not its motion (a motion is a function of the time since the start)");
+    throw std::runtime_error(
+        "its prescribed motion differs from the saved run's: a continued run may change a wall's "
+        "load, not its motion (a motion is a function of the time since the start)");
   if (same_load(load_, saved.load_)) {
     const double gravity_along = gravity_along_;  // this spec's gravity
     *this = saved;

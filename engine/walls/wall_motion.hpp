@@ -87,7 +87,7 @@ class WallDriver {
   double speed_ = 0;          // along the load direction
   double accel_ = 0;
   double applied_force_ = 0;
-  double load_start_ = 0;     // the time the load began (its cyclic clock's zero)
+  double load_start_ = 0;  // the time the load began (its cyclic clock's zero)
 };
 
 }  // namespace dem

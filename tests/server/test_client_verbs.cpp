@@ -31,9 +31,9 @@ class ClientVerbs : public ServerTest {
   // (DEM_SERVER and DEM_SERVER_TOKEN are cleared first).
   Result dem(const std::string& args, const std::string& environment = "") {
     const fs::path err = dir_ / "stderr.txt";
-    const CommandResult r = run_command("env -u DEM_SERVER -u DEM_SERVER_TOKEN " + environment + " " +
-                                        shell_quoted(kDem) + " " + args + " --server " + server_->url() + " 2>" +
-                                        shell_quoted(err));
+    const CommandResult r =
+        run_command("env -u DEM_SERVER -u DEM_SERVER_TOKEN " + environment + " " + shell_quoted(kDem) + " " + args +
+                    " --server " + server_->url() + " 2>" + shell_quoted(err));
     return {r.exit_code, r.output, read_bytes(err)};
   }
 

@@ -33,7 +33,8 @@ TEST(RetentionPolicy, DeletesFinishedJobsPastTheAgeAndNothingElse) {
       finished(2, JobState::Failed, "2026-12-03T10:59:59.000Z"),       // 1 h 1 s ago
       finished(3, JobState::Cancelled, "2026-12-03T11:30:00.000Z"),    // 30 min ago
       finished(4, JobState::Interrupted, "2026-12-01T00:00:00.000Z"),  // not final: kept
-      finished(5, JobState::Queued, ""), finished(6, JobState::Running, "")};
+      finished(5, JobState::Queued, ""),
+      finished(6, JobState::Running, "")};
   EXPECT_EQ(jobs_past_retention(jobs, p, kNow), (std::vector<std::int64_t>{1, 2}));
 }
 

@@ -8,7 +8,8 @@ namespace {
 class ServerErrors : public ServerTest {
  protected:
   // Posts `body` as a job spec and expects `status` with `message` in the answer.
-  void expect_refused(const std::string& body, const std::string& content_type, int status, const std::string& message) {
+  void expect_refused(const std::string& body, const std::string& content_type, int status,
+                      const std::string& message) {
     const client::Response r = client_->request("POST", "/api/jobs", body, content_type);
     EXPECT_EQ(r.status, status) << r.body;
     EXPECT_NE(r.body.find(message), std::string::npos) << "expected \"" << message << "\" in " << r.body;
@@ -21,11 +22,14 @@ TEST_F(ServerErrors, BadSpecsAreRefusedWithTheFieldAndTheReason) {
   expect_refused("{\"name\": \"x\", ", "application/json", 400, "invalid spec");
   expect_refused("\x0a\xff\xff\xff\xff\x0f garbage", "application/x-protobuf", 400, "invalid spec");
   expect_refused(replaced(good, "\"gravity\"", "\"gravitty\""), "application/json", 400, "gravitty");
-  expect_refused(replaced(good, "\"radius\": 0.015", "\"radius\": -0.015"), "application/json", 400, "lattices[0].radius");
+  expect_refused(replaced(good, "\"radius\": 0.015", "\"radius\": -0.015"), "application/json", 400,
+                 "lattices[0].radius");
   expect_refused(replaced(good, "\"walls\": [",
-                          R"("walls": [{"name": "ground", "material": "steel", "mesh": {"file": "terrain.dat"}},)"), "application/json", 400, "walls[0].mesh.file: the server reads no files");
-  expect_refused(replaced(good, "\"walls\": [", R"("clumpShapes": [{"name": "stone", "file": "stone.txt"}], "walls": [)"),
-                 "application/json", 400, "clumpShapes[0].file: the server reads no files");
+                          R"("walls": [{"name": "ground", "material": "steel", "mesh": {"file": "terrain.dat"}},)"),
+                 "application/json", 400, "walls[0].mesh.file: the server reads no files");
+  expect_refused(
+      replaced(good, "\"walls\": [", R"("clumpShapes": [{"name": "stone", "file": "stone.txt"}], "walls": [)"),
+      "application/json", 400, "clumpShapes[0].file: the server reads no files");
   expect_refused(good, "text/plain", 415, "application/json or application/x-protobuf");
   // nothing was queued
   EXPECT_EQ(nlohmann::json::parse(client_->get("/api/jobs").body)["jobs"].size(), 0u);
@@ -55,9 +59,9 @@ TEST_F(ServerErrors, ArtifactNamesThatAreNotPlainFileNamesAreNeverServed) {
   const long id = submit_json(pouring_spec(0.015, 100, 50))["id"];
   wait_for(id, "succeeded");
   const std::string base = "/api/jobs/" + std::to_string(id) + "/artifacts/";
-  for (const std::string& name : {std::string("../../etc/passwd"), std::string("..%2F..%2Fetc%2Fpasswd"),
-                                  std::string("%2Fetc%2Fpasswd"), std::string(".."), std::string("..%2Fspec.pb"),
-                                  std::string("%2e%2e%2fspec.pb")}) {
+  for (const std::string& name :
+       {std::string("../../etc/passwd"), std::string("..%2F..%2Fetc%2Fpasswd"), std::string("%2Fetc%2Fpasswd"),
+        std::string(".."), std::string("..%2Fspec.pb"), std::string("%2e%2e%2fspec.pb")}) {
     const client::Response r = client_->get(base + name);
     EXPECT_EQ(r.status, 400) << name << ": " << r.body;
     EXPECT_EQ(r.body.find("root:"), std::string::npos) << name;

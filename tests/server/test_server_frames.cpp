@@ -20,7 +20,9 @@ class ServerFrames : public ServerTest {
     wait_for(holder_, "running");
     return submit_json(spec)["id"];
   }
-  void release() { ASSERT_EQ(client_->request("POST", "/api/jobs/" + std::to_string(holder_) + "/cancel").status, 200); }
+  void release() {
+    ASSERT_EQ(client_->request("POST", "/api/jobs/" + std::to_string(holder_) + "/cancel").status, 200);
+  }
 
   // Every frame until the server closes the stream.
   static std::vector<api::Frame> read_all(client::FrameStream& stream, int pause_ms = 0) {
@@ -86,7 +88,8 @@ TEST_F(ServerFrames, AViewerGetsEveryFrameInOrderWithTheArchivedPositions) {
     const std::vector<Record> records = array_of<Record>(frames[k].force_chains());
     for (std::size_t c = 0; c < records.size(); ++c) {
       EXPECT_EQ(records[c].i + 1, chains.frames[k].chains[c].i);
-      EXPECT_NEAR(records[c].normal, chains.frames[k].chains[c].normal_force, 1e-5 * std::abs(records[c].normal) + 1e-9);
+      EXPECT_NEAR(records[c].normal, chains.frames[k].chains[c].normal_force,
+                  1e-5 * std::abs(records[c].normal) + 1e-9);
     }
   }
   EXPECT_FALSE(frames.back().force_chains().empty()) << "the spheres should touch the floor by the last frame";
@@ -187,7 +190,8 @@ TEST_F(ServerFrames, AFinishedJobClosesTheStreamSayingWhere) {
   wait_for(id, "succeeded");
   client::FrameStream stream(*client_, "/api/jobs/" + std::to_string(id) + "/frames");
   EXPECT_FALSE(stream.next().has_value());
-  EXPECT_EQ(stream.close_reason(), "job " + std::to_string(id) + " is succeeded: its frames are in its ANIMATION_3D.dat");
+  EXPECT_EQ(stream.close_reason(),
+            "job " + std::to_string(id) + " is succeeded: its frames are in its ANIMATION_3D.dat");
 }
 
 }  // namespace

@@ -85,7 +85,8 @@ TEST_F(ServerFullDisk, TheServerStartsOnAFullDiskAndSaysSo) {
   // a submission on a full disk is refused as such (507), not as a server error
   fs::remove(data_ / "filler");
   fill_disk();
-  const client::Response refused = client_->request("POST", "/api/jobs", pouring_spec(0.015, 100, 50), "application/json", {});
+  const client::Response refused =
+      client_->request("POST", "/api/jobs", pouring_spec(0.015, 100, 50), "application/json", {});
   EXPECT_EQ(refused.status, 507) << refused.body;
 }
 

@@ -76,12 +76,14 @@ TEST_F(ServerHostile, ExpectContinueIsAnswered) {
   EXPECT_NE(answer.find("HTTP/1.1 201"), std::string::npos) << answer;
   // too large: 413 at once, no 100
   RawConnection big(server_->port());
-  big.send("POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 20000\r\n"
-           "Expect: 100-continue\r\n\r\n");
+  big.send(
+      "POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 20000\r\n"
+      "Expect: 100-continue\r\n\r\n");
   EXPECT_EQ(status_of(big.receive(5, nullptr, "\r\n\r\n")), 413);
   // an expectation the server cannot meet
-  EXPECT_EQ(status_of(exchange("POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 2\r\nExpect: tea\r\n\r\n{}")),
-            417);
+  EXPECT_EQ(
+      status_of(exchange("POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 2\r\nExpect: tea\r\n\r\n{}")),
+      417);
 }
 
 // The DNS-rebinding check once took any host beginning with "127." for this machine.
@@ -92,7 +94,8 @@ TEST_F(ServerHostile, OnlyLiteralLoopbackHostsAreLocal) {
     EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", {{"Host", host}}).status, 403) << host;
     EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", {{"Origin", "http://" + host}}).status, 403) << host;
   }
-  for (const std::string host : {"127.0.0.1", "127.0.0.1:8080", "127.1.2.3:9", "localhost", "LOCALHOST:1", "[::1]:8080"})
+  for (const std::string host :
+       {"127.0.0.1", "127.0.0.1:8080", "127.1.2.3:9", "localhost", "LOCALHOST:1", "[::1]:8080"})
     EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", {{"Host", host}}).status, 200) << host;
 }
 
@@ -101,10 +104,12 @@ TEST_F(ServerHostile, OnlyLiteralLoopbackHostsAreLocal) {
 TEST_F(ServerHostile, NoRequestValueIsReflectedIntoHeaders) {
   start_server({"--token", "s3cret"});
   const std::string injected = exchange(
-      "GET /?access_token=s3cret%0d%0aX-Injected:%20yes HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer s3cret\r\n\r\n");
+      "GET /?access_token=s3cret%0d%0aX-Injected:%20yes HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer "
+      "s3cret\r\n\r\n");
   EXPECT_EQ(injected.find("X-Injected"), std::string::npos) << injected;
   const std::string domain = exchange(
-      "GET /?access_token=s3cret;Domain=evil.example HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer s3cret\r\n\r\n");
+      "GET /?access_token=s3cret;Domain=evil.example HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer "
+      "s3cret\r\n\r\n");
   EXPECT_EQ(domain.find("evil.example"), std::string::npos) << domain;
   const std::string page = exchange("GET /?access_token=s3cret HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
   EXPECT_NE(page.find("Set-Cookie: dem_token=s3cret; Path=/; HttpOnly; SameSite=Strict"), std::string::npos) << page;
@@ -123,11 +128,13 @@ TEST_F(ServerHostile, ATokenCookieFromAForeignOriginIsRefused) {
   };
   EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", with_origin(self)).status, 200);
   EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", cookie).status, 200);  // no Origin: not a page
-  EXPECT_EQ(client_->request("POST", "/api/jobs", "{}", "application/json", with_origin("http://127.0.0.1:1")).status, 403);
+  EXPECT_EQ(client_->request("POST", "/api/jobs", "{}", "application/json", with_origin("http://127.0.0.1:1")).status,
+            403);
   EXPECT_EQ(client_->request("GET", "/api/jobs", "", "", with_origin("http://evil.example")).status, 403);
-  const std::string upgrade = exchange("GET /api/jobs/1/frames HTTP/1.1\r\nHost: 127.0.0.1\r\nCookie: dem_token=s3cret\r\n"
-                                       "Origin: http://evil.example\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
-                                       "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n");
+  const std::string upgrade = exchange(
+      "GET /api/jobs/1/frames HTTP/1.1\r\nHost: 127.0.0.1\r\nCookie: dem_token=s3cret\r\n"
+      "Origin: http://evil.example\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+      "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n");
   EXPECT_EQ(status_of(upgrade), 403) << upgrade;
 }
 

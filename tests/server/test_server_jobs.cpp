@@ -56,14 +56,16 @@ TEST_F(ServerJobs, ArtifactsAreListedAndTheArchiveHoldsThemAll) {
   start_server();
   const long id = submit_json(pouring_spec(0.015, 300, 100))["id"];
   wait_for(id, "succeeded");
-  const nlohmann::json list = nlohmann::json::parse(client_->get("/api/jobs/" + std::to_string(id) + "/artifacts").body);
+  const nlohmann::json list =
+      nlohmann::json::parse(client_->get("/api/jobs/" + std::to_string(id) + "/artifacts").body);
   std::map<std::string, std::size_t> listed;
   for (const auto& a : list["artifacts"]) listed[a["name"]] = a["size"];
   ASSERT_TRUE(listed.count("ANIMATION_3D.dat"));
   ASSERT_TRUE(listed.count("outputs.tar"));
 
   const fs::path tar = dir_ / "outputs.tar";
-  const client::Response r = client_->download("/api/jobs/" + std::to_string(id) + "/artifacts/outputs.tar", tar.string());
+  const client::Response r =
+      client_->download("/api/jobs/" + std::to_string(id) + "/artifacts/outputs.tar", tar.string());
   ASSERT_EQ(r.status, 200);
   EXPECT_EQ(r.header("content-type"), "application/x-tar");
   std::map<std::string, std::size_t> archived = tar_listing(read_bytes(tar));
@@ -80,23 +82,27 @@ TEST_F(ServerJobs, ArtifactsAreListedAndTheArchiveHoldsThemAll) {
 TEST_F(ServerJobs, ARetriedSubmissionWithTheSameIdempotencyKeyIsTheSameJob) {
   start_server();
   const std::string spec = pouring_spec(0.015, 100, 50);
-  const client::Response first = client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-7"}});
-  const client::Response again = client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-7"}});
-  const client::Response other = client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-8"}});
+  const client::Response first =
+      client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-7"}});
+  const client::Response again =
+      client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-7"}});
+  const client::Response other =
+      client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-8"}});
   ASSERT_EQ(first.status, 201);
   ASSERT_EQ(again.status, 200);
   EXPECT_EQ(again.header("idempotent-replayed"), "true");
   EXPECT_EQ(nlohmann::json::parse(first.body)["id"], nlohmann::json::parse(again.body)["id"]);
   EXPECT_NE(nlohmann::json::parse(first.body)["id"], nlohmann::json::parse(other.body)["id"]);
   // the same key with another spec is a mistake, not a retry
-  const client::Response reused = client_->request("POST", "/api/jobs", pouring_spec(0.015, 200, 50), "application/json",
-                                                   {{"Idempotency-Key", "run-7"}});
+  const client::Response reused = client_->request("POST", "/api/jobs", pouring_spec(0.015, 200, 50),
+                                                   "application/json", {{"Idempotency-Key", "run-7"}});
   EXPECT_EQ(reused.status, 422);
   EXPECT_NE(reused.body.find("with another spec"), std::string::npos) << reused.body;
   // and after a restart
   server_.reset();
   start_server();
-  const client::Response later = client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-7"}});
+  const client::Response later =
+      client_->request("POST", "/api/jobs", spec, "application/json", {{"Idempotency-Key", "run-7"}});
   EXPECT_EQ(later.status, 200);
   EXPECT_EQ(nlohmann::json::parse(first.body)["id"], nlohmann::json::parse(later.body)["id"]);
 }

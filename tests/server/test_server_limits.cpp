@@ -16,7 +16,8 @@ class ServerLimits : public ServerTest {};
 TEST_F(ServerLimits, ASpecWhoseFramesPassTheOutputLimitIsRefused) {
   start_server({"--max-output-mb", "1"});
   // 486 spheres, a frame every step for 20,000 steps: 20,001 frames, about 1 GB of ANIMATION_3D.dat
-  const client::Response r = client_->request("POST", "/api/jobs", pouring_spec(0.012, 20000, 1), "application/json", {});
+  const client::Response r =
+      client_->request("POST", "/api/jobs", pouring_spec(0.012, 20000, 1), "application/json", {});
   EXPECT_EQ(r.status, 400) << r.body;
   EXPECT_NE(r.body.find("--max-output-mb"), std::string::npos) << r.body;
   EXPECT_NE(r.body.find("outputs"), std::string::npos) << r.body;
@@ -31,15 +32,16 @@ TEST_F(ServerLimits, AJobWhoseFilesGrowPastTheLimitIsStoppedAndFailed) {
   EXPECT_EQ(j.value("state", ""), "failed") << j.dump();
   EXPECT_NE(j.value("error", "").find("--max-output-mb"), std::string::npos) << j.dump();
   std::uintmax_t total = 0;
-  for (const auto& f : fs::directory_iterator(dir_ / "data" / "jobs" / std::to_string(id) / "outputs")) total += f.file_size();
+  for (const auto& f : fs::directory_iterator(dir_ / "data" / "jobs" / std::to_string(id) / "outputs"))
+    total += f.file_size();
   EXPECT_GT(total, 2u << 20);
   EXPECT_LT(total, 3u << 20);  // stopped at the frame that passed it
   EXPECT_FALSE(read_bytes(dir_ / "data" / "jobs" / std::to_string(id) / "outputs" / "ANIMATION_3D.dat").empty());
 }
 
 TEST_F(ServerLimits, TheLimitMustBeAPositiveSize) {
-  const std::string command = std::string(DEM_BINARY_DIR) + "/dem-server --data '" + (dir_ / "d").string() +
-                              "' --max-output-mb 0 2>&1";
+  const std::string command =
+      std::string(DEM_BINARY_DIR) + "/dem-server --data '" + (dir_ / "d").string() + "' --max-output-mb 0 2>&1";
   std::FILE* p = popen(command.c_str(), "r");
   char buf[512] = {};
   const std::size_t got = std::fread(buf, 1, sizeof buf - 1, p);
@@ -104,8 +106,8 @@ TEST_F(ServerLimits, ConnectionsPastTheLimitAreAnswered503WithRetryAfter) {
 
 TEST_F(ServerLimits, TheConnectionAndTimeoutLimitsMustBePositive) {
   for (const char* option : {"--request-timeout 0", "--max-connections 0", "--max-connections-per-client -1"}) {
-    const std::string command = std::string(DEM_BINARY_DIR) + "/dem-server --data '" + (dir_ / "d").string() + "' " +
-                                option + " 2>&1";
+    const std::string command =
+        std::string(DEM_BINARY_DIR) + "/dem-server --data '" + (dir_ / "d").string() + "' " + option + " 2>&1";
     std::FILE* p = popen(command.c_str(), "r");
     char buf[512] = {};
     const std::size_t got = std::fread(buf, 1, sizeof buf - 1, p);

@@ -40,7 +40,8 @@ class ServerLoad : public ServerTest {
         for (long id : ids) {  // each viewer follows the jobs one after another
           if (v % 2 && id == ids.front()) continue;
           try {
-            client::FrameStream stream(*client_, "/api/jobs/" + std::to_string(id) + "/frames" + (v % 4 == 0 ? "?forceChains=1" : ""));
+            client::FrameStream stream(
+                *client_, "/api/jobs/" + std::to_string(id) + "/frames" + (v % 4 == 0 ? "?forceChains=1" : ""));
             while (std::optional<std::string> bytes = stream.next()) {
               api::Frame frame;
               if (!frame.ParseFromString(*bytes) || frame.job() != id) ++counts.errors;
@@ -65,9 +66,11 @@ TEST_F(ServerLoad, FiftyPollersAndTwentyViewersWhileJobsRunWithoutErrorsOrLeaks)
   const long after_first = server_->resident_kib();
   round(second);
   const long after_second = server_->resident_kib();
-  std::printf("server memory: %ld KiB at start, %ld after round 1 (%ld polls, %ld frames), %ld after round 2 (%ld polls, %ld frames)\n",
-              start, after_first, first.polls.load(), first.frames.load(), after_second, second.polls.load(),
-              second.frames.load());
+  std::printf(
+      "server memory: %ld KiB at start, %ld after round 1 (%ld polls, %ld frames), %ld after round 2 (%ld polls, %ld "
+      "frames)\n",
+      start, after_first, first.polls.load(), first.frames.load(), after_second, second.polls.load(),
+      second.frames.load());
   EXPECT_EQ(first.errors + second.errors, 0);
   EXPECT_GT(first.frames, 20 * 2);
   EXPECT_GT(second.polls, 50);

@@ -23,7 +23,8 @@ class ServerRecovery : public ServerTest {
   }
 
   void expect_same_files(long id, const fs::path& reference) {
-    for (const char* name : {"ANIMATION_3D.dat", "ForceChain_3D.dat", "Masscenter.dat", "Disp_Max.dat", "Coord_OL.dat"}) {
+    for (const char* name :
+         {"ANIMATION_3D.dat", "ForceChain_3D.dat", "Masscenter.dat", "Disp_Max.dat", "Coord_OL.dat"}) {
       const client::Response r = client_->get("/api/jobs/" + std::to_string(id) + "/artifacts/" + name);
       ASSERT_EQ(r.status, 200) << name;
       EXPECT_TRUE(r.body == read_bytes(reference / name)) << name << " differs from the uninterrupted run's";
@@ -49,7 +50,8 @@ TEST_F(ServerRecovery, AJobKilledMidRunResumesFromItsCheckpointToTheSameFiles) {
   const nlohmann::json interrupted = job(id);
   ASSERT_EQ(interrupted["state"], "interrupted") << interrupted.dump();
   EXPECT_TRUE(interrupted["resumable"].get<bool>());
-  EXPECT_NE(interrupted["error"].get<std::string>().find("resume it to continue from its checkpoint"), std::string::npos);
+  EXPECT_NE(interrupted["error"].get<std::string>().find("resume it to continue from its checkpoint"),
+            std::string::npos);
   EXPECT_GE(interrupted["step"].get<long>(), interrupted["checkpointStep"].get<long>());
   EXPECT_EQ(wait_for(waiting, "succeeded")["state"], "succeeded");  // the queue went on
 

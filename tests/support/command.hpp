@@ -54,8 +54,8 @@ class DemCommandTest : public ::testing::Test {
   void SetUp() override {
     ASSERT_TRUE(std::filesystem::exists(kDem)) << kDem << " is not built";
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() / ("dem_" + std::string(info->test_suite_name()) + "_" +
-                                                     info->name() + "_" + std::to_string(getpid()));
+    dir_ = std::filesystem::temp_directory_path() /
+           ("dem_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(getpid()));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }

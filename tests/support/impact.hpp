@@ -20,7 +20,9 @@ inline double first_overlap(const Simulation& sim) {
   if (p.size() >= 2) return p.radius[0] + p.radius[1] - (p.x[0] - p.x[1]).norm();
   Vec3 n;
   double delta = 0;
-  return sim.state().walls[0].contact(p.x[0], p.radius[0], n, delta) ? delta : -sim.state().walls[0].distance(p.x[0]) + p.radius[0];
+  return sim.state().walls[0].contact(p.x[0], p.radius[0], n, delta)
+             ? delta
+             : -sim.state().walls[0].distance(p.x[0]) + p.radius[0];
 }
 
 inline double first_normal_force(const Simulation& sim) {

@@ -57,8 +57,8 @@ inline void fill_gas_box(Scene& s, int side, double r, double box, std::uint32_t
   for (int i = 0; i < side; ++i)
     for (int j = 0; j < side; ++j)
       for (int k = 0; k < side; ++k)
-        s.particles.push_back(sphere(Vec3(i + 0.5, j + 0.5, k + 0.5) * (box / side), r,
-                                     Vec3(speed(rng), speed(rng), speed(rng))));
+        s.particles.push_back(
+            sphere(Vec3(i + 0.5, j + 0.5, k + 0.5) * (box / side), r, Vec3(speed(rng), speed(rng), speed(rng))));
   for (int d = 0; d < 3; ++d) {
     Vec3 n = Vec3::Zero();
     n[d] = 1;

@@ -76,8 +76,8 @@ class ServerTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("dem_server_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" +
-                                        std::to_string(getpid()));
+    dir_ = fs::temp_directory_path() /
+           ("dem_server_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -61,20 +61,23 @@ TEST_F(Cli, ValidateAcceptsAGoodSpec) {
 }
 
 TEST_F(Cli, ValidateNamesANegativeRadius) {
-  const Result r = dem("validate " + shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("radius": -0.01)"))));
+  const Result r =
+      dem("validate " + shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("radius": -0.01)"))));
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("particles[0].radius"), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, ValidateNamesAnUnknownField) {
-  const Result r = dem("validate " + shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("raduis": 0.01)"))));
+  const Result r =
+      dem("validate " + shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("raduis": 0.01)"))));
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("raduis"), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, ValidateNamesADtAboveTheStableLimit) {
   // The pair's contact time is about 0.75 ms: a 1 ms step is far above t_c / 10.
-  const Result r = dem("validate " + shell_quoted(write_spec("bad.json", good_with(R"("steps": 12)", R"("steps": 12, "dt": 1e-3)"))));
+  const Result r = dem("validate " +
+                       shell_quoted(write_spec("bad.json", good_with(R"("steps": 12)", R"("steps": 12, "dt": 1e-3)"))));
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("time.dt"), std::string::npos) << r.output;
 }
@@ -92,7 +95,8 @@ TEST_F(Cli, ValidateWithoutASpecIsAUsageError) { EXPECT_EQ(dem("validate").exit_
 
 TEST_F(Cli, RunWritesTheAnimationFrames) {
   const fs::path out = dir_ / "out";
-  const Result r = dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --quiet");
+  const Result r =
+      dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream in(out / "ANIMATION_3D.dat");
   ASSERT_TRUE(in) << "no ANIMATION_3D.dat in " << out;
@@ -130,7 +134,8 @@ class CliFullDisk : public Cli {
       const fs::path out = dir_ / (std::string("full_") + name);
       fs::create_directories(out);
       fs::create_symlink("/dev/full", out / name);
-      const Result r = dem("run " + shell_quoted(write_spec("spec.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
+      const Result r =
+          dem("run " + shell_quoted(write_spec("spec.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
       EXPECT_EQ(r.exit_code, 1) << name << ": " << r.output;
       EXPECT_NE(r.output.find(std::string("cannot write ") + (out / name).string()), std::string::npos) << r.output;
       EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
@@ -184,7 +189,8 @@ TEST_F(Cli, RunWithAMeshFloorAndALoadedPlateWritesTheWallFiles) {
   "outputs": {"interval": 0.002, "forceChains": true, "lengthUnit": "mm"}
 })";
   const fs::path out = dir_ / "out";
-  const Result r = dem("run " + shell_quoted(write_spec("box.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
+  const Result r =
+      dem("run " + shell_quoted(write_spec("box.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* name : {"ANIMATION_3D.dat", "ForceChain_3D.dat", "Wall.dat", "Wall_Animation_3D.dat",
                            "Wall_ForceChain_3D.dat", "Force_Displacement.dat"})
@@ -201,7 +207,7 @@ TEST_F(Cli, RunWithAMeshFloorAndALoadedPlateWritesTheWallFiles) {
   ASSERT_GE(frames.frames.size(), 5u);
   const auto& last = frames.frames.back();
   ASSERT_EQ(last.plates.size(), 1u);
-  EXPECT_GT(last.scalars[2], 5.0);  // the plate pushes the bed (N)
+  EXPECT_GT(last.scalars[2], 5.0);                                           // the plate pushes the bed (N)
   EXPECT_NEAR(last.plates[0].corners[0].z(), 40.0 - last.scalars[1], 1e-3);  // displacement in mm, downwards
   std::ifstream wall_anim(out / "Wall_Animation_3D.dat");
   const auto wall_frames = dem::legacy::read_wall_frames(wall_anim);
@@ -228,8 +234,12 @@ TEST_F(Cli, RunContinuedFromItsSavedStateWritesTheSameFiles) {
   const std::string spec12 = good_with(R"("outputs": {)", R"("outputs": {"forceChains": true, )");
   std::string spec10 = spec12;
   spec10.replace(spec10.find(R"("steps": 12)"), 11, R"("steps": 10)");
-  ASSERT_EQ(dem("run " + shell_quoted(write_spec("s12.json", spec12)) + " --out " + shell_quoted(whole) + " --quiet").exit_code, 0);
-  ASSERT_EQ(dem("run " + shell_quoted(write_spec("s10.json", spec10)) + " --out " + shell_quoted(part) + " --quiet").exit_code, 0);
+  ASSERT_EQ(dem("run " + shell_quoted(write_spec("s12.json", spec12)) + " --out " + shell_quoted(whole) + " --quiet")
+                .exit_code,
+            0);
+  ASSERT_EQ(dem("run " + shell_quoted(write_spec("s10.json", spec10)) + " --out " + shell_quoted(part) + " --quiet")
+                .exit_code,
+            0);
   ASSERT_TRUE(fs::exists(part / "restart.dat"));
   const Result r = dem("run " + shell_quoted(dir_ / "s12.json") + " --out " + shell_quoted(part) + " --restart " +
                        shell_quoted(part / "restart.dat") + " --quiet");
@@ -251,7 +261,8 @@ TEST_F(Cli, RunContinuedFromItsSavedStateWritesTheSameFiles) {
   const Result bad = dem("run " + shell_quoted(write_spec("other.json", other)) + " --out " + shell_quoted(part) +
                          " --restart " + shell_quoted(part / "restart.dat") + " --quiet");
   EXPECT_EQ(bad.exit_code, 1);
-  EXPECT_NE(bad.output.find("the saved state was written for another job: particles 2"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("the saved state was written for another job: particles 2"), std::string::npos)
+      << bad.output;
   EXPECT_EQ(bytes(part / "ANIMATION_3D.dat"), before);
 }
 
@@ -271,7 +282,8 @@ TEST_F(Cli, RunOfABondedBlockWritesTheStatistics) {
   "outputs": {"interval": 0.01}
 })";
   const fs::path out = dir_ / "out";
-  const Result r = dem("run " + shell_quoted(write_spec("block.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
+  const Result r =
+      dem("run " + shell_quoted(write_spec("block.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   auto rows = [&](const char* name, std::size_t columns) {
     std::ifstream in(out / name);
@@ -289,11 +301,11 @@ TEST_F(Cli, RunOfABondedBlockWritesTheStatistics) {
   EXPECT_LT(centre.back()[3], centre.front()[3]);   // it fell
   EXPECT_EQ(moved[0][1], 0.0);
   EXPECT_GT(moved.back()[1], 0.0);
-  EXPECT_NEAR(coord[0][1], 3.0, 1e-12);  // 12 touching pairs among 8 spheres (none on the floor yet)
+  EXPECT_NEAR(coord[0][1], 3.0, 1e-12);   // 12 touching pairs among 8 spheres (none on the floor yet)
   EXPECT_NEAR(coord[0][2], 0.001, 1e-9);  // overlap 0.001 d over r_i + r_j = d
-  EXPECT_EQ(parts.back()[1], 1.0);   // one fragment
-  EXPECT_EQ(parts.back()[2], 8.0);   // of all 8
-  EXPECT_EQ(parts.back()[3], 12.0);  // 12 intact bonds
+  EXPECT_EQ(parts.back()[1], 1.0);        // one fragment
+  EXPECT_EQ(parts.back()[2], 8.0);        // of all 8
+  EXPECT_EQ(parts.back()[3], 12.0);       // 12 intact bonds
   std::ifstream anim(out / "ANIMATION_3D.dat");
   const auto frames = dem::legacy::read_animation(anim);
   ASSERT_FALSE(frames.frames.empty());
@@ -309,7 +321,9 @@ TEST_F(Cli, RunOfABondedBlockWritesTheStatistics) {
   const std::string strong = R"("tensileStrength": 1e9, "shearStrength": 1e9)";
   weak.replace(weak.find(strong), strong.size(), R"("tensileStrength": 0, "shearStrength": 0)");
   const fs::path loose = dir_ / "loose";
-  ASSERT_EQ(dem("run " + shell_quoted(write_spec("weak.json", weak)) + " --out " + shell_quoted(loose) + " --quiet").exit_code, 0);
+  ASSERT_EQ(dem("run " + shell_quoted(write_spec("weak.json", weak)) + " --out " + shell_quoted(loose) + " --quiet")
+                .exit_code,
+            0);
   std::ifstream breaks_in(loose / "Bond_Breaks.dat");
   const auto breaks = dem::legacy::read_rows(breaks_in, 4).frames;
   ASSERT_EQ(breaks.size(), 12u);
@@ -337,7 +351,8 @@ TEST_F(Cli, RunOfALatticeWritesEveryParticle) {
                 1 + side, 1 + side, 1 + side);
   std::string spec = good_with(R"("particles": [)", std::string(lattice) + R"("particles": [)");
   const fs::path out = dir_ / "out";
-  const Result r = dem("run " + shell_quoted(write_spec("lattice.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
+  const Result r =
+      dem("run " + shell_quoted(write_spec("lattice.json", spec)) + " --out " + shell_quoted(out) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream in(out / "ANIMATION_3D.dat");
   const auto read = dem::legacy::read_animation(in);
@@ -347,8 +362,9 @@ TEST_F(Cli, RunOfALatticeWritesEveryParticle) {
 
 TEST_F(Cli, RunOfABadSpecFailsAndWritesNothing) {
   const fs::path out = dir_ / "out";
-  const Result r = dem("run " + shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("radius": -0.01)"))) +
-                       " --out " + shell_quoted(out) + " --quiet");
+  const Result r =
+      dem("run " + shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("radius": -0.01)"))) +
+          " --out " + shell_quoted(out) + " --quiet");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("particles[0].radius"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out)) << "a failed run created " << out;
@@ -356,8 +372,9 @@ TEST_F(Cli, RunOfABadSpecFailsAndWritesNothing) {
 
 TEST_F(Cli, RunWithAnUnstableDtFailsAndWritesNothing) {
   const fs::path out = dir_ / "out";
-  const Result r = dem("run " + shell_quoted(write_spec("bad.json", good_with(R"("steps": 12)", R"("steps": 12, "dt": 1e-3)"))) +
-                       " --out " + shell_quoted(out) + " --quiet");
+  const Result r =
+      dem("run " + shell_quoted(write_spec("bad.json", good_with(R"("steps": 12)", R"("steps": 12, "dt": 1e-3)"))) +
+          " --out " + shell_quoted(out) + " --quiet");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("time.dt"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
@@ -375,7 +392,8 @@ TEST_F(Cli, RunWithOutButNoValueIsAUsageError) {
 
 TEST_F(Cli, RunWithAnUnknownOptionIsAUsageError) {
   const fs::path out = dir_ / "out";
-  const Result r = dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --fast");
+  const Result r =
+      dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --fast");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--fast"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
@@ -383,7 +401,10 @@ TEST_F(Cli, RunWithAnUnknownOptionIsAUsageError) {
 
 TEST_F(Cli, RunWithNegativeThreadsIsAUsageError) {
   const fs::path out = dir_ / "out";
-  EXPECT_EQ(dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --threads -1").exit_code, 2);
+  EXPECT_EQ(
+      dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)) + " --out " + shell_quoted(out) + " --threads -1")
+          .exit_code,
+      2);
 }
 
 TEST_F(Cli, UnknownCommandIsAUsageError) { EXPECT_EQ(dem("frobnicate").exit_code, 2); }

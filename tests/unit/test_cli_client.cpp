@@ -107,8 +107,8 @@ TEST_F(CliClient, FetchRefusesANameOutsideTheOutputFolder) {
 }
 
 TEST_F(CliClient, AnOptionWithoutItsValueIsAUsageError) {
-  for (const char* args : {"status 1 --server", "status 1 --token", "fetch 1 --out", "list --state",
-                           "submit s.json --idempotency-key"})
+  for (const char* args :
+       {"status 1 --server", "status 1 --token", "fetch 1 --out", "list --state", "submit s.json --idempotency-key"})
     expect_usage_error(args, {"needs a value"});
 }
 

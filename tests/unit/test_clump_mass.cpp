@@ -22,8 +22,8 @@ TEST(ClumpMass, TwoUnitSpheresOneApartAsInTheIssue) {
   EXPECT_NEAR(p.principal_moments[2], 5.2130803, 5e-4);
   EXPECT_NEAR(std::abs(p.principal_axes(0, 0)), 1.0, 1e-9);  // its axis is the line of centres
   EXPECT_LT(p.centroid.norm(), 1e-9);
-  std::printf("two spheres: volume %.7f, moments %.7f %.7f %.7f, last change %.1e\n", p.volume,
-              p.principal_moments[0], p.principal_moments[1], p.principal_moments[2], p.relative_accuracy);
+  std::printf("two spheres: volume %.7f, moments %.7f %.7f %.7f, last change %.1e\n", p.volume, p.principal_moments[0],
+              p.principal_moments[1], p.principal_moments[2], p.relative_accuracy);
 }
 
 TEST(ClumpMass, OneSphereIsExact) {

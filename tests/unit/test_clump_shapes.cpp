@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 std::string spec_with_shape(const std::string& shape_fields) {
   return R"({"materials": [{"name": "rock", "density": 1000, "normalStiffness": 1e5}],
   "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5, "friction": 0.5}],
-  "clumpShapes": [{"name": "stone", )" + shape_fields + R"(}],
+  "clumpShapes": [{"name": "stone", )" +
+         shape_fields + R"(}],
   "clumps": [{"shape": "stone", "material": "rock", "position": {"z": 1}}],
   "time": {"steps": 10}})";
 }
@@ -41,7 +42,8 @@ class ClumpShapes : public ::testing::Test {
 // Two unit spheres one apart (in mm in the file, scale 0.001): the same clump as given inline in m.
 TEST_F(ClumpShapes, ATemplateFileInMillimetresGivesTheInlineClump) {
   write("pair.txt", "# x y z r (mm)\n-0.5 0 0 1\n\n0.5, 0, 0, 1   # the second\n");
-  const Scene from_file = spec::to_scene(spec::parse_json(spec_with_shape(R"("file": "pair.txt", "scale": 0.001)")), dir_.string());
+  const Scene from_file =
+      spec::to_scene(spec::parse_json(spec_with_shape(R"("file": "pair.txt", "scale": 0.001)")), dir_.string());
   const Scene inline_m = spec::to_scene(spec::parse_json(spec_with_shape(
       R"("spheres": [{"center": {"x": -0.0005}, "radius": 0.001}, {"center": {"x": 0.0005}, "radius": 0.001}])")));
   ASSERT_EQ(from_file.clumps.size(), 1u);
@@ -73,7 +75,9 @@ TEST_F(ClumpShapes, BadTemplatesAreRefusedWithTheFieldTheFileAndTheLine) {
   write("negative.txt", "0 0 0 -1\n");
   write("empty.txt", "# nothing\n");
   std::string all = spec_problems(spec_with_shape(R"("file": "bad.txt")"), dir_.string());
-  EXPECT_NE(all.find("clumpShapes[0].file: " + (dir_ / "bad.txt").string() + " line 2: expected four numbers"), std::string::npos) << all;
+  EXPECT_NE(all.find("clumpShapes[0].file: " + (dir_ / "bad.txt").string() + " line 2: expected four numbers"),
+            std::string::npos)
+      << all;
   all = spec_problems(spec_with_shape(R"("file": "negative.txt")"), dir_.string());
   EXPECT_NE(all.find("line 1: the radius must be positive"), std::string::npos) << all;
   all = spec_problems(spec_with_shape(R"("file": "empty.txt")"), dir_.string());
@@ -101,7 +105,8 @@ TEST(ClumpShapeAccuracy, TheSubdivisionMeetsTheAccuracyAsked) {
   double previous = 1;
   for (const double accuracy : {1e-2, 1e-3, 1e-5}) {
     std::ostringstream fields;
-    fields << R"("spheres": [{"center": {"x": -0.5}, "radius": 1}, {"center": {"x": 0.5}, "radius": 1}], "accuracy": )" << accuracy;
+    fields << R"("spheres": [{"center": {"x": -0.5}, "radius": 1}, {"center": {"x": 0.5}, "radius": 1}], "accuracy": )"
+           << accuracy;
     const Scene s = spec::to_scene(spec::parse_json(spec_with_shape(fields.str())));
     const double error = std::abs(s.clumps[0].mass - exact) / exact;
     std::printf("accuracy %.0e: volume error %.2e\n", accuracy, error);
@@ -120,8 +125,8 @@ TEST(ClumpShapeGiven, GivenMassPropertiesAreUsedAsGiven) {
   std::ostringstream fields;
   fields.precision(17);
   fields << R"("spheres": [{"center": {"x": 0.1}, "radius": 0.2}, {"center": {"x": -0.1}, "radius": 0.2}],
-     "given": {"mass": 7.5, "centroid": {"x": 0.02}, "inertia": {"xx": )" << xx << R"(, "yy": )" << yy
-         << R"(, "zz": 2.5, "xy": )" << xy << "}}";
+     "given": {"mass": 7.5, "centroid": {"x": 0.02}, "inertia": {"xx": )"
+         << xx << R"(, "yy": )" << yy << R"(, "zz": 2.5, "xy": )" << xy << "}}";
   const Scene scene = spec::to_scene(spec::parse_json(spec_with_shape(fields.str())));
   ASSERT_EQ(scene.clumps.size(), 1u);
   EXPECT_EQ(scene.clumps[0].mass, 7.5);
@@ -135,9 +140,11 @@ TEST(ClumpShapeGiven, GivenMassPropertiesAreUsedAsGiven) {
   EXPECT_NEAR(scene.particles[0].position.x(), 0.1 - 0.02, 1e-12);
   EXPECT_NEAR(scene.particles[1].position.x(), -0.1 - 0.02, 1e-12);
 
-  std::string all = spec_problems(spec_with_shape(
-      R"("spheres": [{"radius": 1}], "given": {"mass": 1, "inertia": {"xx": 1, "yy": 1, "zz": 3}})"));
-  EXPECT_NE(all.find("clumpShapes[0].given.inertia: is not a body's: the largest principal moment 3 exceeds the sum"), std::string::npos) << all;
+  std::string all = spec_problems(
+      spec_with_shape(R"("spheres": [{"radius": 1}], "given": {"mass": 1, "inertia": {"xx": 1, "yy": 1, "zz": 3}})"));
+  EXPECT_NE(all.find("clumpShapes[0].given.inertia: is not a body's: the largest principal moment 3 exceeds the sum"),
+            std::string::npos)
+      << all;
   all = spec_problems(spec_with_shape(
       R"("spheres": [{"radius": 1}], "given": {"mass": 0, "inertia": {"xx": 1, "yy": 1, "zz": 1, "xy": 2}})"));
   EXPECT_NE(all.find("clumpShapes[0].given.mass: must be a positive number"), std::string::npos) << all;

@@ -44,7 +44,9 @@ struct ToyNormal {
     const T stiffness = p.k / c.r_eff;
     return {stiffness * c.delta * c.delta, 2.0 * stiffness * c.delta, T{}, T{}};
   }
-  static double elastic_energy(const Pair& p, double delta, double r_eff) { return p.k / r_eff * delta * delta * delta / 3; }
+  static double elastic_energy(const Pair& p, double delta, double r_eff) {
+    return p.k / r_eff * delta * delta * delta / 3;
+  }
   static double normal_stiffness(const Pair& p, double delta, double r_eff) { return 2 * p.k / r_eff * delta; }
   static double tangential_stiffness(const Pair&, double, double) { return 0; }
   // t_c = 2 (delta_max / V) integral_0^1 du / sqrt(1 - u^3), delta_max = (3 m* V^2 / (2 c))^(1/3)
@@ -98,7 +100,7 @@ TEST(ContactModels, ANormalLawOfATestFileRunsInTheForceLoop) {
     if (overlap <= 0 && touched >= 0) parted = sim.time();
   }
   EXPECT_NEAR(peak, delta_max, 2e-3 * delta_max);
-  EXPECT_NEAR(parted - touched, t_c, 0.03 * t_c);  // to a step: 1/50 of t_c
+  EXPECT_NEAR(parted - touched, t_c, 0.03 * t_c);      // to a step: 1/50 of t_c
   EXPECT_NEAR(sim.particles().v[0].z(), v, 1e-3 * v);  // elastic: the model has no dashpot
 }
 
@@ -127,7 +129,8 @@ template <class Enum>
 std::set<std::string> schema_names(const Enum* descriptor) {
   std::set<std::string> names;
   for (int k = 0; k < descriptor->value_count(); ++k)
-    if (descriptor->value(k)->name().find("UNSPECIFIED") == std::string::npos) names.insert(descriptor->value(k)->name());
+    if (descriptor->value(k)->name().find("UNSPECIFIED") == std::string::npos)
+      names.insert(descriptor->value(k)->name());
   return names;
 }
 

@@ -20,10 +20,12 @@ std::string spec_with(const std::string& time, const std::string& extra = "", co
   "materials": [{"name": "rock", "density": 2600, "youngsModulus": 1e9, "poissonRatio": 0.25}, {"name": "floor", "rigid": true}],
   "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}, {"a": "rock", "b": "floor", "restitution": 0.5}],
   "contact": {"normal": "HERTZ"},
-  "particles": [{"position": {"z": 0.02}, "radius": 0.01, "material": "rock")" + sphere + R"(}],
+  "particles": [{"position": {"z": 0.02}, "radius": 0.01, "material": "rock")" +
+         sphere + R"(}],
   "walls": [{"material": "floor", "plane": {"normal": {"z": 1}}}],
   "gravity": {"z": -9.81},
-  "time": )" + time + extra + "}";
+  "time": )" +
+         time + extra + "}";
 }
 
 // The problems of a spec, including those only its Simulation finds (the time step and the step count).
@@ -67,7 +69,8 @@ TEST(InputRange, AbsurdGravityAndSpeedAreSpecErrors) {
   json.replace(json.find("-9.81"), 5, "-1e300");
   EXPECT_NE(problems(json).find("gravity: must be at most 1e+09 m/s^2"), std::string::npos) << problems(json);
   const std::string fast = spec_with(R"({"duration": 1})", "", R"(, "velocity": {"x": 1e300})");
-  EXPECT_NE(problems(fast).find("particles[0].velocity: must be at most 3e+08 m/s"), std::string::npos) << problems(fast);
+  EXPECT_NE(problems(fast).find("particles[0].velocity: must be at most 3e+08 m/s"), std::string::npos)
+      << problems(fast);
   const std::string huge = spec_with(R"({"duration": 1})", "", R"(, "position": {"z": 1e200})");
   EXPECT_NE(problems(huge).find("particles[0].position"), std::string::npos) << problems(huge);
 }
@@ -114,7 +117,8 @@ TEST(InputRange, TinyDensitiesRadiiStiffnessesAndBondDiscsAreSpecErrors) {
   json.replace(json.find("\"youngsModulus\": 1e9"), 20, "\"youngsModulus\": 5e-324");
   EXPECT_NE(problems(json).find("materials[0].youngsModulus: must be at least 0.001 Pa"), std::string::npos)
       << problems(json);
-  const std::string bonded = spec_with(R"({"duration": 1})", R"(, "bonds": {"youngsModulus": 1e8, "tensileStrength": 1e6,
+  const std::string bonded =
+      spec_with(R"({"duration": 1})", R"(, "bonds": {"youngsModulus": 1e8, "tensileStrength": 1e6,
       "shearStrength": 1e6, "radiusMultiplier": 1e-80})");
   EXPECT_NE(problems(bonded).find("bonds.radiusMultiplier: must be at least 0.001 (got 1e-80)"), std::string::npos)
       << problems(bonded);
@@ -149,7 +153,8 @@ TEST(InputRange, StepCountsAtTheEdges) {
 // once shrank the step by the bonds' period all the same (3.2x for Eb = 1e8 Pa).
 TEST(InputRange, BondsThatGlueNothingDoNotShortenTheStep) {
   const std::string plain = spec_with(R"({"duration": 1})");
-  const std::string bonded = spec_with(R"({"duration": 1})", R"(, "bonds": {"youngsModulus": 1e15, "tensileStrength": 1e6,
+  const std::string bonded =
+      spec_with(R"({"duration": 1})", R"(, "bonds": {"youngsModulus": 1e15, "tensileStrength": 1e6,
       "shearStrength": 1e6})");
   const Simulation a(spec::to_scene(spec::parse_json(plain)));
   const Simulation b(spec::to_scene(spec::parse_json(bonded)));
@@ -185,9 +190,10 @@ TEST(InputRange, EveryFreeNumberHasABound) {
   "time": {"duration": 0.01}
 })";
   const std::map<std::string, std::string> fine = {
-      {"FRICTION", "0.5"}, {"ROLLING", "0.1"}, {"GIVENMASS", "0.01"}, {"INERTIA", "2e-6"}, {"TENSILE", "1e6"},
-      {"SHEARRATIO", "1"}, {"SPREAD", "0.2"}, {"GAP", "0.001"}, {"ZONE", "1"}, {"LOADMASS", "10"}, {"FMAX", "100"},
-      {"FREQ", "3"}, {"TARGET", "100"}, {"GAIN", "1e-4"}, {"MAXSPEED", "0.1"}, {"MOTIONFREQ", "5"}};
+      {"FRICTION", "0.5"}, {"ROLLING", "0.1"},  {"GIVENMASS", "0.01"}, {"INERTIA", "2e-6"},
+      {"TENSILE", "1e6"},  {"SHEARRATIO", "1"}, {"SPREAD", "0.2"},     {"GAP", "0.001"},
+      {"ZONE", "1"},       {"LOADMASS", "10"},  {"FMAX", "100"},       {"FREQ", "3"},
+      {"TARGET", "100"},   {"GAIN", "1e-4"},    {"MAXSPEED", "0.1"},   {"MOTIONFREQ", "5"}};
   auto spec_with = [&](const std::string& field, const std::string& value) {
     std::string json = base;
     for (const auto& [key, v] : fine) {

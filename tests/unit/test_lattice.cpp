@@ -198,7 +198,8 @@ TEST(Lattice, HexNearestNeighboursAtSpacingTimesDiameterTwelveOfThem) {
     EXPECT_EQ(n.max_at_nearest, 12);
     // Hexagonal (ABAB), not fcc (ABC): layer 2 lies straight above layer 0, two layer gaps up.
     const Vec3 above = sites[0] + Vec3(0, 0, 2 * s * std::sqrt(2.0 / 3.0));
-    const bool found = std::any_of(sites.begin(), sites.end(), [&](const Vec3& c) { return (c - above).norm() < 1e-12; });
+    const bool found =
+        std::any_of(sites.begin(), sites.end(), [&](const Vec3& c) { return (c - above).norm() < 1e-12; });
     EXPECT_TRUE(found);
   }
 }

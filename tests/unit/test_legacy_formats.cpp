@@ -161,8 +161,8 @@ void expect_near_vec3(const Vec3& expected, const Vec3& actual, const std::funct
   for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(expected[axis], actual[axis], tolerance(expected[axis]));
 }
 
-void expect_animation_frames_match(const std::vector<AnimationFrame>& expected, const std::vector<AnimationFrame>& actual,
-                                   NumberFormat format) {
+void expect_animation_frames_match(const std::vector<AnimationFrame>& expected,
+                                   const std::vector<AnimationFrame>& actual, NumberFormat format) {
   const AnimationTolerances tol = tolerances(format);
   ASSERT_EQ(expected.size(), actual.size());
   for (std::size_t f = 0; f < expected.size(); ++f) {
@@ -196,9 +196,11 @@ void expect_animation_frames_match(const std::vector<AnimationFrame>& expected, 
   }
 }
 
-void expect_force_chain_frames_match(const std::vector<ForceChainFrame>& expected, const std::vector<ForceChainFrame>& actual,
-                                     NumberFormat format) {
-  auto tolerance = [&](double v) { return format == NumberFormat::Scientific ? scientific_tolerance(v) : fixed_tolerance(2); };
+void expect_force_chain_frames_match(const std::vector<ForceChainFrame>& expected,
+                                     const std::vector<ForceChainFrame>& actual, NumberFormat format) {
+  auto tolerance = [&](double v) {
+    return format == NumberFormat::Scientific ? scientific_tolerance(v) : fixed_tolerance(2);
+  };
   ASSERT_EQ(expected.size(), actual.size());
   for (std::size_t f = 0; f < expected.size(); ++f) {
     EXPECT_EQ(expected[f].step, actual[f].step);
@@ -220,12 +222,24 @@ bool starts_with(const std::string& text, const std::string& prefix) { return te
 // Fortran numbers
 
 TEST(FortranReal, AcceptsFortranAndCForms) {
-  const std::vector<std::pair<std::string, double>> cases = {
-      {"7.547503e+002", 754.7503}, {"1.405110e+003", 1405.110}, {"1.0E9", 1.0e9},  {"1.0D9", 1.0e9},
-      {"1.0d-3", 1.0e-3},          {".5", 0.5},                 {"5.", 5.0},       {"+3", 3.0},
-      {"-3.25", -3.25},            {"-.5", -0.5},               {"1.e5", 1.0e5},   {"0", 0.0},
-      {"45895.55", 45895.55},      {"1e-5", 1e-5},              {"2.5D+02", 250.0}, {"1.0-100", 1.0e-100},
-      {"1.0+100", 1.0e100},        {"-0.00", 0.0}};
+  const std::vector<std::pair<std::string, double>> cases = {{"7.547503e+002", 754.7503},
+                                                             {"1.405110e+003", 1405.110},
+                                                             {"1.0E9", 1.0e9},
+                                                             {"1.0D9", 1.0e9},
+                                                             {"1.0d-3", 1.0e-3},
+                                                             {".5", 0.5},
+                                                             {"5.", 5.0},
+                                                             {"+3", 3.0},
+                                                             {"-3.25", -3.25},
+                                                             {"-.5", -0.5},
+                                                             {"1.e5", 1.0e5},
+                                                             {"0", 0.0},
+                                                             {"45895.55", 45895.55},
+                                                             {"1e-5", 1e-5},
+                                                             {"2.5D+02", 250.0},
+                                                             {"1.0-100", 1.0e-100},
+                                                             {"1.0+100", 1.0e100},
+                                                             {"-0.00", 0.0}};
   for (const auto& [token, expected] : cases) {
     const std::optional<double> value = parse_fortran_real(token);
     ASSERT_TRUE(value.has_value()) << token;
@@ -234,8 +248,8 @@ TEST(FortranReal, AcceptsFortranAndCForms) {
 }
 
 TEST(FortranReal, RejectsWhatIsNotARealNumber) {
-  const std::vector<std::string> cases = {"",     "1.0e",  "abc",  "1.2.3", "1.0x", "e5",  ".",     "+",
-                                          "-",    "1.0e+", "+-1",  "--1",   "nan",  "inf", "1,5",   " 1.0",
+  const std::vector<std::string> cases = {"",     "1.0e",  "abc",   "1.2.3",  "1.0x", "e5",  ".",      "+",
+                                          "-",    "1.0e+", "+-1",   "--1",    "nan",  "inf", "1,5",    " 1.0",
                                           "1.0 ", "0x1p3", "1e400", "1e-400", "1.0d", "1..", "rplate", "3DA:"};
   for (const std::string& token : cases) EXPECT_FALSE(parse_fortran_real(token).has_value()) << "'" << token << "'";
 }
@@ -323,7 +337,8 @@ TEST(AnimationFile, WritesTheManualLayoutInLegacyFixed) {
       "0.3000 0.0000 0.5000 0.0090\n"
       "1\n"
       "13500 1 1\n"
-      "1 rplate -350.000 -400.000 -150.000 350.000 -400.000 -150.000 350.000 400.000 -150.000 -350.000 400.000 -150.000\n"
+      "1 rplate -350.000 -400.000 -150.000 350.000 -400.000 -150.000 350.000 400.000 -150.000 -350.000 400.000 "
+      "-150.000\n"
       "1 tri 0.000 0.000 0.000 1.500 0.000 0.000 0.000 -2.250 0.001\n"
       "1 -40.34 -34.86 -136.05 10.1036 0.13 -0.00 1.00 4 -2.50 0.00 0.33 3\n";
   EXPECT_EQ(expected, animation_text({frame}, NumberFormat::LegacyFixed));
@@ -487,7 +502,8 @@ bool is_frame_boundary(const std::vector<std::size_t>& ends, std::size_t cut) {
 
 TEST(AnimationFile, CutAtAnyByteReturnsTheCompleteFrames) {
   for (NumberFormat format : {NumberFormat::Scientific, NumberFormat::LegacyFixed}) {
-    const std::vector<AnimationFrame> frames = varied_animation_frames(3, format == NumberFormat::Scientific ? 0 : 500, 15);
+    const std::vector<AnimationFrame> frames =
+        varied_animation_frames(3, format == NumberFormat::Scientific ? 0 : 500, 15);
     std::vector<std::string> frame_texts;
     for (const AnimationFrame& frame : frames) frame_texts.push_back(animation_text({frame}, format));
     const std::vector<std::size_t> ends = frame_ends(frame_texts);
@@ -573,12 +589,13 @@ TEST(AnimationFile, WrongColumnCountReportsTheLine) {
   const ReadResult<AnimationFrame> result = read_animation_text(joined(lines));
   EXPECT_EQ(1u, result.frames.size());
   EXPECT_FALSE(result.truncated);
-  EXPECT_TRUE(starts_with(result.problem, "line " + std::to_string(bad + 1) + ": expected 13 values")) << result.problem;
+  EXPECT_TRUE(starts_with(result.problem, "line " + std::to_string(bad + 1) + ": expected 13 values"))
+      << result.problem;
 }
 
 TEST(AnimationFile, NotANumberReportsLineAndColumn) {
   std::vector<std::string> lines = animation_lines();
-  lines.insert(lines.begin() + 3, "");  // a blank line still counts in line numbers
+  lines.insert(lines.begin() + 3, "");                // a blank line still counts in line numbers
   const std::size_t bad = first_frame_lines + 1 + 9;  // a particle line of the second frame
   lines[bad] = "3 1.2.3 0 0 10.0 0 0 0 0 0 0 0 1";
   const ReadResult<AnimationFrame> result = read_animation_text(joined(lines));
@@ -626,7 +643,8 @@ TEST(AnimationFile, NewFrameInsideAnIncompleteFrameReportsBoth) {
   EXPECT_TRUE(result.frames.empty());
   EXPECT_FALSE(result.truncated);
   EXPECT_EQ(
-      "line 13: a new frame starts here, but the frame that starts at line 1 is incomplete: its particle line 3 of 4 is "
+      "line 13: a new frame starts here, but the frame that starts at line 1 is incomplete: its particle line 3 of 4 "
+      "is "
       "missing",
       result.problem);
 }
@@ -637,7 +655,8 @@ TEST(ForceChainFile, MalformedLinesReportTheLine) {
   EXPECT_EQ("line 2: column 4 ('abc') is not a number", read_force_chain_text("3DF: 1 1\n1 0 2 abc 0.5\n").problem);
   EXPECT_EQ("line 1: expected the frame header '3DF: step NC', found '3DF:' and more",
             read_force_chain_text("3DF: 1\n").problem);
-  const ReadResult<ForceChainFrame> second_bad = read_force_chain_text("3DF: 1 1\n1 0 2 1 0.5\n3DF: x 1\n1 0 2 1 0.5\n");
+  const ReadResult<ForceChainFrame> second_bad =
+      read_force_chain_text("3DF: 1 1\n1 0 2 1 0.5\n3DF: x 1\n1 0 2 1 0.5\n");
   EXPECT_EQ(1u, second_bad.frames.size());
   EXPECT_FALSE(second_bad.truncated);
   EXPECT_EQ("line 3: column 2 ('x') is not an integer", second_bad.problem);

@@ -44,8 +44,9 @@ TEST(ClosestOnTriangle, NamesTheFeature) {
 TEST(MeshTouches, FlatGridGivesOneContactEverywhere) {
   const MeshWall mesh = wall_of(grid_rectangle({0, 0, 0}, {8, 0, 0}, {0, 8, 0}, 8, 8));
   const double r = 0.3, h = 0.25;
-  const Vec3 spots[] = {{2.3, 3.6, h}, {2.0, 3.6, h}, {2.5, 3.5, h}, {2.0, 3.0, h}, {3.0, 3.0, h},
-                        {2.0 + 1e-12, 3.0 - 1e-12, h}, {4.0, 4.5, h}, {4.5, 4.5, h}, {5.0, 5.0, h}};
+  const Vec3 spots[] = {{2.3, 3.6, h}, {2.0, 3.6, h}, {2.5, 3.5, h},
+                        {2.0, 3.0, h}, {3.0, 3.0, h}, {2.0 + 1e-12, 3.0 - 1e-12, h},
+                        {4.0, 4.5, h}, {4.5, 4.5, h}, {5.0, 5.0, h}};
   for (const Vec3& x : spots) {
     const auto found = touches(mesh, x, r);
     ASSERT_EQ(found.size(), 1u) << "at " << x.transpose();

@@ -23,8 +23,10 @@ const std::string kTwoTriangles =
 
 std::string error_of(const std::string& text, bool stl = false) {
   try {
-    if (stl) parse_stl(text, "m.stl");
-    else parse_legacy_mesh(text, "m.dat");
+    if (stl)
+      parse_stl(text, "m.stl");
+    else
+      parse_legacy_mesh(text, "m.dat");
   } catch (const MeshError& e) {
     return e.what();
   }
@@ -65,8 +67,7 @@ TEST(LegacyMesh, EachBadFileHasItsOwnError) {
   EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 0\n"), "m.dat: the file ends after 2 of 4 vertices (truncated, last line 3)");
   EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n1 2 3\n"),
             "m.dat: the file ends after 1 of 2 triangles (truncated, last line 6)");
-  EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 x\n1 1 0\n0 1 0\n1 2 3\n1 3 4\n"),
-            "m.dat line 3: expected a number, got \"x\"");
+  EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 x\n1 1 0\n0 1 0\n1 2 3\n1 3 4\n"), "m.dat line 3: expected a number, got \"x\"");
   EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n1 2 3\n1 3 9\n"),
             "m.dat line 7: triangle 2 refers to vertex 9, but the mesh has 4 vertices");
   EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 2 3\n1 3 4\n"),

@@ -120,8 +120,8 @@ void expect_matches_brute_force(const Particles& p, double skin) {
   std::set_difference(got.begin(), got.end(), expected.begin(), expected.end(), std::back_inserter(extra));
   EXPECT_TRUE(missing.empty()) << missing.size() << " pairs missing, first (" << missing[0].first << ", "
                                << missing[0].second << ") with skin " << skin;
-  EXPECT_TRUE(extra.empty()) << extra.size() << " pairs too many, first (" << extra[0].first << ", "
-                             << extra[0].second << ") with skin " << skin;
+  EXPECT_TRUE(extra.empty()) << extra.size() << " pairs too many, first (" << extra[0].first << ", " << extra[0].second
+                             << ") with skin " << skin;
   // The comparison means something only if there are pairs to find.
   EXPECT_GT(expected.size(), p.size() / 2);
 }

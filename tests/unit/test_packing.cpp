@@ -45,7 +45,9 @@ TEST_P(Distribution, SampleHasTheRequestedMeanAndSpread) {
 }
 
 INSTANTIATE_TEST_SUITE_P(NormalAndLognormal, Distribution, ::testing::Values(SizeKind::Normal, SizeKind::Lognormal),
-                         [](const auto& info) { return std::string(info.param == SizeKind::Normal ? "normal" : "lognormal"); });
+                         [](const auto& info) {
+                           return std::string(info.param == SizeKind::Normal ? "normal" : "lognormal");
+                         });
 
 TEST(SizeSamples, TruncationDrawsAgainInsideTheBounds) {
   SizeDistribution d{SizeKind::Normal, 0.010, 0.005, 0.008, 0.012, 0.5};
@@ -100,7 +102,8 @@ std::string with_seed(int seed) {
 }
 
 TEST(PackingSpec, ASeedGivesTheSamePackingAgain) {
-  const Scene a = to_scene(parse_json(with_seed(7))), b = to_scene(parse_json(with_seed(7))), c = to_scene(parse_json(with_seed(8)));
+  const Scene a = to_scene(parse_json(with_seed(7))), b = to_scene(parse_json(with_seed(7))),
+              c = to_scene(parse_json(with_seed(8)));
   ASSERT_GT(a.particles.size(), 300u);
   ASSERT_EQ(a.particles.size(), b.particles.size());
   for (std::size_t k = 0; k < a.particles.size(); ++k) ASSERT_EQ(a.particles[k].position, b.particles[k].position);

@@ -36,8 +36,8 @@ Scene heap(const LawCase& law) {
     for (int j = 0; j < 6; ++j)
       for (int i = 0; i < 6; ++i) {
         const double r = (i + j + k) % 2 == 0 ? 0.0026 : 0.0018;
-        ParticleInit p = sphere({0.0045 * i + 0.0003 * u(rng), 0.0045 * j + 0.0003 * u(rng), 0.0045 * k + 0.003},
-                                r, {0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)}, {20 * u(rng), 20 * u(rng), 20 * u(rng)});
+        ParticleInit p = sphere({0.0045 * i + 0.0003 * u(rng), 0.0045 * j + 0.0003 * u(rng), 0.0045 * k + 0.003}, r,
+                                {0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)}, {20 * u(rng), 20 * u(rng), 20 * u(rng)});
         p.material = (i + 2 * j + k) % 2;
         s.particles.push_back(p);
       }
@@ -60,7 +60,9 @@ Bits run_with_lanes(const LawCase& law, int lanes) {
 
 std::string law_name(const ::testing::TestParamInfo<LawCase>& info) {
   const LawCase& c = info.param;
-  const std::string rolling = c.rolling == NoRolling::kName ? "NoRolling" : c.rolling == CdtRolling::kName ? "Cdt" : "Epsd";
+  const std::string rolling = c.rolling == NoRolling::kName    ? "NoRolling"
+                              : c.rolling == CdtRolling::kName ? "Cdt"
+                                                               : "Epsd";
   return std::string(c.normal == LinearNormal::kName ? "Linear" : "Hertz") + (c.no_tensile ? "NoTension" : "") +
          (c.friction > 0 ? "Friction" : "Frictionless") + rolling;
 }
@@ -88,15 +90,14 @@ TEST_P(PairLanes, FourLanesGiveTheBitsOfOne) {
   EXPECT_GT(moved, 100);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Laws, PairLanes,
-    ::testing::Values(LawCase{LinearNormal::kName, false, 0.5, NoRolling::kName},
-                      LawCase{LinearNormal::kName, true, 0.0, NoRolling::kName},
-                      LawCase{LinearNormal::kName, false, 0.3, CdtRolling::kName},
-                      LawCase{HertzNormal::kName, true, 0.5, EpsdRolling::kName},
-                      LawCase{HertzNormal::kName, false, 0.2, CdtRolling::kName},
-                      LawCase{HertzNormal::kName, false, 0.0, NoRolling::kName}),
-    law_name);
+INSTANTIATE_TEST_SUITE_P(Laws, PairLanes,
+                         ::testing::Values(LawCase{LinearNormal::kName, false, 0.5, NoRolling::kName},
+                                           LawCase{LinearNormal::kName, true, 0.0, NoRolling::kName},
+                                           LawCase{LinearNormal::kName, false, 0.3, CdtRolling::kName},
+                                           LawCase{HertzNormal::kName, true, 0.5, EpsdRolling::kName},
+                                           LawCase{HertzNormal::kName, false, 0.2, CdtRolling::kName},
+                                           LawCase{HertzNormal::kName, false, 0.0, NoRolling::kName}),
+                         law_name);
 
 // A jostled cubic pack of 5,832 spheres: more than one particle block (4,096), so pairs that cross
 // into a later block leave their share in a deferred slot, and rows of ~3 pairs share groups.
@@ -115,8 +116,8 @@ TEST(PairLanesAcrossBlocks, FourLanesGiveTheBitsOfOne) {
     for (int k = 0; k < 18; ++k)
       for (int j = 0; j < 18; ++j)
         for (int i = 0; i < 18; ++i)
-          s.particles.push_back(sphere({spacing * i + 3e-7 * u(rng), spacing * j + 3e-7 * u(rng), r + spacing * k},
-                                       r, {0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)}));
+          s.particles.push_back(sphere({spacing * i + 3e-7 * u(rng), spacing * j + 3e-7 * u(rng), r + spacing * k}, r,
+                                       {0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)}));
     s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}, "floor"));
     set_pair_lanes(lanes);
     Simulation sim(std::move(s));

@@ -27,7 +27,8 @@ std::vector<double> restitutions() {
 
 TEST(RestitutionDamping, LinearWithTensionIsTheClosedForm) {
   EXPECT_NEAR(linear_damping_ratio(0.5, false), 0.21545, 5e-6);  // validation.md section 2
-  for (double e : restitutions()) EXPECT_NEAR(linear_damping_ratio(e, false), closed_form_zeta(e), 1e-12) << "e = " << e;
+  for (double e : restitutions())
+    EXPECT_NEAR(linear_damping_ratio(e, false), closed_form_zeta(e), 1e-12) << "e = " << e;
 }
 
 TEST(RestitutionDamping, LinearIntegrationMatchesTheClosedFormRestitution) {

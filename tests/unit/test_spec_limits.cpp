@@ -19,7 +19,8 @@ std::string spec_with(const std::string& particles, const std::string& extra = "
   return R"({
   "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}, {"name": "floor", "rigid": true}],
   "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}, {"a": "rock", "b": "floor", "restitution": 0.5}],
-  )" + particles + extra + R"(,
+  )" + particles +
+         extra + R"(,
   "time": {"steps": 10}
 })";
 }
@@ -73,7 +74,8 @@ TEST(SpecLimits, ParticlesInAllAreCappedBeforeTheyAreMade) {
   ASSERT_EQ(p.size(), 1u);
   EXPECT_EQ(p[0], "lattices[0]: would make 8000 particles in all, more than the limit of 1000");
   // two lattices of 512 each: under the limit each, over it together
-  const std::string two = R"("lattices": [{"kind": "CUBIC", "min": {}, "max": {"x": 0.16, "y": 0.16, "z": 0.16}, "radius": 0.01, "material": "rock"},
+  const std::string two =
+      R"("lattices": [{"kind": "CUBIC", "min": {}, "max": {"x": 0.16, "y": 0.16, "z": 0.16}, "radius": 0.01, "material": "rock"},
                                          {"kind": "CUBIC", "min": {"z": 1}, "max": {"x": 0.16, "y": 0.16, "z": 1.16}, "radius": 0.01, "material": "rock"}])";
   const std::vector<std::string> both = problems(spec_with(two), small);
   ASSERT_EQ(both.size(), 1u);

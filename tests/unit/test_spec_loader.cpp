@@ -78,7 +78,8 @@ testing::AssertionResult has_problem(const std::vector<std::string>& problems, c
                                      const std::string& reason) {
   for (const std::string& p : problems)
     if (p.rfind(path, 0) == 0 && p.find(reason) != std::string::npos) return testing::AssertionSuccess();
-  return testing::AssertionFailure() << "no problem \"" << path << "...: ..." << reason << "...\" among:" << listing(problems);
+  return testing::AssertionFailure() << "no problem \"" << path << "...: ..." << reason
+                                     << "...\" among:" << listing(problems);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -195,7 +196,8 @@ TEST(SpecLoader, GivenOptionsOverrideTheDefaults) {
 TEST(SpecLoader, AKeyGivenTwiceIsNamed) {
   const auto twice = problems_of(good_with(R"("restitution": 0.8,)", R"("restitution": 0.8, "restitution": 0.9,)"));
   EXPECT_TRUE(has_problem(twice, "interactions[1].restitution", "given twice")) << listing(twice);
-  const auto spelled = problems_of(good_with(R"("normalStiffness": 1e5,)", R"("normalStiffness": 1e5, "normal_stiffness": 2e5,)"));
+  const auto spelled =
+      problems_of(good_with(R"("normalStiffness": 1e5,)", R"("normalStiffness": 1e5, "normal_stiffness": 2e5,)"));
   EXPECT_TRUE(has_problem(spelled, "materials[0].normal_stiffness", "given twice")) << listing(spelled);
   const auto top = problems_of(std::string(kGoodSpec).replace(1, 0, R"("name": "first",)"));
   EXPECT_TRUE(has_problem(top, "name", "given twice")) << listing(top);
@@ -277,7 +279,8 @@ TEST(SpecLoader, NegativeRadius) {
 }
 
 TEST(SpecLoader, UnknownMaterialName) {
-  const auto problems = problems_of(good_with(R"("radius": 0.02, "material": "glass")", R"("radius": 0.02, "material": "glas")"));
+  const auto problems =
+      problems_of(good_with(R"("radius": 0.02, "material": "glass")", R"("radius": 0.02, "material": "glas")"));
   EXPECT_TRUE(has_problem(problems, "particles[1].material:", "unknown material \"glas\""));
 }
 
@@ -331,8 +334,9 @@ TEST(SpecLoader, RollingFrictionWithARollingModelIsAccepted) {
 // Contact parameters belong to models (contact/models.hpp): the chosen models read theirs, a
 // parameter of a model not chosen is refused naming its owner, and each is checked to its range.
 TEST(SpecLoader, ContactParametersReachTheirModel) {
-  const std::string json = replaced(kGoodSpec, R"("rolling": "NONE")",
-                                    R"("rolling": "EPSD", "tangentialStiffnessRatio": 0.3, "rollingDampingRatio": 0.1)");
+  const std::string json =
+      replaced(kGoodSpec, R"("rolling": "NONE")",
+               R"("rolling": "EPSD", "tangentialStiffnessRatio": 0.3, "rollingDampingRatio": 0.1)");
   const Scene s = to_scene(parse_json(json));
   EXPECT_EQ(s.contact.parameters.value(LinearNormal::kStiffnessRatio), 0.3);
   EXPECT_EQ(s.contact.parameters.value(EpsdRolling::kDampingRatio), 0.1);
@@ -346,15 +350,18 @@ TEST(SpecLoader, TensionIsAllowedOnlyWhenAsked) {
 }
 
 TEST(SpecLoader, AParameterOfAModelNotChosenIsRefused) {
-  std::string json = replaced(kGoodSpec, R"("normal": "LINEAR")", R"("normal": "HERTZ", "tangentialDampingRatio": 0.5)");
+  std::string json =
+      replaced(kGoodSpec, R"("normal": "LINEAR")", R"("normal": "HERTZ", "tangentialDampingRatio": 0.5)");
   json = replaced(json, R"("density": 2500)", R"("density": 2500, "youngsModulus": 1e9)");
   const auto problems = problems_of(json);
-  EXPECT_TRUE(has_problem(problems, "contact.tangentialDampingRatio:",
-                          "is not used by the chosen models (normal HERTZ, rolling NONE); it is a parameter of LINEAR"));
+  EXPECT_TRUE(
+      has_problem(problems, "contact.tangentialDampingRatio:",
+                  "is not used by the chosen models (normal HERTZ, rolling NONE); it is a parameter of LINEAR"));
 }
 
 TEST(SpecLoader, AContactParameterOutOfRangeIsRefused) {
-  const auto problems = problems_of(replaced(kGoodSpec, R"("rolling": "NONE")", R"("rolling": "NONE", "tangentialStiffnessRatio": -1)"));
+  const auto problems =
+      problems_of(replaced(kGoodSpec, R"("rolling": "NONE")", R"("rolling": "NONE", "tangentialStiffnessRatio": -1)"));
   EXPECT_TRUE(has_problem(problems, "contact.tangentialStiffnessRatio:", "must be in [0, inf] (got -1)"));
 }
 
@@ -453,8 +460,8 @@ TEST(SpecLoader, DomainWithAnInfiniteBound) {
 }
 
 TEST(SpecLoader, BadLengthUnit) {
-  const auto problems = problems_of(good_with(R"("time": {"steps": 100})",
-                                              R"("time": {"steps": 100}, "outputs": {"lengthUnit": "km"})"));
+  const auto problems =
+      problems_of(good_with(R"("time": {"steps": 100})", R"("time": {"steps": 100}, "outputs": {"lengthUnit": "km"})"));
   EXPECT_TRUE(has_problem(problems, "outputs.lengthUnit:", "must be \"m\", \"cm\" or \"mm\" (got \"km\")"));
 }
 
@@ -464,7 +471,8 @@ TEST(SpecLoader, HertzNeedsYoungsModulus) {
 }
 
 TEST(SpecLoader, RigidMaterialOnAParticle) {
-  const auto problems = problems_of(good_with(R"("radius": 0.02, "material": "glass")", R"("radius": 0.02, "material": "steel")"));
+  const auto problems =
+      problems_of(good_with(R"("radius": 0.02, "material": "glass")", R"("radius": 0.02, "material": "steel")"));
   EXPECT_TRUE(has_problem(problems, "particles[1].material:", "rigid"));
 }
 
@@ -498,9 +506,9 @@ TEST(SpecLoader, SpecErrorMessageListsEveryProblem) {
 
 TEST(SpecLoader, GarbageBytesFailCleanly) {
   const std::vector<std::string> garbage = {
-      std::string(12, '\xff'),             // a varint tag that never ends
-      std::string("\x0a\x7f\x01", 3),      // materials: 127 bytes announced, 1 given
-      std::string("\x0f\x00", 2),          // wire type 7 does not exist
+      std::string(12, '\xff'),                         // a varint tag that never ends
+      std::string("\x0a\x7f\x01", 3),                  // materials: 127 bytes announced, 1 given
+      std::string("\x0f\x00", 2),                      // wire type 7 does not exist
       std::string("\x12\x05\xff\xff\xff\xff\xff", 7),  // a nested message that is itself garbage
   };
   for (const std::string& bytes : garbage) {
@@ -551,7 +559,6 @@ TEST(SpecLoader, EmptyBytesAreAnEmptySpecThatFailsTheChecks) {
   }
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // Meshes, motions and loads
 
@@ -569,7 +576,8 @@ TEST(SpecLoader, InlineMeshIsScaledRotatedAndMoved) {
   const auto* mesh = std::get_if<MeshShape>(&s.walls[0].shape);
   ASSERT_NE(mesh, nullptr);
   ASSERT_EQ(mesh->vertices.size(), 4u);
-  EXPECT_TRUE(mesh->vertices[1].isApprox(Vec3(0, 1, -0.5), 1e-12)) << mesh->vertices[1].transpose();  // (1, 0) turned 90 deg
+  EXPECT_TRUE(mesh->vertices[1].isApprox(Vec3(0, 1, -0.5), 1e-12))
+      << mesh->vertices[1].transpose();  // (1, 0) turned 90 deg
   EXPECT_EQ(mesh->triangles[1], (std::array<int, 3>{0, 2, 3}));
 }
 
@@ -629,7 +637,8 @@ TEST(SpecLoader, MotionAndLoadAreRead) {
   ASSERT_TRUE(s.walls[0].motion.has_value());
   EXPECT_EQ(s.walls[0].motion->velocity, Vec3(0.1, 0, 0));
   EXPECT_NEAR(s.walls[0].motion->phase, std::numbers::pi / 2, 1e-15);
-  const std::string loaded = R"({"name": "sleeper", "material": "steel", "plate": {"c1": {}, "c2": {"x": 1}, "c3": {"x": 1, "y": 1}, "c4": {"y": 1}},
+  const std::string loaded =
+      R"({"name": "sleeper", "material": "steel", "plate": {"c1": {}, "c2": {"x": 1}, "c3": {"x": 1, "y": 1}, "c4": {"y": 1}},
       "load": {"mass": 2, "cyclic": {"fMin": 1500, "fMax": 51840, "frequency": 3, "cycles": 15}}})";
   const Scene t = to_scene(parse_json(with_wall(loaded)));
   ASSERT_TRUE(t.walls[0].load.has_value());
@@ -652,12 +661,12 @@ TEST(SpecLoader, BadLoadsAreNamed) {
   EXPECT_TRUE(has_problem(p, "walls[0].load:", "needs a control: cyclic or servo"));
   p = problems_of(wall(R"("load": {"servo": {"target": 100, "gain": -1, "maxSpeed": 0.1}})"));
   EXPECT_TRUE(has_problem(p, "walls[0].load.servo.gain:", "must be a positive number"));
-  p = problems_of(wall(R"("motion": {"velocity": {"x": 1}}, "load": {"servo": {"target": 1, "gain": 1, "maxSpeed": 1}})"));
+  p = problems_of(
+      wall(R"("motion": {"velocity": {"x": 1}}, "load": {"servo": {"target": 1, "gain": 1, "maxSpeed": 1}})"));
   EXPECT_TRUE(has_problem(p, "walls[0]:", "has both a motion and a load"));
   p = problems_of(wall(R"("motion": {"amplitude": {"x": 1}})"));
   EXPECT_TRUE(has_problem(p, "walls[0].motion.frequency:", "must be > 0 when an amplitude is given"));
 }
-
 
 TEST(SpecLoader, BondsAreRead) {
   const std::string json = replaced(kGoodSpec, R"("gravity": {"z": -9.81},)", R"("gravity": {"z": -9.81},
@@ -685,7 +694,6 @@ TEST(SpecLoader, BadBondsAreNamed) {
   EXPECT_TRUE(has_problem(p, "bonds.region:", "max is below min"));
 }
 
-
 TEST(SpecLoader, ExternalForceAndLocalDamping) {
   std::string json = replaced(kGoodSpec, R"("fixed": true})", R"("fixed": true, "force": {"z": -2.5}})");
   json = replaced(json, R"("time": {"steps": 100})", R"("time": {"steps": 100}, "numerics": {"localDamping": 0.7})");
@@ -696,9 +704,9 @@ TEST(SpecLoader, ExternalForceAndLocalDamping) {
   EXPECT_TRUE(has_problem(p, "numerics.localDamping:", "must be in [0, 1)"));
 }
 
-
 TEST(SpecLoader, GrowthIsCheckedAndRead) {
-  const std::string json = replaced(kGoodSpec, R"("time": {"steps": 100})", R"("time": {"steps": 100}, "growth": {"factor": 1.2, "steps": 50})");
+  const std::string json = replaced(kGoodSpec, R"("time": {"steps": 100})",
+                                    R"("time": {"steps": 100}, "growth": {"factor": 1.2, "steps": 50})");
   const Scene s = to_scene(parse_json(json));
   ASSERT_TRUE(s.growth.has_value());
   EXPECT_EQ(s.growth->factor, 1.2);

@@ -230,7 +230,12 @@ TEST(StabilityGuard, AWallFastEnoughToPassThroughParticlesIsRefusedOrStopped) {
     Scene s = base_scene(LinearNormal::kName, 2500, 0, 0.25, 0.5, 0.0, 1e4);
     s.particles.push_back(sphere({0, 0, 0.02}, 0.005));
     s.particles.push_back(sphere({0.03, 0, 0.02}, 0.005));
-    WallInit plate{"press", 1, PlateShape{{Vec3(-0.1, -0.1, 0.05), Vec3(0.1, -0.1, 0.05), Vec3(0.1, 0.1, 0.05), Vec3(-0.1, 0.1, 0.05)}}, {}, {}};
+    WallInit plate{
+        "press",
+        1,
+        PlateShape{{Vec3(-0.1, -0.1, 0.05), Vec3(0.1, -0.1, 0.05), Vec3(0.1, 0.1, 0.05), Vec3(-0.1, 0.1, 0.05)}},
+        {},
+        {}};
     if (velocity.norm() > 0) {
       PrescribedMotion m;
       m.velocity = velocity;

@@ -90,8 +90,7 @@ Scene sphere_and_rigid_material() {
   steel.name = "steel";
   steel.rigid = true;
   s.materials.push_back(steel);
-  s.interactions = {Interaction{0.5, 0.3, 0}, Interaction{1.0, 0.3, 0}, Interaction{1.0, 0.3, 0},
-                    Interaction{1, 0, 0}};
+  s.interactions = {Interaction{0.5, 0.3, 0}, Interaction{1.0, 0.3, 0}, Interaction{1.0, 0.3, 0}, Interaction{1, 0, 0}};
   return s;
 }
 
@@ -116,7 +115,8 @@ TEST(TimeStep, ALoadedWallTooLightForTheStepIsRefused) {
   Scene s = sphere_and_rigid_material();
   WallInit plate;
   plate.material = 1;
-  plate.shape = PlateShape{{Vec3(-0.1, -0.1, 0.02), Vec3(0.1, -0.1, 0.02), Vec3(0.1, 0.1, 0.02), Vec3(-0.1, 0.1, 0.02)}};
+  plate.shape =
+      PlateShape{{Vec3(-0.1, -0.1, 0.02), Vec3(0.1, -0.1, 0.02), Vec3(0.1, 0.1, 0.02), Vec3(-0.1, 0.1, 0.02)}};
   LoadControl load;
   load.kind = LoadControl::Kind::Cyclic;
   load.mass = 1e-6;

@@ -157,7 +157,7 @@ TEST(WallPlate, EdgeRegionOnBothSides) {
 
 TEST(WallPlate, CornerRegionOnBothSides) {
   const Wall w = unit_square();
-  expect_contact_via(w, Vec3(1.1, 1.2, 0.2), 0.35, Vec3(1, 1, 0));    // distance 0.3
+  expect_contact_via(w, Vec3(1.1, 1.2, 0.2), 0.35, Vec3(1, 1, 0));  // distance 0.3
   expect_contact_via(w, Vec3(1.1, 1.2, -0.2), 0.35, Vec3(1, 1, 0));
   expect_contact_via(w, Vec3(-0.2, -0.1, -0.2), 0.35, Vec3(0, 0, 0));  // distance 0.3
   expect_no_contact(w, Vec3(1.2, 1.2, 0.2), 0.3);                      // distance 0.3464

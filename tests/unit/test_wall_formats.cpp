@@ -29,7 +29,8 @@ std::vector<WallFrame> wall_frames() {
     frames[f].step = 1000 * f;
     AnimationPlate plate;
     plate.id = 1;
-    plate.corners = {Vec3(-350, -400, -150 + f), Vec3(350, -400, -150 + f), Vec3(350, 400, -150 + f), Vec3(-350, 400, -150 + f)};
+    plate.corners = {Vec3(-350, -400, -150 + f), Vec3(350, -400, -150 + f), Vec3(350, 400, -150 + f),
+                     Vec3(-350, 400, -150 + f)};
     frames[f].plates.push_back(plate);
     for (int t = 0; t < 2; ++t) {
       AnimationTriangle tri;

@@ -18,11 +18,12 @@ std::string stones_spec(int count, std::uint32_t seed, double box) {
   return R"({"name": "stones",
     "materials": [{"name": "granite", "density": 2650, "normalStiffness": 1e6}],
     "interactions": [{"a": "granite", "b": "granite", "restitution": 0.5, "friction": 0.6}],
-    "ballastStones": [{"count": )" + std::to_string(count) + R"(, "massLogMean": -3.0, "massLogSigma": 0.6,
+    "ballastStones": [{"count": )" +
+         std::to_string(count) + R"(, "massLogMean": -3.0, "massLogSigma": 0.6,
                        "massMin": 0.01, "massMax": 0.3, "minSpheres": 3, "maxSpheres": 20,
-                       "min": {"x": 0, "y": 0, "z": 0}, "max": {"x": )" + std::to_string(box) + R"(, "y": )" +
-         std::to_string(box) + R"(, "z": )" + std::to_string(box) + R"(}, "material": "granite", "seed": )" +
-         std::to_string(seed) + R"(}],
+                       "min": {"x": 0, "y": 0, "z": 0}, "max": {"x": )" +
+         std::to_string(box) + R"(, "y": )" + std::to_string(box) + R"(, "z": )" + std::to_string(box) +
+         R"(}, "material": "granite", "seed": )" + std::to_string(seed) + R"(}],
     "gravity": {"z": -9.81}, "time": {"steps": 10}})";
 }
 
@@ -67,7 +68,8 @@ TEST(BallastStones, EachStonesMassIsItsDensityTimesItsVolumeAndNoTwoOverlap) {
   for (std::size_t k = 0; k < 5; ++k) {  // a few stones, their members measured afresh
     const ClumpInit& c = scene.clumps[k];
     std::vector<MemberSphere> spheres;
-    for (int i = c.first; i < c.first + c.count; ++i) spheres.push_back({scene.particles[i].position, scene.particles[i].radius});
+    for (int i = c.first; i < c.first + c.count; ++i)
+      spheres.push_back({scene.particles[i].position, scene.particles[i].radius});
     const MassProperties mp = union_mass_properties(spheres, 1e-4);
     EXPECT_NEAR(2650 * mp.volume, c.mass, 3e-3 * c.mass) << "stone " << k;
     EXPECT_NEAR((mp.centroid - c.position).norm(), 0, 1e-3 * std::cbrt(mp.volume)) << "stone " << k;
@@ -77,7 +79,8 @@ TEST(BallastStones, EachStonesMassIsItsDensityTimesItsVolumeAndNoTwoOverlap) {
     for (std::size_t b = a + 1; b < scene.particles.size(); ++b) {
       const ParticleInit &p = scene.particles[a], &q = scene.particles[b];
       if (p.clump == q.clump) continue;
-      ASSERT_GE((p.position - q.position).norm(), p.radius + q.radius) << "stones " << p.clump << " and " << q.clump << " overlap";
+      ASSERT_GE((p.position - q.position).norm(), p.radius + q.radius)
+          << "stones " << p.clump << " and " << q.clump << " overlap";
     }
 }
 
@@ -100,7 +103,8 @@ TEST(BallastStones, GeneratedStonesFallOntoTheFloorWithoutPassingThrough) {
   const Particles& p = sim.particles();
   double lowest = 1;
   for (std::size_t i = 0; i < p.size(); ++i) lowest = std::min(lowest, p.x[i].z() - p.radius[i]);
-  std::printf("20 stones after 0.2 s: lowest member surface at %.2e m, kinetic energy %.3e J\n", lowest, sim.kinetic_energy());
+  std::printf("20 stones after 0.2 s: lowest member surface at %.2e m, kinetic energy %.3e J\n", lowest,
+              sim.kinetic_energy());
   EXPECT_GT(lowest, -0.05 * 0.01) << "no stone falls through the floor";
   EXPECT_TRUE(std::isfinite(sim.kinetic_energy()));
 }
@@ -125,8 +129,10 @@ TEST(BallastStones, AnEmptyOrUndefinedMassDistributionIsRefused) {
   std::string all = problems(R"("massLogSigma": 0.6)", R"("massLogSigma": 0)");  // exp(-3) = 0.0498 kg: fine
   EXPECT_EQ(all, "");
   all = problems(R"("massLogMean": -3.0, "massLogSigma": 0.6)", R"("massLogMean": 0, "massLogSigma": 0)");
-  EXPECT_NE(all.find("ballastStones[0].massLogMean: with massLogSigma 0 every stone weighs exp(massLogMean) = 1 kg, outside"),
-            std::string::npos) << all;
+  EXPECT_NE(
+      all.find("ballastStones[0].massLogMean: with massLogSigma 0 every stone weighs exp(massLogMean) = 1 kg, outside"),
+      std::string::npos)
+      << all;
   all = problems(R"("massLogMean": -3.0)", R"("massLogMean": "NaN")");
   EXPECT_NE(all.find("ballastStones[0].massLogMean: must be a finite number"), std::string::npos) << all;
 }

@@ -53,7 +53,9 @@ TEST(BondRotation, ARigidMotionLoadsNoBondAndTurnsTheLoadsOfALoadedOne) {
       glue(b, i0, j0);
       const Quat turn = random_turn(3.14159);
       const Vec3 centre = Vec3(u(rng), u(rng), u(rng)), shift = Vec3(u(rng), u(rng), u(rng));
-      auto moved = [&](const BondEnd& e) { return BondEnd{centre + turn * (e.x - centre) + shift, turn * e.q, e.radius}; };
+      auto moved = [&](const BondEnd& e) {
+        return BondEnd{centre + turn * (e.x - centre) + shift, turn * e.q, e.radius};
+      };
       const double scale = b.kn * b.geometry.area * 0.017;  // the force of a 100% stretch
       const BondLoad rigid = bond_load(b, moved(i0), moved(j0), 0);
       EXPECT_LT(rigid.force.norm(), 1e-12 * scale) << trial;

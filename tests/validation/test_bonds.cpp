@@ -46,8 +46,10 @@ BondLoad drive(Bond& b, const Drive& d, bool flip, int steps, double dt) {
     return BondEnd{(kRa + kRb) * d.axis + d.velocity * t, rotation_by(0.5 * t * d.spin), kRa};
   };
   auto b_at = [&](double t) { return BondEnd{Vec3::Zero(), rotation_by(-0.5 * t * d.spin), kRb}; };
-  if (flip) glue(b, b_at(0), a_at(0));
-  else glue(b, a_at(0), b_at(0));
+  if (flip)
+    glue(b, b_at(0), a_at(0));
+  else
+    glue(b, a_at(0), b_at(0));
   BondLoad last{};
   for (int k = 1; k <= steps; ++k) {
     const double t = k * dt;

@@ -28,20 +28,27 @@ std::string stone_spec(int count, double mass, double strength, const std::strin
   std::ostringstream s;
   s.precision(17);
   s << R"({"name": "breakable stones",
-  "materials": [{"name": "rock", "density": )" << kDensity << R"(, "normalStiffness": 2e6}, {"name": "steel", "rigid": true}],
+  "materials": [{"name": "rock", "density": )"
+    << kDensity << R"(, "normalStiffness": 2e6}, {"name": "steel", "rigid": true}],
   "interactions": [{"a": "rock", "b": "rock", "restitution": 0.3, "friction": 0.5},
                    {"a": "rock", "b": "steel", "restitution": 0.3, "friction": 0.5}],
   "contact": {"normal": "LINEAR"},
-  "ballastStones": [{"count": )" << count << R"(, "massLogMean": )" << std::log(mass) << R"(, "massLogSigma": 0.05,
-                     "massMin": )" << 0.9 * mass << R"(, "massMax": )" << 1.1 * mass << R"(, "minSpheres": 3, "maxSpheres": 8,
+  "ballastStones": [{"count": )"
+    << count << R"(, "massLogMean": )" << std::log(mass) << R"(, "massLogSigma": 0.05,
+                     "massMin": )"
+    << 0.9 * mass << R"(, "massMax": )" << 1.1 * mass << R"(, "minSpheres": 3, "maxSpheres": 8,
                      "min": {"x": -0.15, "y": -0.15, "z": -0.15}, "max": {"x": 0.15, "y": 0.15, "z": 0.15},
-                     "material": "rock", "seed": 3, "bonded": {"sphereRadius": )" << sphere_radius << R"(}}],)";
+                     "material": "rock", "seed": 3, "bonded": {"sphereRadius": )"
+    << sphere_radius << R"(}}],)";
   if (strength > 0)
-    s << R"("bonds": {"youngsModulus": 1e9, "tensileStrength": )" << strength << R"(, "shearStrength": )" << 2 * strength << R"(},)";
+    s << R"("bonds": {"youngsModulus": 1e9, "tensileStrength": )" << strength << R"(, "shearStrength": )"
+      << 2 * strength << R"(},)";
   s << R"(
-  "walls": [)" << walls << R"(],
+  "walls": [)"
+    << walls << R"(],
   "numerics": {"localDamping": 0.7},
-  "time": {"duration": )" << duration << R"(},
+  "time": {"duration": )"
+    << duration << R"(},
   "outputs": {"everySteps": 100000000}})";
   return s.str();
 }
@@ -72,9 +79,11 @@ TEST(BreakableStones, EachStoneIsOnePieceOfBondedSpheresWeighingItsMass) {
   for (const Bond& b : sim.bonds().bonds()) EXPECT_EQ(scene.particles[id[b.i]].stone, scene.particles[id[b.j]].stone);
   const std::vector<int> fragment = sim.fragments();
   std::set<std::pair<int, int>> fragment_of_stone;
-  for (std::size_t i = 0; i < fragment.size(); ++i) fragment_of_stone.insert({scene.particles[id[i]].stone, fragment[i]});
+  for (std::size_t i = 0; i < fragment.size(); ++i)
+    fragment_of_stone.insert({scene.particles[id[i]].stone, fragment[i]});
   EXPECT_EQ(fragment_of_stone.size(), 6u) << "each stone one fragment, no stone split";
-  EXPECT_GT(sim.bonds().bonds().size(), 4u * scene.particles.size()) << "an fcc fill: 12 bonded neighbours inside, fewer at the surface";
+  EXPECT_GT(sim.bonds().bonds().size(), 4u * scene.particles.size())
+      << "an fcc fill: 12 bonded neighbours inside, fewer at the surface";
 }
 
 // Spheres of two stones that touch are not glued: bonds follow the stone, not the contact.
@@ -128,7 +137,8 @@ TEST(BreakableStones, TheBondedStonesWeighTheMassesDrawn) {
 
 TEST(BreakableStones, BadBreakableStonesAreRefusedWithTheirPaths) {
   std::string all = spec_problems(stone_spec(1, 0.05, 0, "", 1e-3));
-  EXPECT_NE(all.find("ballastStones[0].bonded: breakable stones need the spec's \"bonds\" block"), std::string::npos) << all;
+  EXPECT_NE(all.find("ballastStones[0].bonded: breakable stones need the spec's \"bonds\" block"), std::string::npos)
+      << all;
   all = spec_problems(stone_spec(1, 0.05, 1e6, "", 1e-3, -0.003));
   EXPECT_NE(all.find("ballastStones[0].bonded.sphereRadius: must be a positive number"), std::string::npos) << all;
   all = spec_problems(stone_spec(1, 0.05, 1e6, "", 1e-3, 0.0001));
@@ -178,17 +188,20 @@ Crush crush(double strength) {
     highest = std::max(highest, force);
     if (force < 0.2 * highest) break;  // broken: the press has lost most of its load
   }
-  auto peak = std::max_element(curve.begin(), curve.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  auto peak =
+      std::max_element(curve.begin(), curve.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
   c.peak = peak->second;
   c.peak_at = peak->first;
   c.after = peak->second;
   for (auto it = peak; it != curve.end(); ++it) c.after = std::min(c.after, it->second);
   const std::vector<int> fragment = sim.fragments();
   c.fragments_after = *std::max_element(fragment.begin(), fragment.end());
-  std::printf("bond strength %.2f MPa: stone %.1f mm high, peak %.1f N at %.3f mm, then down to %.1f N at %.3f mm; %d fragments; "
-              "%lld steps of %.3g s\n",
-              strength / 1e6, height * 1e3, c.peak, c.peak_at * 1e3, c.after, curve.back().first * 1e3, c.fragments_after,
-              static_cast<long long>(sim.step_count()), sim.dt());
+  std::printf(
+      "bond strength %.2f MPa: stone %.1f mm high, peak %.1f N at %.3f mm, then down to %.1f N at %.3f mm; %d "
+      "fragments; "
+      "%lld steps of %.3g s\n",
+      strength / 1e6, height * 1e3, c.peak, c.peak_at * 1e3, c.after, curve.back().first * 1e3, c.fragments_after,
+      static_cast<long long>(sim.step_count()), sim.dt());
   return c;
 }
 

@@ -72,25 +72,26 @@ TEST_P(Restitution, MeasuredEqualsInputWithinOnePercent) {
     record_impact(sim, 1000000);
     const double measured = sim.particles().v[0].z() / v;
     report(std::string(c.model == HertzNormal::kName ? "hertz" : "linear") + (c.no_tensile ? " no-tension" : "") +
-               " restitution", measured, e);
+               " restitution",
+           measured, e);
     EXPECT_NEAR(measured, e, 0.01 * e) << "e=" << e << " model=" << (c.model == HertzNormal::kName ? "hertz" : "linear")
                                        << " no_tensile=" << c.no_tensile;
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    ChungOoiTest3, Restitution,
-    ::testing::Values(RestitutionCase{HertzNormal::kName, false, 3.8e11, 0.23, 4000},
-                      RestitutionCase{HertzNormal::kName, true, 3.8e11, 0.23, 4000},
-                      RestitutionCase{LinearNormal::kName, false, 3.8e11, 0.23, 4000},
-                      RestitutionCase{LinearNormal::kName, true, 3.8e11, 0.23, 4000},
-                      RestitutionCase{HertzNormal::kName, false, 1.0e11, 0.25, 7000},
-                      RestitutionCase{HertzNormal::kName, true, 1.0e11, 0.25, 7000}),
-    [](const auto& info) {
-      const auto& c = info.param;
-      return std::string(c.model == HertzNormal::kName ? "hertz" : "linear") + (c.no_tensile ? "_no_tension" : "") +
-             (c.density == 4000 ? "_al_oxide" : "_cast_iron");
-    });
+INSTANTIATE_TEST_SUITE_P(ChungOoiTest3, Restitution,
+                         ::testing::Values(RestitutionCase{HertzNormal::kName, false, 3.8e11, 0.23, 4000},
+                                           RestitutionCase{HertzNormal::kName, true, 3.8e11, 0.23, 4000},
+                                           RestitutionCase{LinearNormal::kName, false, 3.8e11, 0.23, 4000},
+                                           RestitutionCase{LinearNormal::kName, true, 3.8e11, 0.23, 4000},
+                                           RestitutionCase{HertzNormal::kName, false, 1.0e11, 0.25, 7000},
+                                           RestitutionCase{HertzNormal::kName, true, 1.0e11, 0.25, 7000}),
+                         [](const auto& info) {
+                           const auto& c = info.param;
+                           return std::string(c.model == HertzNormal::kName ? "hertz" : "linear") +
+                                  (c.no_tensile ? "_no_tension" : "") +
+                                  (c.density == 4000 ? "_al_oxide" : "_cast_iron");
+                         });
 
 // Test 3 wherever the steps fall: the sphere starts at 20 positions across one step of travel, for
 // both tension settings of the linear law (e = 0.1, 0.2, 0.3: the strongest dashpots). With tension
@@ -112,8 +113,8 @@ TEST(RestitutionAnywhereInTheStep, LinearLawWithinOnePercent) {
         record_impact(sim, 1000000);
         worst = std::max(worst, std::abs(sim.particles().v[0].z() / v - e) / e);
       }
-      report(std::string("linear") + (no_tensile ? " no-tension" : " with tension") + " restitution e = " +
-                 std::to_string(e).substr(0, 3) + ", largest error over 20 positions of the step",
+      report(std::string("linear") + (no_tensile ? " no-tension" : " with tension") +
+                 " restitution e = " + std::to_string(e).substr(0, 3) + ", largest error over 20 positions of the step",
              worst, 0.0);
       EXPECT_LT(worst, 0.01) << "e = " << e << (no_tensile ? " no tension" : " with tension");
     }

@@ -44,8 +44,8 @@ void check_against_impact_theory(Scene s, double e, double mu, const std::string
   auto check = [&](const Vec3& before, const Vec3& after, const Vec3& want, const char* what) {
     const double change = (want - before).norm();
     report(label + " " + what + " change", (after - before).norm(), change);
-    EXPECT_LE((after - want).norm(), 0.01 * change) << label << " " << what << ": got " << after.transpose()
-                                                    << " want " << want.transpose();
+    EXPECT_LE((after - want).norm(), 0.01 * change)
+        << label << " " << what << ": got " << after.transpose() << " want " << want.transpose();
   };
   const Body i1 = body_of(sim, 0);
   check(i0.v, i1.v, expected.i.v, "v_i");
@@ -79,7 +79,8 @@ void expect_matches_impact_theory(const Scene& s, double e, double mu, const std
   check_against_impact_theory(s, e, mu, label);
   const Quat turn(Eigen::AngleAxisd(1.1, Vec3(0.3, -1, 0.6).normalized()));
   const Vec3 drift = s.walls.empty() ? Vec3(0.25, -0.4, 0.15) : Vec3::Zero();
-  check_against_impact_theory(in_frame(s, turn, drift), e, mu, label + ", turned" + (s.walls.empty() ? " and moving" : ""));
+  check_against_impact_theory(in_frame(s, turn, drift), e, mu,
+                              label + ", turned" + (s.walls.empty() ? " and moving" : ""));
 }
 
 // Test 4: Al oxide sphere, 3.9 m/s at angle theta to the normal, mu = 0.092, e = 0.98.
@@ -116,7 +117,8 @@ TEST_P(ObliqueImpact, SpinAndReboundAngleWithinOnePercent) {
 
 INSTANTIATE_TEST_SUITE_P(ChungOoiTest4, ObliqueImpact,
                          ::testing::Combine(::testing::Values(HertzNormal::kName, LinearNormal::kName),
-                                            ::testing::Values(ObliqueCase{40, 544.2, 11.62}, ObliqueCase{50, 456.7, 29.49},
+                                            ::testing::Values(ObliqueCase{40, 544.2, 11.62},
+                                                              ObliqueCase{50, 456.7, 29.49},
                                                               ObliqueCase{85, 61.9, 84.81})),
                          [](const auto& info) {
                            return std::string(std::get<0>(info.param) == HertzNormal::kName ? "hertz" : "linear") +
@@ -130,7 +132,9 @@ INSTANTIATE_TEST_SUITE_P(ChungOoiTest4, ObliqueImpact,
 // began with a stick phase while the spring stretched to mu F_n: up to 2% less friction impulse).
 constexpr double kR = 0.1, kVn = 0.2, kE = 0.5, kMu = 0.4;
 
-Scene alloy_scene(std::string_view model, double mu = kMu) { return base_scene(model, 2699, 7.0e10, 0.30, kE, mu, 1e7); }
+Scene alloy_scene(std::string_view model, double mu = kMu) {
+  return base_scene(model, 2699, 7.0e10, 0.30, kE, mu, 1e7);
+}
 
 class TestsFiveToEight : public ::testing::TestWithParam<std::string_view> {};
 
@@ -179,7 +183,9 @@ TEST_P(TestsFiveToEight, Test8DifferentSizesWithTangentialVelocity) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ChungOoi, TestsFiveToEight, ::testing::Values(HertzNormal::kName, LinearNormal::kName),
-                         [](const auto& info) { return std::string(info.param == HertzNormal::kName ? "hertz" : "linear"); });
+                         [](const auto& info) {
+                           return std::string(info.param == HertzNormal::kName ? "hertz" : "linear");
+                         });
 
 }  // namespace
 }  // namespace dem::test

@@ -100,7 +100,9 @@ TEST_P(SmallGas, KeepsItsEnergyToOneIn1e4) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SixtyFourSpheres, SmallGas, ::testing::Values(LinearNormal::kName, HertzNormal::kName),
-                         [](const auto& info) { return std::string(info.param == HertzNormal::kName ? "hertz" : "linear"); });
+                         [](const auto& info) {
+                           return std::string(info.param == HertzNormal::kName ? "hertz" : "linear");
+                         });
 
 // Spheres released at rest from an initial overlap of 10% of a radius (e = 1, mu = 0), from each
 // other, from a plane and from a mesh floor: they leave with the energy the springs held. The
@@ -121,8 +123,10 @@ double release_energy_error(std::string_view law, Partner partner) {
   } else {
     s.particles.push_back(sphere(Vec3(0.001, 0.002, r - overlap), r));
     const Vec3 lo(-0.05, -0.05, 0);
-    if (partner == Partner::kMesh) s.walls.push_back(mesh_wall(grid_rectangle(lo, Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), 2, 2)));
-    else s.walls.push_back(WallInit{"floor", 1, PlaneShape{Vec3::Zero(), Vec3(0, 0, 1)}, {}, {}});
+    if (partner == Partner::kMesh)
+      s.walls.push_back(mesh_wall(grid_rectangle(lo, Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), 2, 2)));
+    else
+      s.walls.push_back(WallInit{"floor", 1, PlaneShape{Vec3::Zero(), Vec3(0, 0, 1)}, {}, {}});
   }
   Simulation sim(s);
   const double e0 = sim.contact_summary().elastic_energy;
@@ -146,7 +150,9 @@ TEST_P(Release, GivesBackTheStoredEnergyToFourIn1e4) {
 }
 
 INSTANTIATE_TEST_SUITE_P(FromOverlap, Release, ::testing::Values(LinearNormal::kName, HertzNormal::kName),
-                         [](const auto& info) { return std::string(info.param == HertzNormal::kName ? "hertz" : "linear"); });
+                         [](const auto& info) {
+                           return std::string(info.param == HertzNormal::kName ? "hertz" : "linear");
+                         });
 
 }  // namespace
 }  // namespace dem::test

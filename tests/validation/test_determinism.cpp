@@ -32,8 +32,12 @@ Scene falling_heap() {
   // the floor as a triangle mesh (mesh contacts are summed per particle, walls' totals serially)
   s.walls.push_back(mesh_wall(grid_rectangle({-0.05, -0.05, 0}, {0.4, 0, 0}, {0, 0.3, 0}, 16, 12), "floor"));
   // a side plate the heap drifts towards (x = -0.01, facing +x)
-  s.walls.push_back(WallInit{"plate", 1, PlateShape{{Vec3(-0.01, -0.1, 0), Vec3(-0.01, 0.3, 0), Vec3(-0.01, 0.3, 0.3),
-                                                       Vec3(-0.01, -0.1, 0.3)}}, {}, {}});
+  s.walls.push_back(
+      WallInit{"plate",
+               1,
+               PlateShape{{Vec3(-0.01, -0.1, 0), Vec3(-0.01, 0.3, 0), Vec3(-0.01, 0.3, 0.3), Vec3(-0.01, -0.1, 0.3)}},
+               {},
+               {}});
   s.time.steps = 3000;
   s.outputs.every_steps = 500;
   s.outputs.animation = true;
@@ -69,9 +73,7 @@ TEST(Determinism, OneAndTwoThreadsWriteIdenticalBytes) {
   EXPECT_TRUE(one == two) << "ANIMATION_3D.dat differs between 1 and 2 threads";
 }
 
-TEST(Determinism, RepeatedRunsWriteIdenticalBytes) {
-  EXPECT_TRUE(run_to_text(2) == run_to_text(2));
-}
+TEST(Determinism, RepeatedRunsWriteIdenticalBytes) { EXPECT_TRUE(run_to_text(2) == run_to_text(2)); }
 
 }  // namespace
 }  // namespace dem::test

@@ -44,15 +44,17 @@ TEST_P(EnergyConservation, DriftsLessThanOneIn1e4Over1e5Steps) {
   }
   const double drift = std::abs(end - start) / (kWindow / kEvery) / e0;
   const char* law = GetParam() == HertzNormal::kName ? "hertz" : "linear";
-  std::printf("[ measured ] %s elastic gas: drift of the mean energy %.3g, largest deviation %.3g over 1e5 steps\n", law,
-              drift, worst);
+  std::printf("[ measured ] %s elastic gas: drift of the mean energy %.3g, largest deviation %.3g over 1e5 steps\n",
+              law, drift, worst);
   EXPECT_GT(contacts_seen, 1000u);  // the gas did collide
   EXPECT_LT(drift, 1e-4) << "dt=" << sim.dt();
   EXPECT_LT(worst, 1e-3) << "dt=" << sim.dt();
 }
 
 INSTANTIATE_TEST_SUITE_P(ElasticGas, EnergyConservation, ::testing::Values(LinearNormal::kName, HertzNormal::kName),
-                         [](const auto& info) { return std::string(info.param == HertzNormal::kName ? "hertz" : "linear"); });
+                         [](const auto& info) {
+                           return std::string(info.param == HertzNormal::kName ? "hertz" : "linear");
+                         });
 
 }  // namespace
 }  // namespace dem::test

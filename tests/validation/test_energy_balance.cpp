@@ -16,8 +16,25 @@
 namespace dem::test {
 namespace {
 
-enum Column { kTime, kTranslation, kRotation, kContacts, kBonds, kGravity, kWalls, kExternal, kGrowth, kDissipated,
-              kPx, kPy, kPz, kLx, kLy, kLz, kColumns };
+enum Column {
+  kTime,
+  kTranslation,
+  kRotation,
+  kContacts,
+  kBonds,
+  kGravity,
+  kWalls,
+  kExternal,
+  kGrowth,
+  kDissipated,
+  kPx,
+  kPy,
+  kPz,
+  kLx,
+  kLy,
+  kLz,
+  kColumns
+};
 
 // Runs the scene with every writer into a fresh folder; returns Energy.dat's rows.
 std::vector<std::vector<double>> energy_rows(Scene s, std::string* folder_out = nullptr) {
@@ -36,8 +53,10 @@ std::vector<std::vector<double>> energy_rows(Scene s, std::string* folder_out = 
   std::ifstream in(folder / "Energy.dat");
   const auto rows = legacy::read_rows(in, kColumns);
   EXPECT_FALSE(rows.truncated) << rows.problem;
-  if (folder_out) *folder_out = folder.string();
-  else std::filesystem::remove_all(folder);
+  if (folder_out)
+    *folder_out = folder.string();
+  else
+    std::filesystem::remove_all(folder);
   return rows.frames;
 }
 
@@ -61,7 +80,12 @@ Scene pushed_sphere(WallInit wall, double v, const Vec3& at, double r, double du
   return s;
 }
 
-const WallInit kPlate{"pusher", 1, PlateShape{{Vec3(-0.05, -0.05, 0), Vec3(0.05, -0.05, 0), Vec3(0.05, 0.05, 0), Vec3(-0.05, 0.05, 0)}}, {}, {}};
+const WallInit kPlate{
+    "pusher",
+    1,
+    PlateShape{{Vec3(-0.05, -0.05, 0), Vec3(0.05, -0.05, 0), Vec3(0.05, 0.05, 0), Vec3(-0.05, 0.05, 0)}},
+    {},
+    {}};
 
 TEST(EnergyBalance, AMovingWallsWorkIsWhatTheParticleGains) {
   const double v = 0.2, r = 0.01;
@@ -86,15 +110,17 @@ TEST_P(MovingWallWork, ClosesTheBalanceToTwoIn1e5) {
   const bool mesh = GetParam();
   const double r = 0.01;
   for (double v : {0.2, 0.3, 0.37}) {  // three positions of the parting within its step
-    const WallInit wall = mesh ? mesh_wall(grid_rectangle({-0.05, -0.05, 0}, Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), 2, 2), "pusher") : kPlate;
+    const WallInit wall =
+        mesh ? mesh_wall(grid_rectangle({-0.05, -0.05, 0}, Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), 2, 2), "pusher") : kPlate;
     const auto rows = energy_rows(pushed_sphere(wall, v, Vec3(0.003, -0.002, 0), r, 0.02));
     const std::vector<double>& last = rows.back();
     // elastic: the wall's work is all the sphere gained (the dissipated column, the balance's
     // remainder, shows any difference)
     const double gained = last[kTranslation] + last[kRotation];
     const double balance = (last[kWalls] - gained) / gained;
-    report(std::string(mesh ? "moving mesh" : "moving plate") + ": (work - energy) / energy at v = " + std::to_string(v),
-           balance, 0.0);
+    report(
+        std::string(mesh ? "moving mesh" : "moving plate") + ": (work - energy) / energy at v = " + std::to_string(v),
+        balance, 0.0);
     EXPECT_LT(std::abs(balance), 2e-5) << "v = " << v;
   }
 }
@@ -115,7 +141,8 @@ TEST_P(TurningPitWork, IsTheEnergyTheSphereGains) {
   Scene s = base_scene(LinearNormal::kName, 2650, 0, 0, 1.0, 0.0, 1e5);
   s.particles.push_back(sphere({0, 0, 0.02}, 0.01, {0, 0.1, -1}));
   MeshShape pit;
-  pit.vertices = {Vec3(-0.05, -0.05, 0), Vec3(0.05, -0.05, 0), Vec3(0.05, 0.05, 0), Vec3(-0.05, 0.05, 0), Vec3(0, 0, -0.001)};
+  pit.vertices = {Vec3(-0.05, -0.05, 0), Vec3(0.05, -0.05, 0), Vec3(0.05, 0.05, 0), Vec3(-0.05, 0.05, 0),
+                  Vec3(0, 0, -0.001)};
   pit.triangles = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
   pit.source = "pit";
   WallInit wall = mesh_wall(pit, "pit");
@@ -133,7 +160,8 @@ TEST_P(TurningPitWork, IsTheEnergyTheSphereGains) {
   const std::vector<double>& last = rows.back();
   const double energy = rows.front()[kTranslation];
   report(std::string(spin ? "spinning" : "turning") + " pit: work " + std::to_string(last[kWalls]) +
-             " J, dissipated / energy", last[kDissipated] / energy, 0.0);
+             " J, dissipated / energy",
+         last[kDissipated] / energy, 0.0);
   ASSERT_GT(std::abs(last[kWalls]), 1e-5 * energy) << "the pit did no work";
   EXPECT_LT(std::abs(last[kDissipated]), 1e-4 * energy);
 }
@@ -252,8 +280,9 @@ TEST(EnergyBalance, TangentialAndRollingSpringsStoreTheirEnergy) {
       // given a small spin (the rolling spring takes it back)
       const double m = sphere_mass(2600, r);
       const double e_star = 1e8 / (1 - 0.25 * 0.25);  // against a rigid wall
-      const double z = law == LinearNormal::kName ? r - m * 9.81 / (2 * 1e5)
-                                                  : r - std::pow(m * 9.81 / (4.0 / 3.0 * e_star * std::sqrt(r)), 2.0 / 3.0);
+      const double z = law == LinearNormal::kName
+                           ? r - m * 9.81 / (2 * 1e5)
+                           : r - std::pow(m * 9.81 / (4.0 / 3.0 * e_star * std::sqrt(r)), 2.0 / 3.0);
       s.particles.push_back(sphere({0, 0, z}, r, {rolling ? 0.0 : 1e-4, 0, 0}, {0, rolling ? 0.02 : 0.0, 0}));
       s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
       s.time.steps = 100000000;
@@ -267,7 +296,8 @@ TEST(EnergyBalance, TangentialAndRollingSpringsStoreTheirEnergy) {
         worst = std::max(worst, std::abs(sim.mechanical_energy() - e0));
         swing = std::max(swing, std::abs(sim.kinetic_energy() - kinetic));
       }
-      report(std::string(law) + (rolling ? " rolling" : " tangential") + " spring: energy change / kinetic swing", worst / swing, 0.0);
+      report(std::string(law) + (rolling ? " rolling" : " tangential") + " spring: energy change / kinetic swing",
+             worst / swing, 0.0);
       ASSERT_GT(swing, 0) << "nothing rocked";
       EXPECT_LT(worst, 0.01 * swing) << law << (rolling ? " rolling" : " tangential");
     }

@@ -46,14 +46,15 @@ TEST_P(Incline, AccelerationMatchesClosedFormWithinHalfAPermille) {
   EXPECT_LT(std::abs(sim.particles().v[0].dot(normal)), 1e-6 * sim.particles().v[0].norm());
 }
 
-INSTANTIATE_TEST_SUITE_P(SphereOnIncline, Incline,
-                         ::testing::Values(InclineCase{LinearNormal::kName, 30, 0.1}, InclineCase{LinearNormal::kName, 20, 0.5},
-                                           InclineCase{HertzNormal::kName, 30, 0.1}, InclineCase{HertzNormal::kName, 20, 0.5}),
-                         [](const auto& info) {
-                           const auto& c = info.param;
-                           return std::string(c.model == HertzNormal::kName ? "hertz" : "linear") +
-                                  (std::tan(c.theta_deg * std::numbers::pi / 180) > 3.5 * c.mu ? "_sliding" : "_rolling");
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    SphereOnIncline, Incline,
+    ::testing::Values(InclineCase{LinearNormal::kName, 30, 0.1}, InclineCase{LinearNormal::kName, 20, 0.5},
+                      InclineCase{HertzNormal::kName, 30, 0.1}, InclineCase{HertzNormal::kName, 20, 0.5}),
+    [](const auto& info) {
+      const auto& c = info.param;
+      return std::string(c.model == HertzNormal::kName ? "hertz" : "linear") +
+             (std::tan(c.theta_deg * std::numbers::pi / 180) > 3.5 * c.mu ? "_sliding" : "_rolling");
+    });
 
 }  // namespace
 }  // namespace dem::test

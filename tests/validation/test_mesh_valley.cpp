@@ -41,9 +41,9 @@ Scene valley_scene(std::string_view law, double slope_deg) {
 
 struct Drop {
   std::string_view law;
-  double slope_deg;  // of each face
-  double offset;     // of the centre from the fold line, m
-  double sideways;   // velocity along x, m/s
+  double slope_deg;        // of each face
+  double offset;           // of the centre from the fold line, m
+  double sideways;         // velocity along x, m/s
   double dt_fraction = 0;  // of the contact time; 0: the engine's default
 };
 
@@ -70,14 +70,16 @@ TEST_P(MeshValleyDrop, LeavesWithTheSpeedItCameWith) {
   report(std::string(d.law) + " valley " + std::to_string(d.slope_deg) + " deg, offset " + std::to_string(d.offset) +
              (d.dt_fraction > 0 ? ", fine step" : "") + ": rebound / impact speed - 1",
          v1 / v0 - 1, 0.0);
-  EXPECT_NEAR(v1 / v0, 1.0, d.dt_fraction > 0 ? 2e-5 : 1.5e-3) << "fold " << 2 * d.slope_deg << " deg, offset " << d.offset << " m";
+  EXPECT_NEAR(v1 / v0, 1.0, d.dt_fraction > 0 ? 2e-5 : 1.5e-3)
+      << "fold " << 2 * d.slope_deg << " deg, offset " << d.offset << " m";
 }
 
 std::vector<Drop> drops() {
   std::vector<Drop> out;
   for (std::string_view law : {LinearNormal::kName, HertzNormal::kName})
     for (double slope : {0.25, 0.5, 1.0, 2.5, 10.0, 40.0})
-      for (auto [offset, sideways] : {std::pair{0.0, 0.0}, {2e-5, 0.02}, {3e-5, 0.05}, {5e-5, -0.05}, {-1e-4, 0.1}, {3e-4, -0.02}}) {
+      for (auto [offset, sideways] :
+           {std::pair{0.0, 0.0}, {2e-5, 0.02}, {3e-5, 0.05}, {5e-5, -0.05}, {-1e-4, 0.1}, {3e-4, -0.02}}) {
         out.push_back({law, slope, offset, sideways});
         if (slope <= 2.5) out.push_back({law, slope, offset, sideways, 1.0 / 800});
       }
@@ -103,7 +105,8 @@ TEST(MeshValley, SlidingAcrossTheFoldKeepsTheMechanicalEnergy) {
         sim.step();
         worst = std::max(worst, std::abs(sim.mechanical_energy() - e0) / e0);
       }
-      report(std::string(law) + " sliding across a " + std::to_string(2 * slope) + " deg fold: energy drift", worst, 0.0);
+      report(std::string(law) + " sliding across a " + std::to_string(2 * slope) + " deg fold: energy drift", worst,
+             0.0);
       EXPECT_LT(worst, 1e-4) << law << ", fold " << 2 * slope << " deg";
       EXPECT_GT(sim.particles().x[0].x(), 0.005) << "it did not cross the fold";
     }
@@ -122,9 +125,11 @@ namespace {
 // overlap, 0.99 R, and the stability guard stopped every crossing of a ridge of 90 degrees or
 // more).
 MeshShape ridge(double slope_deg) {
-  const double drop = 0.05 * std::sin(slope_deg * std::numbers::pi / 180), run = 0.05 * std::cos(slope_deg * std::numbers::pi / 180);
+  const double drop = 0.05 * std::sin(slope_deg * std::numbers::pi / 180),
+               run = 0.05 * std::cos(slope_deg * std::numbers::pi / 180);
   MeshShape m;
-  m.vertices = {{-run, -0.05, -drop}, {0, -0.05, 0}, {0, 0.05, 0}, {-run, 0.05, -drop}, {run, -0.05, -drop}, {run, 0.05, -drop}};
+  m.vertices = {{-run, -0.05, -drop}, {0, -0.05, 0},       {0, 0.05, 0},
+                {-run, 0.05, -drop},  {run, -0.05, -drop}, {run, 0.05, -drop}};
   m.triangles = {{0, 1, 2}, {0, 2, 3}, {1, 4, 5}, {1, 5, 2}};
   m.source = "ridge";
   return m;
@@ -169,7 +174,8 @@ TEST(MeshValley, AWeightedFaceHandsItsShareOnToItsEdge) {
               << law << " shift " << shift.transpose() << " sideways x" << sideways << " dtFraction " << dt_fraction;
         }
     report("terrain piece: largest energy change of an elastic bounce over 16 starts at dtFraction " +
-               std::to_string(dt_fraction), worst, 0.0);
+               std::to_string(dt_fraction),
+           worst, 0.0);
   }
 }
 
@@ -181,7 +187,8 @@ TEST(MeshRidge, ASphereCrossingARidgeOverlapsOnlyWhatItPressesIn) {
       s.gravity = {0, 0, -9.81};
       const double th = slope * std::numbers::pi / 180;
       const double x0 = -0.01;  // on the left face, sliding to the ridge
-      s.particles.push_back(sphere({x0, 0, x0 * std::tan(th) + kR / std::cos(th) - 1e-7}, kR, {1.0, 0, 1.0 * std::tan(th)}));
+      s.particles.push_back(
+          sphere({x0, 0, x0 * std::tan(th) + kR / std::cos(th) - 1e-7}, kR, {1.0, 0, 1.0 * std::tan(th)}));
       s.time.steps = 100000000;
       Simulation sim(s);
       double deepest = 0;

@@ -31,7 +31,8 @@ Scene incline_scene(const MeshInclineCase& c, bool as_mesh) {
   const Vec3 normal(std::sin(th), 0, std::cos(th));
   const Vec3 downhill(std::cos(th), 0, -std::sin(th));
   if (as_mesh) {
-    s.walls.push_back(mesh_wall(grid_rectangle(-0.1 * downhill - Vec3(0, 0.1, 0), 0.7 * downhill, {0, 0.2, 0}, 35, 10)));
+    s.walls.push_back(
+        mesh_wall(grid_rectangle(-0.1 * downhill - Vec3(0, 0.1, 0), 0.7 * downhill, {0, 0.2, 0}, 35, 10)));
   } else {
     s.walls.push_back(plane(Vec3::Zero(), normal));
   }
@@ -68,7 +69,8 @@ TEST_P(MeshIncline, MovesAsOnTheAnalyticPlaneWithNoKickAtEdges) {
   const bool slides = std::tan(th) > 3.5 * c.mu;
   const double want = slides ? kG * (std::sin(th) - c.mu * std::cos(th)) : 5.0 / 7.0 * kG * std::sin(th);
   const std::string name = std::string(c.model == HertzNormal::kName ? "hertz" : "linear") +
-                           (slides ? " sliding" : " rolling") + (c.lateral == 0 ? " along grid lines" : " across cells");
+                           (slides ? " sliding" : " rolling") +
+                           (c.lateral == 0 ? " along grid lines" : " across cells");
   report(name + " acceleration on the mesh", a_mesh, want);
   report(name + " normal velocity kick / speed", worst_kick, 0.0);
   EXPECT_NEAR(a_mesh, a_plane, 1e-3 * a_plane);
@@ -78,17 +80,19 @@ TEST_P(MeshIncline, MovesAsOnTheAnalyticPlaneWithNoKickAtEdges) {
   EXPECT_GT((on_mesh.particles().x[0] - on_mesh.scene().particles[0].position).norm(), 0.15);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SphereOnTessellatedIncline, MeshIncline,
-    ::testing::Values(MeshInclineCase{LinearNormal::kName, 30, 0.1, 0.0}, MeshInclineCase{LinearNormal::kName, 30, 0.1, 0.0073},
-                      MeshInclineCase{LinearNormal::kName, 20, 0.5, 0.0}, MeshInclineCase{HertzNormal::kName, 30, 0.1, 0.0073},
-                      MeshInclineCase{HertzNormal::kName, 20, 0.5, 0.0}),
-    [](const auto& info) {
-      const auto& c = info.param;
-      return std::string(c.model == HertzNormal::kName ? "hertz" : "linear") +
-             (std::tan(c.theta_deg * std::numbers::pi / 180) > 3.5 * c.mu ? "_sliding" : "_rolling") +
-             (c.lateral == 0 ? "_through_vertices" : "_across_cells");
-    });
+INSTANTIATE_TEST_SUITE_P(SphereOnTessellatedIncline, MeshIncline,
+                         ::testing::Values(MeshInclineCase{LinearNormal::kName, 30, 0.1, 0.0},
+                                           MeshInclineCase{LinearNormal::kName, 30, 0.1, 0.0073},
+                                           MeshInclineCase{LinearNormal::kName, 20, 0.5, 0.0},
+                                           MeshInclineCase{HertzNormal::kName, 30, 0.1, 0.0073},
+                                           MeshInclineCase{HertzNormal::kName, 20, 0.5, 0.0}),
+                         [](const auto& info) {
+                           const auto& c = info.param;
+                           return std::string(c.model == HertzNormal::kName ? "hertz" : "linear") +
+                                  (std::tan(c.theta_deg * std::numbers::pi / 180) > 3.5 * c.mu ? "_sliding"
+                                                                                               : "_rolling") +
+                                  (c.lateral == 0 ? "_through_vertices" : "_across_cells");
+                         });
 
 // A spinning sphere thrown into a corner of a 10 cm box, with friction and e = 0.8 and no gravity
 // (so that it meets the three faces of a corner at once, and again at the opposite corner): the
@@ -136,8 +140,10 @@ TEST(MeshFloor, RollingResistanceStopsTheSphereAsOnAPlane) {
     Scene s = base_scene(LinearNormal::kName, 2500, 1e8, 0.25, 0.5, 0.5, 1e5);
     set_rolling(s, CdtRolling::kName, 0.1);
     s.gravity = {0, 0, -kG};
-    if (as_mesh) s.walls.push_back(mesh_wall(grid_rectangle({-0.2, -0.2, 0}, {1.0, 0, 0}, {0, 0.4, 0}, 50, 20)));
-    else s.walls.push_back(plane(Vec3::Zero(), Vec3::UnitZ()));
+    if (as_mesh)
+      s.walls.push_back(mesh_wall(grid_rectangle({-0.2, -0.2, 0}, {1.0, 0, 0}, {0, 0.4, 0}, 50, 20)));
+    else
+      s.walls.push_back(plane(Vec3::Zero(), Vec3::UnitZ()));
     const double v0 = 0.5;
     s.particles.push_back(sphere({0, 0.0031, kR * 0.9999}, kR, {v0, 0, 0}, {0, v0 / kR, 0}));
     return s;

@@ -39,8 +39,8 @@ double largest_drift(Simulation& sim, int steps) {
   for (int k = 0; k < steps; ++k) {
     sim.step();
     const Momenta now = momenta(sim);
-    worst = std::max({worst, (now.linear - start.linear).norm() / start.scale,
-                      (now.angular - start.angular).norm() / start.scale});
+    worst = std::max(
+        {worst, (now.linear - start.linear).norm() / start.scale, (now.angular - start.angular).norm() / start.scale});
   }
   return worst;
 }
@@ -75,7 +75,9 @@ Scene collapsing_cloud(std::string_view law, bool rolling) {
     const Vec3 at = 0.15 * x;
     bool free = true;
     for (const ParticleInit& p : s.particles) free = free && (p.position - at).norm() > p.radius + r;
-    if (free) s.particles.push_back(sphere(at, r, -2.0 * x + 0.05 * Vec3(u(rng), u(rng), u(rng)), 10 * Vec3(u(rng), u(rng), u(rng))));
+    if (free)
+      s.particles.push_back(
+          sphere(at, r, -2.0 * x + 0.05 * Vec3(u(rng), u(rng), u(rng)), 10 * Vec3(u(rng), u(rng), u(rng))));
   }
   return s;
 }
@@ -91,7 +93,9 @@ TEST_P(Momentum, IsKeptInACollapsingFrictionalCloud) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothLaws, Momentum, ::testing::Values(LinearNormal::kName, HertzNormal::kName),
-                         [](const auto& info) { return std::string(info.param == HertzNormal::kName ? "hertz" : "linear"); });
+                         [](const auto& info) {
+                           return std::string(info.param == HertzNormal::kName ? "hertz" : "linear");
+                         });
 
 }  // namespace
 }  // namespace dem::test

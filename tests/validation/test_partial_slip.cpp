@@ -36,12 +36,15 @@ TEST(PartialSlip, SpinConvergesAtSecondOrderInTheStep) {
     const double exact = spin_after_impact(law, 6400);
     double worst_coarse = 0, worst_fine = 0;
     // several step sizes near each end: where the steps fall against the stick-slip switches varies
-    for (double n : {45.0, 50.0, 55.0, 60.0}) worst_coarse = std::max(worst_coarse, std::abs(spin_after_impact(law, n) - exact));
-    for (double n : {360.0, 400.0, 440.0, 480.0}) worst_fine = std::max(worst_fine, std::abs(spin_after_impact(law, n) - exact));
+    for (double n : {45.0, 50.0, 55.0, 60.0})
+      worst_coarse = std::max(worst_coarse, std::abs(spin_after_impact(law, n) - exact));
+    for (double n : {360.0, 400.0, 440.0, 480.0})
+      worst_fine = std::max(worst_fine, std::abs(spin_after_impact(law, n) - exact));
     const double order = std::log(worst_coarse / worst_fine) / std::log(8.0);
     const double at_default = std::abs(spin_after_impact(law, 0) - exact) / std::abs(exact);
-    std::printf("[ measured ] %s partial slip: spin %.6g rad/s, order over N = 45-60..360-480: %.2f, default step %.2e\n",
-                std::string(law).c_str(), exact, order, at_default);
+    std::printf(
+        "[ measured ] %s partial slip: spin %.6g rad/s, order over N = 45-60..360-480: %.2f, default step %.2e\n",
+        std::string(law).c_str(), exact, order, at_default);
     EXPECT_GT(order, 1.6) << law;
     EXPECT_LT(at_default, 0.005) << law;
   }

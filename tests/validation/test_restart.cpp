@@ -24,8 +24,12 @@ Scene remembering_scene() {
       for (int i = 0; i < 6; ++i)
         s.particles.push_back(sphere({0.01 * i, 0.01 * j, 0.0052 + 0.01 * k}, 0.005, {0.1 * u(rng), 0.1 * u(rng), 0}));
   s.walls.push_back(mesh_wall(grid_rectangle({-0.05, -0.05, 0}, {0.16, 0, 0}, {0, 0.16, 0}, 8, 8), "floor"));
-  WallInit plate{"sleeper", 1, PlateShape{{Vec3(-0.01, -0.01, 0.062), Vec3(0.06, -0.01, 0.062), Vec3(0.06, 0.06, 0.062),
-                                          Vec3(-0.01, 0.06, 0.062)}}, {}, {}};
+  WallInit plate{"sleeper",
+                 1,
+                 PlateShape{{Vec3(-0.01, -0.01, 0.062), Vec3(0.06, -0.01, 0.062), Vec3(0.06, 0.06, 0.062),
+                             Vec3(-0.01, 0.06, 0.062)}},
+                 {},
+                 {}};
   LoadControl load;
   load.mass = 0.05;
   load.f_min = 1;
@@ -81,7 +85,8 @@ TEST(Restart, AStateOfAnotherJobIsRefused) {
     StateIO::read(b, saved);
     FAIL() << "read a state of 216 particles into a scene of 215";
   } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("the saved state was written for another job: particles 216", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("the saved state was written for another job: particles 216", 0), 0u)
+        << e.what();
   }
   std::stringstream cut(saved.str().substr(0, 500));
   Simulation c(remembering_scene());

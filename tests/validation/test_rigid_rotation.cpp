@@ -22,7 +22,8 @@ struct Reference {
 Reference reference_rotation(Reference s, const Vec3& I, double t, int steps) {
   const double h = t / steps;
   auto deriv = [&](const Vec3& w, const Eigen::Vector4d& qv, Vec3& dw, Eigen::Vector4d& dq) {
-    dw = Vec3((I[1] - I[2]) * w[1] * w[2] / I[0], (I[2] - I[0]) * w[2] * w[0] / I[1], (I[0] - I[1]) * w[0] * w[1] / I[2]);
+    dw = Vec3((I[1] - I[2]) * w[1] * w[2] / I[0], (I[2] - I[0]) * w[2] * w[0] / I[1],
+              (I[0] - I[1]) * w[0] * w[1] / I[2]);
     const Eigen::Quaterniond q(qv[0], qv[1], qv[2], qv[3]);
     const Eigen::Quaterniond d = q * Eigen::Quaterniond(0, w.x(), w.y(), w.z());  // dq/dt = q (0, w) / 2
     dq = 0.5 * Eigen::Vector4d(d.w(), d.x(), d.y(), d.z());
@@ -74,8 +75,9 @@ TEST(RigidRotation, AnAsymmetricBodyKeepsItsEnergyAndFollowsEulersEquations) {
   const Vec3 L = R * I.asDiagonal() * R.transpose() * angular_velocity(b, I);
   const Reference ref = reference_rotation({w0, q0}, I, dt * steps, 4 * steps);
   const double angle = ref.q.angularDistance(b.orientation);
-  std::printf("energy: largest relative change %.2e over %d steps; |dL|/|L| %.2e; orientation vs RK4 %.2e rad after %.0f s\n",
-              worst_energy, steps, (L - L0).norm() / L0.norm(), angle, dt * steps);
+  std::printf(
+      "energy: largest relative change %.2e over %d steps; |dL|/|L| %.2e; orientation vs RK4 %.2e rad after %.0f s\n",
+      worst_energy, steps, (L - L0).norm() / L0.norm(), angle, dt * steps);
   EXPECT_LT(worst_energy, 1e-6);
   EXPECT_LT((L - L0).norm() / L0.norm(), 1e-6);
   EXPECT_LT(angle, 1e-3);
@@ -111,7 +113,8 @@ TEST(RigidRotation, SpunNearItsIntermediateAxisItFlipsWithTheEulerPeriod) {
   const std::vector<double> a = upward_crossings(ours, dt), e = upward_crossings(euler, dt);
   ASSERT_GE(e.size(), 3u) << "the body should flip several times in " << t_end << " s";
   ASSERT_EQ(a.size(), e.size());
-  std::printf("flip period: %.6f s (Euler's equations, RK4: %.6f s), over %zu full flips\n", mean_period(a), mean_period(e), a.size() - 1);
+  std::printf("flip period: %.6f s (Euler's equations, RK4: %.6f s), over %zu full flips\n", mean_period(a),
+              mean_period(e), a.size() - 1);
   EXPECT_NEAR(mean_period(a), mean_period(e), 1e-3 * mean_period(e));
 }
 

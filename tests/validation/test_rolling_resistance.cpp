@@ -58,8 +58,8 @@ TEST_P(RollingResistance, DecelerationIsFiveSeventhsMuRG) {
 
 TEST_P(RollingResistance, StaysAtRestOnAnInclineBelowTheThreshold) {
   const double theta = std::atan(0.8 * kMuR);
-  Simulation sim(sphere_on_plane(GetParam(), {kG * std::sin(theta), 0, -kG * std::cos(theta)}, Vec3::Zero(),
-                                 Vec3::Zero()));
+  Simulation sim(
+      sphere_on_plane(GetParam(), {kG * std::sin(theta), 0, -kG * std::cos(theta)}, Vec3::Zero(), Vec3::Zero()));
   step_until(sim, 10'000'000, [](const Simulation& s) { return s.time() >= 1.0; });
   // EPSD: the rolling spring winds up by M / k_r (a few micrometres of travel), then nothing moves.
   // CDT has no spring: its torque can only stop the rotation gained in the last step, so the sphere
@@ -74,8 +74,8 @@ TEST_P(RollingResistance, StaysAtRestOnAnInclineBelowTheThreshold) {
 
 TEST_P(RollingResistance, RollsDownAnInclineAboveTheThreshold) {
   const double theta = std::atan(2 * kMuR);
-  Simulation sim(sphere_on_plane(GetParam(), {kG * std::sin(theta), 0, -kG * std::cos(theta)}, Vec3::Zero(),
-                                 Vec3::Zero()));
+  Simulation sim(
+      sphere_on_plane(GetParam(), {kG * std::sin(theta), 0, -kG * std::cos(theta)}, Vec3::Zero(), Vec3::Zero()));
   step_until(sim, 10'000'000, [](const Simulation& s) { return s.time() >= 0.1; });
   const double v1 = sim.particles().v[0].x(), t1 = sim.time();
   step_until(sim, 10'000'000, [](const Simulation& s) { return s.time() >= 0.4; });
@@ -86,7 +86,9 @@ TEST_P(RollingResistance, RollsDownAnInclineAboveTheThreshold) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AiEtAl2011, RollingResistance, ::testing::Values(CdtRolling::kName, EpsdRolling::kName),
-                         [](const auto& info) { return std::string(info.param == CdtRolling::kName ? "cdt" : "epsd"); });
+                         [](const auto& info) {
+                           return std::string(info.param == CdtRolling::kName ? "cdt" : "epsd");
+                         });
 
 // Faster and with more rolling friction than the case above, both laws: the rolling moment never
 // exceeds mu_r R* F_n, so the distance is the closed form's (EPSD's dashpot once added its moment on
@@ -135,8 +137,11 @@ INSTANTIATE_TEST_SUITE_P(FastAndRough, RollingStop, ::testing::ValuesIn(stop_cas
 TEST(RollingTouchDown, TakesNoMoreSpinThanTheRollingLimitAllows) {
   const double r = 0.005, mu_r = 0.1, m = sphere_mass(2600, r), inertia = 0.4 * m * r * r;
   for (std::string_view law : {LinearNormal::kName, HertzNormal::kName})
-    for (auto [model, eta] : {std::pair{CdtRolling::kName, 0.3}, {EpsdRolling::kName, 0.0}, {EpsdRolling::kName, 0.3},
-                              {EpsdRolling::kName, 1.0}, {EpsdRolling::kName, 10.0}}) {
+    for (auto [model, eta] : {std::pair{CdtRolling::kName, 0.3},
+                              {EpsdRolling::kName, 0.0},
+                              {EpsdRolling::kName, 0.3},
+                              {EpsdRolling::kName, 1.0},
+                              {EpsdRolling::kName, 10.0}}) {
       Scene s = base_scene(law, 2600, 5e7, 0.25, 0.5, 0.0, 1e5);
       set_rolling(s, model, mu_r);
       s.contact.parameters.set(EpsdRolling::kDampingRatio.field, eta);
@@ -174,8 +179,9 @@ TEST(RollingDashpot, AnyDampingRatioMakesNoEnergy) {
     for (int k = 0; k < 4; ++k)
       for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i)
-          s.particles.push_back(sphere({2.1 * r * i + 0.3 * r * (k % 2), 2.1 * r * j + 0.2 * r * (k % 2), r + 2.2 * r * k}, r,
-                                       Vec3::Zero(), Vec3(10 * std::sin(i + 2 * j + 3 * k), 10 * std::cos(3 * i + j), 5)));
+          s.particles.push_back(
+              sphere({2.1 * r * i + 0.3 * r * (k % 2), 2.1 * r * j + 0.2 * r * (k % 2), r + 2.2 * r * k}, r,
+                     Vec3::Zero(), Vec3(10 * std::sin(i + 2 * j + 3 * k), 10 * std::cos(3 * i + j), 5)));
     s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}));
     s.walls.push_back(plane({-r, 0, 0}, {1, 0, 0}));
     s.walls.push_back(plane({8.5 * r, 0, 0}, {-1, 0, 0}));
@@ -191,7 +197,8 @@ TEST(RollingDashpot, AnyDampingRatioMakesNoEnergy) {
       lowest = std::min(lowest, e);
       worst_gain = std::max(worst_gain, (e - lowest) / e0);
     }
-    report("EPSD eta_r " + std::to_string(eta) + ": largest energy gain over the lowest so far / scale", worst_gain, 0.0);
+    report("EPSD eta_r " + std::to_string(eta) + ": largest energy gain over the lowest so far / scale", worst_gain,
+           0.0);
     EXPECT_LT(worst_gain, 1e-3) << "eta_r " << eta;
   }
 }

@@ -22,7 +22,8 @@ Scene loaded_bed(const LoadControl& load, double plate_gap) {
   s.gravity = {0, 0, -kG};
   for (int k = 0; k < 4; ++k)
     for (int j = 0; j < 4; ++j)
-      for (int i = 0; i < 4; ++i) s.particles.push_back(sphere({kR + 2 * kR * i, kR + 2 * kR * j, kR + 2 * kR * k}, kR));
+      for (int i = 0; i < 4; ++i)
+        s.particles.push_back(sphere({kR + 2 * kR * i, kR + 2 * kR * j, kR + 2 * kR * k}, kR));
   const double side = 8 * kR;
   s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}, "floor"));
   s.walls.push_back(plane({0, 0, 0}, {1, 0, 0}, "x-low"));
@@ -30,10 +31,12 @@ Scene loaded_bed(const LoadControl& load, double plate_gap) {
   s.walls.push_back(plane({0, 0, 0}, {0, 1, 0}, "y-low"));
   s.walls.push_back(plane({0, side, 0}, {0, -1, 0}, "y-high"));
   const double z = side + plate_gap;
-  WallInit plate{"sleeper", 1, PlateShape{{Vec3(-kR, -kR, z), Vec3(side + kR, -kR, z), Vec3(side + kR, side + kR, z),
-                                           Vec3(-kR, side + kR, z)}},
-                 {},
-                 {}};
+  WallInit plate{
+      "sleeper",
+      1,
+      PlateShape{{Vec3(-kR, -kR, z), Vec3(side + kR, -kR, z), Vec3(side + kR, side + kR, z), Vec3(-kR, side + kR, z)}},
+      {},
+      {}};
   plate.load = load;
   s.walls.push_back(plate);
   return s;
@@ -182,7 +185,8 @@ TEST(LoadedPlate, AMeshWhoseLoadWasDroppedStaysWhereItWasLeft) {
   Simulation pressed(scene(true));
   while (pressed.time() < 0.05) pressed.step();
   const double left_at = height(pressed);
-  ASSERT_LT(left_at, std::get<MeshShape>(scene(true).walls.back().shape).vertices[0].z() - 1e-4) << "the servo moved it";
+  ASSERT_LT(left_at, std::get<MeshShape>(scene(true).walls.back().shape).vertices[0].z() - 1e-4)
+      << "the servo moved it";
   std::stringstream first;
   StateIO::write(pressed, first);
   Simulation dropped(scene(false));
