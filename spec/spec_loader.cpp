@@ -748,7 +748,10 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
   const ContactChoice contact = contact_models_of(spec.contact(), check);
   scene.contact = contact.settings;
 
-  // materials
+  // materials: refused at once past the limit, before anything grows with the square of their count
+  if (spec.materials_size() > limits.max_materials)
+    throw SpecError({"materials: at most " + std::to_string(limits.max_materials) + " materials (got " +
+                     std::to_string(spec.materials_size()) + ")"});
   std::map<std::string, int> material_index;
   if (spec.materials().empty()) check.fail("materials", "at least one material is required");
   for (int m = 0; m < spec.materials_size(); ++m) {

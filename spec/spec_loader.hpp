@@ -33,6 +33,7 @@ struct SpecLimits {
   std::int64_t max_particles = 50'000'000;
   std::int64_t max_triangles = 50'000'000;
   int max_threads = 256;           // numerics.threads
+  int max_materials = 256;         // every pair of them has its coefficients: a table of M x M
   std::size_t max_name = 200;      // name, in bytes
   std::size_t max_problems = 100;  // problems listed in a SpecError (then "N more")
 };
