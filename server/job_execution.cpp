@@ -128,6 +128,7 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
       if (frame && hooks.max_output_bytes > 0) check_output_size(folder, hooks.max_output_bytes);
     };
     const RunOutcome outcome = run(sim, observers, options);
+    result.step = sim.step_count();
     writers.clear();  // closes the files
     result.run_seconds = outcome.loop_seconds;
     result.stream_seconds = publisher.seconds();

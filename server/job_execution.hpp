@@ -2,6 +2,8 @@
 // frames to its viewers, a checkpoint now and then; resumed from the checkpoint when there is one.
 #pragma once
 
+#include <cstdint>
+
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -33,6 +35,7 @@ struct ExecutionResult {
   std::string error;
   double run_seconds = 0;     // the stepping loop's wall time, observers included
   double stream_seconds = 0;  // of which making and handing out live frames
+  std::int64_t step = -1;     // the step the run reached (where it failed or stopped); -1: never began
 };
 
 ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks);

@@ -486,6 +486,7 @@ void JobManager::run_one(const JobRecord& job) {
       case ExecutionResult::Kind::Failed:
         j.state = JobState::Failed;
         j.error = result.error;
+        if (result.step >= 0) j.step = result.step;  // it may fail before its first progress report
         break;
       case ExecutionResult::Kind::Stopped:
         if (control->checkpoint_on_stop && !control->cancelled) {

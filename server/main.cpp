@@ -39,7 +39,9 @@ const char* kUsage =
     "                          files (default: keep every job); queued, running and interrupted jobs\n"
     "                          are never deleted by either\n";
 
+// A decimal number (std::stod alone also takes hexadecimal, "inf" and "nan").
 bool number(const std::string& text, double& out) {
+  if (text.empty() || text.find_first_not_of("0123456789.eE+-") != std::string::npos) return false;
   try {
     std::size_t used = 0;
     out = std::stod(text, &used);
@@ -112,10 +114,10 @@ int main(int argc, char** argv) {
       if (!whole(1, 1e6)) return bad("a whole number >= 1");
       options.max_connections_per_client = static_cast<std::size_t>(x);
     } else if (a == "--keep-finished-days") {
-      if (!number(v, x) || !(x > 0) || x > 1e6) return bad("a number of days > 0");
+      if (!number(v, x) || !(x > 0) || x > 1e6) return bad("a number of days > 0 and at most 1e6");
       options.keep_finished_days = x;
     } else if (a == "--keep-finished-jobs") {
-      if (!whole(1, 1e9)) return bad("a whole number >= 1");
+      if (!whole(1, 1e9)) return bad("a whole number from 1 to 1e9");
       options.keep_finished_jobs = static_cast<std::size_t>(x);
     } else if (a == "--max-frame-rate") {
       if (!number(v, x) || !(x >= 0)) return bad("a rate in Hz >= 0");

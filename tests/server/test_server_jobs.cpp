@@ -190,3 +190,24 @@ TEST_F(ServerJobs, HealthAndTheOpenApiDescriptionAreServed) {
 
 }  // namespace
 }  // namespace dem::test
+
+namespace dem::test {
+namespace {
+
+// A job that fails part-way shows the step it reached, which its error names (it showed 0 when it
+// failed before its first progress report: an independent tester's finding).
+TEST_F(ServerJobs, AJobThatFailsPartWayShowsTheStepItReached) {
+  start_server();
+  // a step far past the stable limit: the stability guard stops it within a few hundred steps
+  const std::string spec = replaced(pouring_spec(0.02, 3000, 100), R"("time": {"steps": 3000})",
+                                    R"("time": {"steps": 3000, "dt": 2e-3, "allowUnstableDt": true})");
+  const long id = submit_json(spec)["id"];
+  const nlohmann::json j = wait_for(id, "failed,succeeded");
+  ASSERT_EQ(j.value("state", ""), "failed") << j.dump();
+  const long step = j.value("step", 0L);
+  EXPECT_GT(step, 0) << j.dump();
+  EXPECT_NE(j.value("error", "").find("step " + std::to_string(step)), std::string::npos) << j.dump();
+}
+
+}  // namespace
+}  // namespace dem::test
