@@ -19,6 +19,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   parser.put(boost::asio::buffer(data, size), error);
   if (error || !parser.is_done()) return 0;
   const Request& req = parser.get();
+  if (const auto absolute = split_absolute_form(req.target())) {
+    if (absolute->origin_form.empty() || absolute->origin_form[0] != '/') __builtin_trap();
+    parse_target(absolute->origin_form);
+    host_of_authority(absolute->authority);
+  }
   if (const auto target = parse_target(req.target())) {
     for (const std::string& s : target->segments) parse_job_id(s);
     request_token(req, *target);

@@ -86,7 +86,7 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   if (timed_out(ec)) return;
   if (ec == http::error::end_of_stream) return close();
   if (ec) return on_read_error(ec);
-  const auto& head = parser_->get();
+  auto& head = parser_->get();
   // an answer before the body: the request's version, and HEAD kept (a method Beast does not know
   // must not be copied: setting it throws, which once took the whole server down)
   Request head_only;
@@ -99,10 +99,33 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
                                      "case-sensitive: GET, HEAD, POST, DELETE, OPTIONS)"));
   if (head.version() >= 11 && head.find(http::field::host) == head.end())
     return refuse(error_response(head_only, http::status::bad_request, "an HTTP/1.1 request needs a Host header"));
+  if (head.count(http::field::host) > 1)
+    return refuse(error_response(head_only, http::status::bad_request,
+                                 "the request has more than one Host header (RFC 9112 3.2)"));
+  if (is_absolute_form(head.target())) {
+    const std::optional<AbsoluteTarget> absolute = split_absolute_form(head.target());
+    if (!absolute)
+      return refuse(error_response(head_only, http::status::bad_request,
+                                   "malformed absolute target (an http or https URI with a host is expected): " +
+                                       printable(head.target())));
+    // RFC 9112 3.2.2: the target's authority names the server, and every check below reads the Host
+    head.target(absolute->origin_form);
+    head.set(http::field::host, absolute->authority);
+  }
+  if (head.target() == "*" && head.method() == http::verb::options) {  // RFC 9110 9.3.7: the server itself
+    http::response<http::string_body> res{http::status::no_content, head.version()};
+    res.set(http::field::allow, "GET, HEAD, POST, DELETE, OPTIONS");
+    res.set(http::field::date, http_date_now());
+    return refuse(std::move(res));
+  }
+  if (head.target().empty() || head.target()[0] != '/')
+    return refuse(error_response(head_only, http::status::bad_request,
+                                 "malformed path (a path from the root, /..., is expected): " +
+                                     printable(head.target())));
   const std::optional<Target> target = parse_target(head.target());
   if (!target)
     return refuse(
-        error_response(head_only, http::status::bad_request, "malformed path: " + std::string(head.target())));
+        error_response(head_only, http::status::bad_request, "malformed path: " + printable(head.target())));
   if (!state_.token.empty()) {
     Request for_token;
     for_token.base() = head;

@@ -48,6 +48,29 @@ std::optional<std::string> authority_of_origin(std::string_view origin) {
   return std::string(rest);
 }
 
+bool is_absolute_form(std::string_view target) {
+  if (target.empty() || target[0] == '/') return false;
+  const std::size_t scheme = target.find("://");
+  return scheme != std::string_view::npos && target.find('/') > scheme;
+}
+
+std::optional<AbsoluteTarget> split_absolute_form(std::string_view target) {
+  if (!is_absolute_form(target)) return std::nullopt;
+  const std::size_t scheme_end = target.find("://");
+  const std::string scheme = lower(target.substr(0, scheme_end));
+  if (scheme != "http" && scheme != "https") return std::nullopt;
+  const std::string_view rest = target.substr(scheme_end + 3);
+  const std::size_t path = std::min(rest.find('/'), rest.find('?'));
+  const std::string_view authority = rest.substr(0, path);
+  // RFC 9110 4.2.4: userinfo in an http URI is not to be sent, and "user@evil" must not pass for a host
+  if (authority.find('@') != std::string_view::npos || !host_of_authority(authority)) return std::nullopt;
+  const std::string_view tail = path == std::string_view::npos ? std::string_view() : rest.substr(path);
+  const bool from_root = !tail.empty() && tail[0] == '/';
+  std::string origin_form = from_root ? std::string() : std::string(1, '/');
+  origin_form.append(tail);
+  return AbsoluteTarget{std::string(authority), std::move(origin_form)};
+}
+
 bool is_loopback_host(std::string_view host) {
   const std::string h = lower(host);
   if (h == "localhost") return true;

@@ -18,6 +18,20 @@ std::optional<std::string> host_of_authority(std::string_view authority);
 // value without a scheme.
 std::optional<std::string> authority_of_origin(std::string_view origin);
 
+// A request target in absolute form ("http://127.0.0.1:8080/api/jobs?x=1", RFC 9112 3.2.2), which a
+// server must accept: its authority then names the server in place of the Host header.
+struct AbsoluteTarget {
+  std::string authority;    // "127.0.0.1:8080"
+  std::string origin_form;  // "/api/jobs?x=1" ("/" when the target has no path)
+};
+
+// Whether a target is meant as absolute form: not a path from the root, and a scheme before "://".
+bool is_absolute_form(std::string_view target);
+
+// The parts of an absolute-form target of scheme http or https (any case); nothing when the scheme
+// is another, the authority is empty or malformed, or it carries user information.
+std::optional<AbsoluteTarget> split_absolute_form(std::string_view target);
+
 // "localhost" or a literal loopback address (127.0.0.0/8, ::1), nothing else.
 bool is_loopback_host(std::string_view host);
 

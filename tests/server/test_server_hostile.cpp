@@ -41,6 +41,39 @@ TEST_F(ServerHostile, Http11WithoutHostIs400) {
   EXPECT_EQ(status_of(exchange("GET /api/health HTTP/1.0\r\n\r\n")), 200);  // 1.0 has no Host
 }
 
+// RFC 9112 3.2: more than one Host is a 400 too (which one names the server is ambiguous, and a proxy
+// in front may have checked the other).
+TEST_F(ServerHostile, TwoHostHeadersAre400) {
+  start_server();
+  const std::string answer = exchange("GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nHost: evil.example\r\n\r\n");
+  EXPECT_EQ(status_of(answer), 400) << answer;
+  EXPECT_NE(answer.find("more than one Host"), std::string::npos) << answer;
+  EXPECT_EQ(status_of(exchange("GET /api/health HTTP/1.0\r\nHost: a\r\nHost: b\r\n\r\n")), 400);
+}
+
+// RFC 9112 3.2.2: a server must accept a target in absolute form, and then its authority, not the
+// Host header, names the server (so it is what the loopback check looks at).
+TEST_F(ServerHostile, AbsoluteFormTargetsAreServed) {
+  start_server();
+  EXPECT_EQ(status_of(exchange("GET http://127.0.0.1/api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")), 200);
+  EXPECT_EQ(status_of(exchange("GET HTTP://LOCALHOST:9/api/jobs?state=succeeded HTTP/1.1\r\nHost: x\r\n\r\n")), 200);
+  EXPECT_EQ(status_of(exchange("GET http://127.0.0.1 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")), 200);  // the viewer
+  EXPECT_EQ(status_of(exchange("GET http://evil.example/api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")), 403);
+  EXPECT_EQ(status_of(exchange("GET http:///api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")), 400);
+  EXPECT_EQ(status_of(exchange("GET ftp://127.0.0.1/api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")), 400);
+}
+
+// A target is a path from the root (or absolute, above); "api/health" is malformed, not a file.
+TEST_F(ServerHostile, TargetsNotFromTheRootAre400) {
+  start_server();
+  EXPECT_EQ(status_of(exchange("GET api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")), 400);
+  EXPECT_EQ(status_of(exchange("GET * HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")), 400);
+  const std::string server_options = exchange("OPTIONS * HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+  EXPECT_EQ(status_of(server_options), 204) << server_options;  // RFC 9110 9.3.7: the server as a whole
+  EXPECT_NE(server_options.find("Allow: GET, HEAD, POST, DELETE, OPTIONS"), std::string::npos) << server_options;
+  EXPECT_TRUE(alive());
+}
+
 // OPTIONS says what a resource allows; 405s list HEAD and OPTIONS with GET; every answer is dated.
 TEST_F(ServerHostile, AllowListsEveryMethodAndAnswersAreDated) {
   start_server();
