@@ -62,7 +62,16 @@ struct HertzNormal {
       damping_quarter = select(boundary, window, quarter);
     }
     return {f_elastic - p.hertz_cn * damping_quarter * c.sqrt_m_eff * c.vn_now, 2.0 * p.e_star * sqrt_rd, kt,
-            p.hertz_ct * scale};
+            p.hertz_ct * scale, stiffness_ratio(c)};
+  }
+
+  // k(before the drift) / k(now) = sqrt(d_before / d) (NormalResponse::stiffness_ratio), d_before
+  // the overlap before the drift, from the half-step normal velocity that made it.
+  template <class T>
+  DEM_HOT static T stiffness_ratio(const ContactInput<T>& c) {
+    const auto touching = c.delta > T{};
+    const T before = lane_max(c.delta + dot(c.v_rel, c.n) * c.dt, T{});
+    return select(touching, lane_sqrt(before / select(touching, c.delta, splat<T>(1.0))), splat<T>(1.0));
   }
 
   template <class T>
