@@ -105,9 +105,9 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   if (is_absolute_form(head.target())) {
     const std::optional<AbsoluteTarget> absolute = split_absolute_form(head.target());
     if (!absolute)
-      return refuse(error_response(head_only, http::status::bad_request,
-                                   "malformed absolute target (an http or https URI with a host is expected): " +
-                                       printable(head.target())));
+      return refuse(error_response(
+          head_only, http::status::bad_request,
+          "malformed absolute target (an http or https URI with a host is expected): " + printable(head.target())));
     // RFC 9112 3.2.2: the target's authority names the server, and every check below reads the Host
     head.target(absolute->origin_form);
     head.set(http::field::host, absolute->authority);
@@ -119,13 +119,12 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
     return refuse(std::move(res));
   }
   if (head.target().empty() || head.target()[0] != '/')
-    return refuse(error_response(head_only, http::status::bad_request,
-                                 "malformed path (a path from the root, /..., is expected): " +
-                                     printable(head.target())));
+    return refuse(
+        error_response(head_only, http::status::bad_request,
+                       "malformed path (a path from the root, /..., is expected): " + printable(head.target())));
   const std::optional<Target> target = parse_target(head.target());
   if (!target)
-    return refuse(
-        error_response(head_only, http::status::bad_request, "malformed path: " + printable(head.target())));
+    return refuse(error_response(head_only, http::status::bad_request, "malformed path: " + printable(head.target())));
   if (!state_.token.empty()) {
     Request for_token;
     for_token.base() = head;

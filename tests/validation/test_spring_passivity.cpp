@@ -71,16 +71,16 @@ TEST(SpringPassivity, AnElasticObliqueImpactNeverGainsEnergy) {
 TEST(SpringPassivity, TheRollingSpringNeverGainsEnergy) {
   for (std::string_view law : {LinearNormal::kName, HertzNormal::kName}) {
     for (bool on_a_sphere : {false, true})
-    for (double spin : {0.5, 20.0}) {
-      Scene s = oblique_impact(law, on_a_sphere);
-      set_rolling(s, EpsdRolling::kName, 0.1);
-      s.contact.parameters.set(EpsdRolling::kDampingRatio.field, 0);  // nothing to hide a gain
-      s.particles[0].angular_velocity = Vec3(0, spin, 0);
-      const EnergyTrace fine = trace_impact(s, 800);
-      std::printf("[ measured ] %s + EPSD on a %s, spin %g, 800 steps per contact: energy rose by at most %.2e\n",
-                  std::string(law).c_str(), on_a_sphere ? "sphere" : "plane", spin, fine.worst_rise);
-      EXPECT_LT(fine.worst_rise, 1e-5) << law << (on_a_sphere ? " sphere" : " plane");
-    }
+      for (double spin : {0.5, 20.0}) {
+        Scene s = oblique_impact(law, on_a_sphere);
+        set_rolling(s, EpsdRolling::kName, 0.1);
+        s.contact.parameters.set(EpsdRolling::kDampingRatio.field, 0);  // nothing to hide a gain
+        s.particles[0].angular_velocity = Vec3(0, spin, 0);
+        const EnergyTrace fine = trace_impact(s, 800);
+        std::printf("[ measured ] %s + EPSD on a %s, spin %g, 800 steps per contact: energy rose by at most %.2e\n",
+                    std::string(law).c_str(), on_a_sphere ? "sphere" : "plane", spin, fine.worst_rise);
+        EXPECT_LT(fine.worst_rise, 1e-5) << law << (on_a_sphere ? " sphere" : " plane");
+      }
   }
 }
 
