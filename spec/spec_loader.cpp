@@ -630,7 +630,9 @@ ContactChoice contact_models_of(const api::ContactModel& in, Checker& check) {
       continue;
     }
     if (!std::isfinite(value) || value < parameter->min || value > parameter->max) {
-      check.fail(path, "must be in [" + num(parameter->min) + ", " + num(parameter->max) + "] (got " + num(value) +
+      // an unbounded range is open at infinity: "[0, inf)", which an infinite value is not in
+      const std::string upper = std::isfinite(parameter->max) ? num(parameter->max) + "]" : std::string("inf)");
+      check.fail(path, "must be in [" + num(parameter->min) + ", " + upper + " (got " + num(value) +
                            "): " + std::string(parameter->meaning));
       continue;
     }

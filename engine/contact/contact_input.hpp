@@ -54,10 +54,12 @@ struct NormalResponse {
   T kn_tangent;  // dFn/d(delta), for the rolling spring
   T kt;          // tangential stiffness
   T ct;          // tangential damping
-  // The stiffnesses before the drift over now, k(before) / k(now), for a law whose stiffnesses change
-  // with the overlap (Hertz's k_t and dF_n/d(delta) both go as a = sqrt(R* delta)); 1 where they do
-  // not. The tangential and rolling springs use it to stay passive.
+  // For a law whose stiffnesses change with the overlap (Hertz's k_t and dF_n/d(delta) both go as
+  // a = sqrt(R* delta)), over the drift: the stiffness before over now, and the mean over now (the
+  // stiffness of the step's travel); 1 and 1 where they do not change. The tangential and rolling
+  // springs use them to stay passive.
   T stiffness_ratio = splat<T>(1.0);
+  T stiffness_mean = splat<T>(1.0);
 };
 
 // Contact boundaries: a dashpot force jumps at first touch (from 0 to C_n v) and, when tension is

@@ -62,12 +62,17 @@ struct EpsdRolling {
     const T m2 = squared_norm(mk);
     const auto mobilised = m2 >= limit * limit;  // fully mobilised: no damping (f = 0 of Ai et al.)
     mk = select(mobilised & (m2 > T{}), mk * (limit / lane_sqrt(m2)), mk);
-    // The dashpot, while the spring is below its limit: at most I_r / dt, which stops the relative
-    // rolling within one step (explicitly integrated, a stiffer one overshoots and makes energy:
+    // The dashpot, while the spring is below its limit: at most I_s / dt, which stops the relative
+    // spin within one step (explicitly integrated, a stiffer one overshoots and makes energy:
     // eta_r 100 once made 3e4 times a settling pile's energy); and spring and dashpot together
     // within mu_r R* F_n (the dashpot on top of a spring near its limit took 1.4 times the spin
-    // that limit allows at touch-down, and stopped a rolling sphere 2.8% short).
-    const T cr = lane_min(2.0 * p.damping * lane_sqrt(c.i_roll * kr), c.i_roll / c.dt);
+    // that limit allows at touch-down, and stopped a rolling sphere 2.8% short). I_s is the pair's
+    // spin inertia, 1/I_s = 1/I_i + 1/I_j with I = 2/5 m r^2: 2/7 of the rolling inertia I_r, whose
+    // m r^2 is the translation a rolling sphere drags along, which the tangential spring couples
+    // in only over several steps. Capped at I_r / dt, a step reversed the spin 2.5 times over: a
+    // clumped dumbbell at eta_r 1000 rolled on at 8e-6 m/s for ever with its springs at the limit.
+    constexpr double kSpinOverRollingInertia = 0.4 / 1.4;
+    const T cr = lane_min(2.0 * p.damping * lane_sqrt(c.i_roll * kr), (kSpinOverRollingInertia / c.dt) * c.i_roll);
     const V3<T> moment = select(mobilised, mk, mk - cr * wr);
     const T total2 = squared_norm(moment);
     const auto over = lane_and(total2 > limit * limit, total2 > T{});

@@ -65,14 +65,16 @@ struct CoulombFriction {
       moved_for =
           select(fresh, c.dt * lane_min(c.delta / select(fresh, c.first_touch, splat<T>(1.0)), splat<T>(1.0)), c.dt);
     // Passive where k_t changes with the load (Hertz-Mindlin's k_t = 8 G* a): loaded, the force is
-    // carried over, F = k_t(before) xi + k_t(mid) dxi (Mindlin & Deresiewicz 1953's incremental
+    // carried over, F = k_t(before) xi + k_t(mean) dxi (Mindlin & Deresiewicz 1953's incremental
     // loading, the travel's stiffness the step's mean for second order), so the stored energy
     // |F|^2 / 2 k_t falls; unloaded, the displacement is kept and the force falls with a (LAMMPS'
     // mindlin_rescale/force). A displacement held while k_t grew gained energy no force paid for:
     // an elastic oblique impact (e = 1, mu = 0.4, v_t / v_n = 0.5) gained 1.4% of its energy in
-    // mid-contact, at every step. (The linear law's ratio is 1: no cost.)
-    const T kept = lane_min(nr.stiffness_ratio, splat<T>(1.0));
-    shear = kept * in_plane(shear, n) + (0.5 + 0.5 * kept) * v_t * moved_for;
+    // mid-contact, at every step. (The linear law's ratios are 1: no cost.)
+    const auto loaded = nr.stiffness_ratio < splat<T>(1.0);
+    const T kept = select(loaded, nr.stiffness_ratio, splat<T>(1.0));
+    const T travel_stiffness = select(loaded, nr.stiffness_mean, splat<T>(1.0));
+    shear = kept * in_plane(shear, n) + travel_stiffness * v_t * moved_for;
     const T limit = p.mu * fn;
     const T limit2 = limit * limit;
     V3<T> elastic = -nr.kt * shear;

@@ -362,7 +362,11 @@ TEST(SpecLoader, AParameterOfAModelNotChosenIsRefused) {
 TEST(SpecLoader, AContactParameterOutOfRangeIsRefused) {
   const auto problems =
       problems_of(replaced(kGoodSpec, R"("rolling": "NONE")", R"("rolling": "NONE", "tangentialStiffnessRatio": -1)"));
-  EXPECT_TRUE(has_problem(problems, "contact.tangentialStiffnessRatio:", "must be in [0, inf] (got -1)"));
+  EXPECT_TRUE(has_problem(problems, "contact.tangentialStiffnessRatio:", "must be in [0, inf) (got -1)"));
+  // an unbounded range is open: infinity is outside it, and the message says so (it said "[0, inf]")
+  const auto infinite = problems_of(
+      replaced(kGoodSpec, R"("rolling": "NONE")", R"("rolling": "NONE", "tangentialStiffnessRatio": "Infinity")"));
+  EXPECT_TRUE(has_problem(infinite, "contact.tangentialStiffnessRatio:", "must be in [0, inf) (got inf)"));
 }
 
 // The normal model says which material properties it needs.
