@@ -40,18 +40,24 @@ void for_ranges(int n, int min_parallel, Body&& body) {
 template <class T, class Body, class Combine>
 T reduce_ranges(int n, int min_parallel, T init, Body&& body, Combine&& combine) {
   if (n < min_parallel) return combine(init, body(0, n));
-  std::vector<T> parts(static_cast<std::size_t>(omp_get_max_threads()), init);
+  // Each result in its own object: in a std::vector<bool> (T = bool, the kick's non-finite flag)
+  // the threads' results were bits of one shared word, each thread's store a read-modify-write of
+  // the whole word, so one thread could undo another's `true` (ThreadSanitizer found it).
+  struct Part {
+    T value;
+  };
+  std::vector<Part> parts(static_cast<std::size_t>(omp_get_max_threads()), Part{init});
   int used = 1;
 #pragma omp parallel
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
     const auto [begin, end] = static_range(n, threads, t);
-    parts[t] = body(begin, end);
+    parts[t].value = body(begin, end);
 #pragma omp single nowait
     used = threads;
   }
   T out = init;
-  for (int t = 0; t < used; ++t) out = combine(out, parts[t]);
+  for (int t = 0; t < used; ++t) out = combine(out, parts[t].value);
   return out;
 }
 

@@ -204,7 +204,10 @@ TEST(NeighborList, CoincidentParticlesAreAllPaired) {
 
 TEST(NeighborList, SameListWithOneAndTwoThreads) {
   ThreadCount restore;
-  const Particles p = random_particles(3000, 0.45, {0.01, 0.03, 0.1}, 6);
+  // Past kParallelMinParticles, below which the search runs on one thread whatever the count (3000
+  // particles, as here before, never made a team of two); the box grown to keep the density.
+  const Particles p = random_particles(6000, 0.57, {0.01, 0.03, 0.1}, 6);
+  ASSERT_GE(static_cast<int>(p.size()), kParallelMinParticles);
   omp_set_num_threads(1);
   const NeighborList one = build(p, 0.004);
   omp_set_num_threads(2);
