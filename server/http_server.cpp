@@ -25,6 +25,12 @@ using tcp = asio::ip::tcp;
 
 namespace {
 
+// The machine's memory, for the default limit of what one job may need.
+double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 8e9;
+}
+
 // Accepts connections, each on a strand of its own.
 class Listener : public std::enable_shared_from_this<Listener> {
  public:
@@ -103,6 +109,16 @@ int run_server(const ServerOptions& options) {
                  options.address.c_str());
     return 2;
   }
+  // a token that others on the network can guess by trying (no throttling slows them much: each
+  // try is one cheap request) protects nothing; 16 characters of a random hex string is 64 bits
+  constexpr std::size_t kShortestNetworkToken = 16;
+  if (!is_loopback(options.address) && options.token.size() < kShortestNetworkToken) {
+    std::fprintf(stderr,
+                 "dem-server: listening on %s (not loopback) needs a token of at least %zu characters (got %zu); "
+                 "make one with: openssl rand -hex 16\n",
+                 options.address.c_str(), kShortestNetworkToken, options.token.size());
+    return 2;
+  }
   const DataLock lock(options.data);
   FrameHub frames;
   ManagerOptions manager_options;
@@ -112,6 +128,8 @@ int run_server(const ServerOptions& options) {
   manager_options.checkpoint_seconds = options.checkpoint_seconds;
   manager_options.max_frame_rate = options.max_frame_rate;
   manager_options.max_output_bytes = options.max_output_bytes;
+  manager_options.max_job_memory_bytes =
+      options.max_job_memory_bytes > 0 ? options.max_job_memory_bytes : physical_memory_bytes() / 2;
   manager_options.retention.max_age_seconds = options.keep_finished_days * 86400;
   manager_options.retention.max_finished = options.keep_finished_jobs;
   JobManager jobs(manager_options, frames);

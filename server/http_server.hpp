@@ -22,6 +22,7 @@ struct ServerOptions {
   double checkpoint_seconds = 10;
   double max_frame_rate = 30;                       // live frames a second per job; 0: every output frame
   double max_output_bytes = 10000.0 * 1024 * 1024;  // what one job's files may hold
+  double max_job_memory_bytes = 0;                  // estimated from the particle count; 0: half the RAM
   double request_timeout = 10;                      // s for a request's header (its body gets 60 s more)
   std::size_t max_connections = 512;                // in all (WebSockets included)
   std::size_t max_connections_per_client = 128;     // from one address

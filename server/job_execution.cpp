@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "output/run_writers.hpp"
@@ -101,6 +102,15 @@ api::JobSpec read_spec(const JobFolder& folder) {
 
 ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks) {
   ExecutionResult result;
+  // where a run that throws (a file that cannot be written, the output limit) stopped, and after how
+  // long: the job's record shows them as for any other failure
+  std::optional<std::chrono::steady_clock::time_point> loop_start;
+  auto note_where_it_stopped = [&](std::int64_t step) {
+    if (step >= 0) result.step = step;
+    if (loop_start)
+      result.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - *loop_start).count();
+  };
+  std::int64_t last_step = -1;
   try {
     Scene scene = spec::to_scene(read_spec(folder));
     if (hooks.threads > 0 && (scene.numerics.threads == 0 || scene.numerics.threads > hooks.threads))
@@ -124,9 +134,12 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     options.progress_seconds = 0.5;
     options.periodically = [&](const Simulation& s) { checkpointer.maybe_save(s); };
     options.after_step = [&](const Simulation& s, bool frame) {
+      last_step = s.step_count();
       publisher.after_step(s, frame);
       if (frame && hooks.max_output_bytes > 0) check_output_size(folder, hooks.max_output_bytes);
     };
+    last_step = sim.step_count();
+    loop_start = std::chrono::steady_clock::now();
     const RunOutcome outcome = run(sim, observers, options);
     result.step = sim.step_count();
     writers.clear();  // closes the files
@@ -145,6 +158,7 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
   } catch (const std::exception& e) {
     result.kind = ExecutionResult::Kind::Failed;
     result.error = e.what();
+    note_where_it_stopped(last_step);
   }
   return result;
 }

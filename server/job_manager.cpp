@@ -221,7 +221,11 @@ JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::st
   }
   JobRecord job;
   {
-    const Simulation sim(spec::to_scene(spec));  // the checks of `dem validate`, the time step's included
+    spec::SpecLimits limits;
+    limits.max_memory_bytes = options_.max_job_memory_bytes;
+    limits.memory_limit_name = "this server's limit for one job (--max-job-memory-mb)";
+    // the checks of `dem validate`, the time step's included
+    const Simulation sim(spec::to_scene(spec, "", limits));
     job.name = spec.name();
     job.length_unit = spec.outputs().length_unit().empty() ? "m" : spec.outputs().length_unit();
     job.particles = static_cast<std::int64_t>(sim.particles().size());

@@ -35,7 +35,8 @@ struct ManagerOptions {
   double checkpoint_seconds = 10;
   double max_frame_rate = 30;                       // live frames a second per job; 0: every output frame
   double max_output_bytes = 10000.0 * 1024 * 1024;  // what one job's files may hold (--max-output-mb)
-  RetentionPolicy retention;                        // finished jobs deleted by age or count; none by default
+  double max_job_memory_bytes = 0;  // a spec needing more (estimated before it is built) is refused; 0: none
+  RetentionPolicy retention;        // finished jobs deleted by age or count; none by default
 };
 
 // What a request on a job came to.

@@ -12,7 +12,8 @@ namespace {
 const char* kUsage =
     "usage: dem-server --data DIR [--port PORT] [--address ADDR] [--token TOKEN] [--jobs N]\n"
     "                  [--threads-per-job N] [--max-body-mb MB] [--web DIR] [--checkpoint-seconds S]\n"
-    "                  [--max-frame-rate HZ] [--max-output-mb MB] [--cases DIR] [--request-timeout S]\n"
+    "                  [--max-frame-rate HZ] [--max-output-mb MB] [--max-job-memory-mb MB] [--cases DIR]\n"
+    "                  [--request-timeout S]\n"
     "                  [--max-connections N] [--max-connections-per-client N]\n"
     "                  [--keep-finished-days D] [--keep-finished-jobs N]\n"
     "  --data DIR              where the job table (jobs.db) and each job's folder live (made if missing)\n"
@@ -29,6 +30,8 @@ const char* kUsage =
     "  --max-frame-rate HZ     live frames a second per job at most (default 30; 0: every output frame)\n"
     "  --max-output-mb MB      what one job's files may hold (default 10000): a spec whose frames alone\n"
     "                          would pass it is refused, a job whose files pass it is stopped\n"
+    "  --max-job-memory-mb MB  the memory one job may need, estimated from its particle count before\n"
+    "                          any is made (default: half the machine's memory); past it a 400\n"
     "  --request-timeout S     a request's header must arrive within S seconds (default 10; its body\n"
     "                          gets 60 s more), else 408 and the connection closes\n"
     "  --max-connections N     connections at once (default 512), WebSockets included; past it 503\n"
@@ -104,6 +107,9 @@ int main(int argc, char** argv) {
     } else if (a == "--max-output-mb") {
       if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0");
       options.max_output_bytes = x * 1024 * 1024;
+    } else if (a == "--max-job-memory-mb") {
+      if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0");
+      options.max_job_memory_bytes = x * 1024 * 1024;
     } else if (a == "--request-timeout") {
       if (!number(v, x) || !(x > 0) || x > 86400) return bad("a number of seconds > 0");
       options.request_timeout = x;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -59,7 +60,8 @@ Vec3 unit(const Vec3& d) {
 // they are only counted (a spec of 20,000 bad particles once got a 121 MB list).
 class Checker {
  public:
-  explicit Checker(const SpecLimits& l = {}) : limits(l) {}
+  explicit Checker(const SpecLimits& l = {}, double particle_bytes = kEstimatedBytesPerParticle)
+      : limits(l), bytes_per_particle(particle_bytes) {}
 
   void fail(const std::string& path, const std::string& what) {
     ++found;
@@ -78,10 +80,24 @@ class Checker {
   // Whether `more` particles fit beside the `already` made, within the spec's limit; a problem at
   // `path` when not.
   bool room(const std::string& path, std::size_t already, double more) {
-    if (static_cast<double>(already) + more <= static_cast<double>(limits.max_particles)) return true;
-    fail(path, "would make " + num(std::round(static_cast<double>(already) + more)) +
-                   " particles in all, more than the limit of " + std::to_string(limits.max_particles));
-    return false;
+    const double total = static_cast<double>(already) + more;
+    if (total > static_cast<double>(limits.max_particles)) {
+      fail(path, "would make " + num(std::round(total)) + " particles in all, more than the limit of " +
+                     std::to_string(limits.max_particles));
+      return false;
+    }
+    const double bytes = total * bytes_per_particle;
+    if (limits.max_memory_bytes > 0 && bytes > limits.max_memory_bytes) {
+      char buf[400];
+      std::snprintf(buf, sizeof buf,
+                    "would make %.0f particles in all, which would need about %.1f GB of memory to run (%.0f bytes "
+                    "a particle), more than %s allows (%.1f GB)",
+                    std::round(total), bytes / 1e9, bytes_per_particle, limits.memory_limit_name.c_str(),
+                    limits.max_memory_bytes / 1e9);
+      fail(path, buf);
+      return false;
+    }
+    return true;
   }
 
   void positive(const std::string& path, double v) {
@@ -128,6 +144,7 @@ class Checker {
 
   std::vector<std::string> problems;
   SpecLimits limits;
+  double bytes_per_particle;  // the memory estimate of one particle of this spec
 
  private:
   std::size_t found = 0;
@@ -739,10 +756,20 @@ api::JobSpec read_json_file(const std::string& path) {
 }
 
 Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const SpecLimits& limits) {
-  Checker check(limits);
+  Checker check(limits, spec.has_bonds() ? kEstimatedBytesPerBondedParticle : kEstimatedBytesPerParticle);
   if (spec.name().size() > limits.max_name)
     check.fail("name", "must be at most " + std::to_string(limits.max_name) + " bytes (got " +
                            std::to_string(spec.name().size()) + ")");
+  // a name is shown in lists, terminals and file headers: no line breaks or escape sequences
+  for (std::size_t k = 0; k < spec.name().size(); ++k) {
+    const auto c = static_cast<unsigned char>(spec.name()[k]);
+    if (c < 0x20 || c == 0x7F) {
+      char buf[120];
+      std::snprintf(buf, sizeof buf, "must not hold control characters (byte %zu is 0x%02X)", k, c);
+      check.fail("name", buf);
+      break;
+    }
+  }
   Scene scene;
   scene.name = spec.name();
 
@@ -886,9 +913,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
   if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty() && spec.clumps().empty() &&
       spec.ballast_stones().empty())
     check.fail("particles", "the scene has no particles");
-  if (static_cast<std::int64_t>(scene.particles.size()) > limits.max_particles)
-    check.fail("particles", std::to_string(scene.particles.size()) + " particles in all, more than the limit of " +
-                                std::to_string(limits.max_particles));
+  check.room("particles", 0, static_cast<double>(scene.particles.size()));  // clumps' and stones' included
 
   // walls
   std::set<int> wall_materials;

@@ -36,7 +36,19 @@ struct SpecLimits {
   int max_materials = 256;         // every pair of them has its coefficients: a table of M x M
   std::size_t max_name = 200;      // name, in bytes
   std::size_t max_problems = 100;  // problems listed in a SpecError (then "N more")
+  // The memory a run may take, estimated from its particle count before any particle is made
+  // (kEstimatedBytesPerParticle each, or ...BondedParticle with bonds); 0: no limit.
+  // `memory_limit_name` says where it is set.
+  double max_memory_bytes = 0;
+  std::string memory_limit_name = "the memory limit";
 };
+
+// What a running particle costs in memory, all told (its state, its share of contacts and their
+// history, neighbour lists, cells, the spec's copy), rounded up from the peak resident size per
+// particle of a dense FCC packing with Hertz-Mindlin and rolling springs: 1,517 bytes, and 3,411
+// with every touching pair bonded (docs/architecture.md, "What one job may cost").
+inline constexpr double kEstimatedBytesPerParticle = 1600;
+inline constexpr double kEstimatedBytesPerBondedParticle = 3500;
 
 // Checks the spec and builds the scene; throws SpecError listing every problem found. Mesh files
 // are read relative to `base_dir` (the spec file's folder; empty: the working directory).

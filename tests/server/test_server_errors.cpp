@@ -136,5 +136,15 @@ TEST_F(ServerErrors, ListeningBeyondLoopbackWithoutATokenIsRefused) {
   EXPECT_NE(r.output.find("needs an access token"), std::string::npos) << r.output;
 }
 
+// Beyond loopback a token is all that stands between the network and the server: a 1-character one
+// was accepted (an independent tester's finding).
+TEST_F(ServerErrors, ListeningBeyondLoopbackWithAShortTokenIsRefused) {
+  const CommandResult r =
+      run_command(std::string(DEM_BINARY_DIR) + "/dem-server --address 0.0.0.0 --port 0 --token abc --data " +
+                  shell_quoted(dir_ / "data"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("at least 16 characters (got 3)"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace dem::test

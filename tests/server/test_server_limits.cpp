@@ -3,6 +3,7 @@
 // anyway (other files, longer lines than the estimate) is stopped and failed, naming it, with what
 // it wrote kept. A 1 KB spec with a frame every step once wrote 1.1 GB in 5 s.
 #include <atomic>
+#include <chrono>
 #include <thread>
 
 #include "support/raw_http.hpp"
@@ -31,12 +32,36 @@ TEST_F(ServerLimits, AJobWhoseFilesGrowPastTheLimitIsStoppedAndFailed) {
   const nlohmann::json j = wait_for(id, "failed,succeeded");
   EXPECT_EQ(j.value("state", ""), "failed") << j.dump();
   EXPECT_NE(j.value("error", "").find("--max-output-mb"), std::string::npos) << j.dump();
+  // where it stopped and how long it ran, as for any failure (it said step 0, progress 0, no time)
+  EXPECT_GT(j.value("step", 0L), 1000) << j.dump();
+  EXPECT_GT(j.value("progress", 0.0), 0.3) << j.dump();
+  EXPECT_GT(j.value("runSeconds", 0.0), 0.0) << j.dump();
   std::uintmax_t total = 0;
   for (const auto& f : fs::directory_iterator(dir_ / "data" / "jobs" / std::to_string(id) / "outputs"))
     total += f.file_size();
   EXPECT_GT(total, 2u << 20);
   EXPECT_LT(total, 3u << 20);  // stopped at the frame that passed it
   EXPECT_FALSE(read_bytes(dir_ / "data" / "jobs" / std::to_string(id) / "outputs" / "ANIMATION_3D.dat").empty());
+}
+
+// A 45-million-sphere lattice took 2.9 GB of the server's memory while it was checked, then failed
+// with a 500 (bad_alloc): what a job would need is estimated from its count and refused first.
+TEST_F(ServerLimits, ASpecNeedingMoreMemoryThanTheLimitIsRefusedBeforeItIsBuilt) {
+  start_server({"--max-job-memory-mb", "100"});
+  nlohmann::json spec = nlohmann::json::parse(pouring_spec(0.012, 100, 0));
+  // 2 m / 0.02 m = 100 sites a side: a million spheres, about 1 GB to run
+  spec["lattices"].push_back({{"kind", "CUBIC"},
+                              {"min", {{"x", 10}, {"y", 0}, {"z", 0}}},
+                              {"max", {{"x", 12}, {"y", 2}, {"z", 2}}},
+                              {"radius", 0.01},
+                              {"material", "granite"}});
+  const auto start = std::chrono::steady_clock::now();
+  const client::Response r = client_->request("POST", "/api/jobs", spec.dump(), "application/json", {});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, 400) << r.body;
+  EXPECT_NE(r.body.find("--max-job-memory-mb"), std::string::npos) << r.body;
+  EXPECT_NE(r.body.find("lattices[1]: would make"), std::string::npos) << r.body;
+  EXPECT_LT(seconds, 1.0) << "nothing was built";
 }
 
 TEST_F(ServerLimits, TheLimitMustBeAPositiveSize) {

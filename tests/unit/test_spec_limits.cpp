@@ -98,6 +98,47 @@ TEST(SpecLimits, ParticlesInAllAreCappedBeforeTheyAreMade) {
   EXPECT_EQ(both[0].rfind("lattices[1]: would make", 0), 0u) << both[0];
 }
 
+// A 45-million-sphere lattice under the 50-million cap took 2.9 GB of the server's memory while it
+// was being made, then failed with bad_alloc (an independent tester's finding): the memory a run
+// needs is estimated from the count and refused before the first particle is made.
+TEST(SpecLimits, MemoryIsEstimatedFromTheCountBeforeTheParticlesAreMade) {
+  spec::SpecLimits limits;
+  limits.max_memory_bytes = 1e9;
+  limits.memory_limit_name = "this server (--max-job-memory-mb)";
+  // 400^3 = 64 million sites: past the count too; 300^3 = 27 million: under the count, past memory
+  const std::string lattice =
+      R"("lattices": [{"kind": "CUBIC", "min": {}, "max": {"x": 6, "y": 6, "z": 6}, "radius": 0.01, "material": "rock"}])";
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::string> p = problems(spec_with(lattice), limits);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(
+      p[0].rfind("lattices[0]: would make 27000000 particles in all, which would need about 43.2 GB of memory", 0), 0u)
+      << p[0];
+  EXPECT_NE(p[0].find("more than this server (--max-job-memory-mb) allows (1.0 GB)"), std::string::npos) << p[0];
+  EXPECT_LT(seconds, 1.0);  // nothing was made
+  // a packing by count, too, before its spheres are placed
+  const std::string packing =
+      R"("packings": [{"min": {}, "max": {"x": 10, "y": 10, "z": 10}, "count": 2000000, "material": "rock",
+                       "sizes": {"kind": "ONE_SIZE", "mean": 0.02}}])";
+  const std::vector<std::string> q = problems(spec_with(packing), limits);
+  ASSERT_EQ(q.size(), 1u);
+  EXPECT_EQ(q[0].rfind("packings[0]: would make 2000000 particles in all, which would need about 3.2 GB", 0), 0u)
+      << q[0];
+}
+
+// A name is printed in lists and on terminals: ESC, BEL, CR and LF in it could forge output.
+TEST(SpecLimits, TheNameHoldsNoControlCharacters) {
+  std::string json = spec_with(many_particles(1, 0));
+  json.replace(json.find('{') + 1, 0, R"("name": "ok\u001b]0;title\u0007",)");
+  const std::vector<std::string> p = problems(json);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0], "name: must not hold control characters (byte 2 is 0x1B)");
+  std::string fine = spec_with(many_particles(1, 0));
+  fine.replace(fine.find('{') + 1, 0, R"("name": "Böschung – Fall 3",)");
+  EXPECT_TRUE(problems(fine).empty());
+}
+
 TEST(SpecLimits, TrianglesInAllAreCapped) {
   spec::SpecLimits small;
   small.max_triangles = 1;
