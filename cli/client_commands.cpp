@@ -15,6 +15,7 @@
 #include "cli/commands.hpp"
 #include "cli/job_watch.hpp"
 #include "cli/server_api.hpp"
+#include "cli/terminal_text.hpp"
 #include "spec/referenced_files.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -224,8 +225,8 @@ int list_command(const std::vector<std::string>& args) {
     for (const nlohmann::json& job : jobs) {
       const std::string step =
           std::to_string(job.value("step", 0LL)) + "/" + std::to_string(job.value("totalSteps", 0LL));
-      std::printf("%8lld  %-11s  %7.1f%%  %-21s  %s\n", job.value("id", 0LL), job.value("state", "").c_str(),
-                  100 * job.value("progress", 0.0), step.c_str(), job.value("name", "").c_str());
+      std::printf("%8lld  %-11s  %7.1f%%  %-21s  %s\n", job.value("id", 0LL), printable(job.value("state", "")).c_str(),
+                  100 * job.value("progress", 0.0), step.c_str(), printable(job.value("name", "")).c_str());
     }
     return 0;
   });
@@ -263,25 +264,36 @@ int fetch_command(const std::vector<std::string>& args) {
         return usage_error(verb, "\"" + name + "\" is not an artifact name (a file name, no folders)");
     const fs::path out = a.values.count("--out") ? fs::path(a.value("--out")) : fs::path(".");
     const std::string artifacts = job_target(id) + "/artifacts";
+    int failed = 0;
     if (names.empty()) {
-      for (const nlohmann::json& file : api.call("GET", artifacts).value("artifacts", nlohmann::json::array()))
-        if (file.value("name", "") != kArchive) names.push_back(file.value("name", ""));
-      if (names.empty()) {
+      const nlohmann::json listed = api.call("GET", artifacts).value("artifacts", nlohmann::json::array());
+      for (const nlohmann::json& file : listed) {
+        const std::string name = file.value("name", "");
+        if (name == kArchive) continue;
+        if (is_artifact_name(name)) {
+          names.push_back(name);
+          continue;
+        }
+        // the list is the server's: a name that leads out of --out is never written
+        std::fprintf(stderr, "dem fetch: the server listed \"%s\", which is not a plain file name: not fetched\n",
+                     printable(name).c_str());
+        ++failed;
+      }
+      if (names.empty() && failed == 0) {
         std::fprintf(stderr, "dem fetch: job %lld has no artifacts yet\n", static_cast<long long>(id));
         return 1;
       }
     }
     fs::create_directories(out);
-    int failed = 0;
     for (const std::string& name : names) {
       const fs::path path = out / name;
       const client::Response response = api.http().download(artifacts + "/" + name, path.string());
       if (response.status != 200) {
-        std::fprintf(stderr, "dem fetch: %s: %s\n", name.c_str(), describe(api_error(response)).c_str());
+        std::fprintf(stderr, "dem fetch: %s: %s\n", printable(name).c_str(), describe(api_error(response)).c_str());
         ++failed;
         continue;
       }
-      std::printf("%s\n", path.string().c_str());
+      std::printf("%s\n", printable(path.string()).c_str());
     }
     return failed > 0 ? 1 : 0;
   });

@@ -1,5 +1,7 @@
 #include "cli/job_watch.hpp"
 
+#include "cli/terminal_text.hpp"
+
 #include <unistd.h>
 
 #include <chrono>
@@ -50,7 +52,7 @@ std::string job_summary(const nlohmann::json& job) {
     if (job.value("resumable", false))
       text += " (dem resume " + std::to_string(job.value("id", 0LL)) + " continues it)";
   }
-  return text;
+  return printable(text);  // the name and the error are the server's (and the submitter's) text
 }
 
 int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, bool quiet) {

@@ -1,5 +1,7 @@
 #include "cli/server_api.hpp"
 
+#include "cli/terminal_text.hpp"
+
 #include <boost/beast/http/status.hpp>
 
 namespace dem::cli {
@@ -20,13 +22,13 @@ ApiError api_error(const client::Response& response) {
   std::string message;
   std::vector<std::string> problems;
   if (body.is_object() && body.contains("error") && body["error"].is_string()) {
-    message = body["error"].get<std::string>();
+    message = printable(body["error"].get<std::string>());
     if (body.contains("problems") && body["problems"].is_array())
       for (const auto& p : body["problems"])
-        if (p.is_string()) problems.push_back(p.get<std::string>());
+        if (p.is_string()) problems.push_back(printable(p.get<std::string>()));
   } else {
     // not dem-server's error JSON (a proxy's page, say): its first line is the best clue
-    message = response.body.substr(0, response.body.find('\n')).substr(0, 200);
+    message = printable(response.body.substr(0, response.body.find('\n')).substr(0, 200));
     if (message.empty()) message = "(no message)";
   }
   return ApiError(response.status, message, std::move(problems));

@@ -1,0 +1,119 @@
+// The dem command's client verbs against a server that is not ours and not friendly: what it sends
+// is input like any other. `dem fetch` without names wrote every artifact name the server listed,
+// "../x" and absolute paths included, outside --out (an independent tester's finding); `dem list`
+// printed job names with terminal escape sequences as they came.
+#include <gtest/gtest.h>
+
+#include <boost/asio.hpp>
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <thread>
+#include <unistd.h>
+
+#include "support/command.hpp"
+
+namespace dem::test {
+namespace {
+
+namespace fs = std::filesystem;
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+// Answers every request on a loopback port with what `answer(target)` gives (status 200, JSON
+// when it starts with '{'), one request a connection.
+class ScriptedServer {
+ public:
+  explicit ScriptedServer(std::function<std::string(const std::string&)> answer)
+      : answer_(std::move(answer)), acceptor_(io_, tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0)) {
+    thread_ = std::thread([this] { serve(); });
+  }
+  ~ScriptedServer() {
+    stopping_ = true;
+    boost::system::error_code ignored;
+    tcp::socket poke(io_);
+    poke.connect(acceptor_.local_endpoint(), ignored);  // wakes the accept
+    thread_.join();
+  }
+  std::string url() const { return "http://127.0.0.1:" + std::to_string(acceptor_.local_endpoint().port()); }
+
+ private:
+  void serve() {
+    while (!stopping_) {
+      tcp::socket socket(io_);
+      boost::system::error_code ec;
+      acceptor_.accept(socket, ec);
+      if (ec || stopping_) continue;
+      asio::streambuf request;
+      asio::read_until(socket, request, "\r\n\r\n", ec);
+      if (ec) continue;
+      std::istream lines(&request);
+      std::string method, target;
+      lines >> method >> target;
+      const std::string body = answer_(target);
+      const std::string head = "HTTP/1.1 200 OK\r\nContent-Type: " +
+                               std::string(!body.empty() && body[0] == '{' ? "application/json" : "text/plain") +
+                               "\r\nContent-Length: " + std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n";
+      asio::write(socket, asio::buffer(head + body), ec);
+    }
+  }
+
+  std::function<std::string(const std::string&)> answer_;
+  asio::io_context io_;
+  tcp::acceptor acceptor_;
+  std::atomic<bool> stopping_{false};
+  std::thread thread_;
+};
+
+class ClientAgainstHostileServer : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dem_hostile_server_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "deep" / "out");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  CommandResult dem(const std::string& args, const std::string& url) {
+    return run_command("env -u DEM_SERVER -u DEM_SERVER_TOKEN " + shell_quoted(DEM_BINARY_DIR "/dem") + " " + args +
+                       " --server " + url);
+  }
+  fs::path dir_;
+};
+
+TEST_F(ClientAgainstHostileServer, FetchWritesOnlyPlainFileNamesInsideItsFolder) {
+  const fs::path absolute = dir_ / "absolute.dat";
+  ScriptedServer server([&](const std::string& target) -> std::string {
+    if (target == "/api/jobs/1/artifacts")
+      return R"({"artifacts": [{"name": "../escaped.dat"}, {"name": ")" + absolute.string() +
+             R"("}, {"name": ".."}, {"name": "good.dat"}]})";
+    return "file contents\n";
+  });
+  const CommandResult r = dem("fetch 1 --out " + shell_quoted(dir_ / "deep" / "out"), server.url());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / "deep" / "out" / "good.dat")) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "deep" / "escaped.dat")) << r.output;
+  EXPECT_FALSE(fs::exists(absolute)) << r.output;
+  EXPECT_NE(r.output.find("../escaped.dat"), std::string::npos) << "the refused name is named: " << r.output;
+}
+
+TEST_F(ClientAgainstHostileServer, ListAndStatusPrintNoControlCharacters) {
+  const std::string job =
+      R"({"id": 1, "name": "a\u001b]0;owned\u0007\u001b[2Jname\r\nfake line", "state": "succeeded", "step": 1,)"
+      R"( "totalSteps": 1, "progress": 1})";
+  ScriptedServer server([&](const std::string& target) -> std::string {
+    if (target == "/api/jobs") return R"({"jobs": [)" + job + "]}";
+    return job;
+  });
+  for (const std::string verb : {"list", "status 1"}) {
+    const CommandResult r = dem(verb, server.url());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << verb << ": " << r.output;
+    EXPECT_EQ(r.output.find('\x07'), std::string::npos) << verb << ": " << r.output;
+    EXPECT_EQ(r.output.find('\r'), std::string::npos) << verb << ": " << r.output;
+    EXPECT_NE(r.output.find("name"), std::string::npos) << verb << ": " << r.output;
+  }
+}
+
+}  // namespace
+}  // namespace dem::test
