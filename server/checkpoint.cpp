@@ -1,11 +1,14 @@
 #include "server/checkpoint.hpp"
 
+#include <boost/crc.hpp>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "server/durable_file.hpp"
 #include "sim/state_io.hpp"
@@ -14,7 +17,23 @@ namespace dem::server {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr const char* kMagic = "DEM-CHECKPOINT 1";
+// 2: the list of output files is followed by its own checksum line (in 1 an edited length or name
+// went unnoticed, and resuming cut a good file short)
+constexpr const char* kMagic = "DEM-CHECKPOINT 2";
+constexpr const char* kMagicWithoutHeaderSum = "DEM-CHECKPOINT 1";
+constexpr const char* kHeaderSum = "header-crc32 ";
+
+std::uint32_t crc32(std::string_view bytes) {
+  boost::crc_32_type crc;
+  crc.process_bytes(bytes.data(), bytes.size());
+  return crc.checksum();
+}
+
+// An output file's name as listed: a plain name inside the outputs folder, nothing that leads out.
+bool plain_file_name(const std::string& name) {
+  return !name.empty() && name != "." && name != ".." && name.find('/') == std::string::npos &&
+         name.find('\\') == std::string::npos && name.find('\0') == std::string::npos;
+}
 
 // The length of every output file, each synced first: the checkpoint never counts bytes a machine
 // crash could take back.
@@ -35,6 +54,8 @@ void write_checkpoint(const Simulation& sim, const std::string& output_folder, c
   const std::map<std::string, std::uintmax_t> sizes = output_sizes(output_folder);
   out << kMagic << '\n' << sizes.size() << '\n';
   for (const auto& [name, size] : sizes) out << name << ' ' << size << '\n';
+  const std::uint32_t header_sum = crc32(out.view());
+  out << kHeaderSum << header_sum << '\n';
   StateIO::write(sim, out);
   const std::string bytes = std::move(out).str();
 
@@ -44,19 +65,41 @@ void write_checkpoint(const Simulation& sim, const std::string& output_folder, c
 void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("no checkpoint at " + path);
-  std::string magic;
-  std::getline(in, magic);
-  if (magic != kMagic) throw std::runtime_error(path + " is not a checkpoint (first line \"" + magic + "\")");
+  std::string header;  // every line before the header's checksum, as written
+  std::string line;
+  std::getline(in, line);
+  const bool summed = line == kMagic;
+  if (!summed && line != kMagicWithoutHeaderSum)
+    throw std::runtime_error(path + " is not a checkpoint (first line \"" + line.substr(0, 80) + "\")");
+  header += line + '\n';
+  std::getline(in, line);
+  header += line + '\n';
   std::size_t count = 0;
-  in >> count;
+  try {
+    count = std::stoul(line);
+  } catch (const std::exception&) {
+    throw std::runtime_error(path + ": the count of output files (\"" + line.substr(0, 80) + "\") is not a number");
+  }
   std::map<std::string, std::uintmax_t> sizes;
   for (std::size_t k = 0; k < count; ++k) {
+    if (!std::getline(in, line)) throw std::runtime_error(path + ": the list of output files ends early");
+    header += line + '\n';
+    std::istringstream fields(line);
     std::string name;
     std::uintmax_t size = 0;
-    if (!(in >> name >> size)) throw std::runtime_error(path + ": the list of output files ends early");
+    if (!(fields >> name >> size)) throw std::runtime_error(path + ": the list of output files ends early");
+    if (!plain_file_name(name))
+      throw std::runtime_error(path + ": listed output \"" + name.substr(0, 80) + "\" is not a plain file name");
     sizes[name] = size;
   }
-  in.get();                // the newline before the state
+  if (summed) {
+    std::getline(in, line);
+    const std::string expected = kHeaderSum + std::to_string(crc32(header));
+    if (line != expected)
+      throw std::runtime_error(path +
+                               ": the checksum of its list of output files does not match the list: the file was "
+                               "changed or damaged, and the job cannot be continued from it");
+  }
   StateIO::read(sim, in);  // first: a state that does not fit leaves the files as they are
   StateIO::require_within_run(sim);
 
