@@ -1,6 +1,6 @@
 // libFuzzer target: the server's request path before any job is touched: Beast's parser on the raw
 // bytes, then the project's own parsing of what it gave (the target's path and query, the job id,
-// the token, the Host and Origin checks). Every input is parsed or refused; none crashes.
+// the token, the Host and Origin checks, the transfer coding). Every input is parsed or refused; none crashes.
 #include <cstdint>
 #include <string>
 
@@ -31,6 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (const auto host = host_of_authority(req[http::field::host])) is_loopback_host(*host);
   if (const auto origin = authority_of_origin(req[http::field::origin]))
     same_authority(*origin, req[http::field::host]);
+  classify_transfer_coding(req[http::field::transfer_encoding]);
   printable(req.body());
   return 0;
 }

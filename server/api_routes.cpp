@@ -77,6 +77,9 @@ Response submit(const Request& req, ApiContext& ctx) {
               "\" is not a job spec: send application/json or application/x-protobuf (proto/dem.proto, JobSpec)");
     }
     const std::string key(req["Idempotency-Key"]);
+    if (key.empty() && req.find("Idempotency-Key") != req.end())  // blank: meant as a key, would act as none
+      return error_response(req, http::status::bad_request,
+                            "Idempotency-Key is empty: give a key, or leave the header out");
     if (key.size() > 200 || !std::all_of(key.begin(), key.end(), [](unsigned char c) { return c >= 0x20 && c < 0x7f; }))
       return error_response(req, http::status::bad_request,
                             "Idempotency-Key must be printable ASCII of at most 200 characters");
@@ -122,8 +125,8 @@ Response action(const Request& req, const ActionResult& r, http::status done = h
   }
   if (done == http::status::no_content) {
     Response res{http::status::no_content, req.version()};
-    res.keep_alive(req.keep_alive());
-    res.prepare_payload();
+    res.set(http::field::date, http_date_now());
+    res.keep_alive(req.keep_alive());  // no Content-Length in a 204 (RFC 9110 8.6): no prepare_payload
     return res;
   }
   return json_response(req, done, to_json(r.job));
@@ -183,8 +186,7 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
     Response res{http::status::no_content, req.version()};
     res.set(http::field::allow, allowed);
     res.set(http::field::date, http_date_now());
-    res.keep_alive(req.keep_alive());
-    res.prepare_payload();
+    res.keep_alive(req.keep_alive());  // no Content-Length in a 204 (RFC 9110 8.6): no prepare_payload
     return res;
   }
   // the method is one the resource allows (above)
@@ -222,7 +224,8 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
     Response res = error_response(req, http::status::upgrade_required,
                                   "the frames of job " + s[2] + " are a WebSocket stream: connect with ws://");
     res.set(http::field::upgrade, "websocket");
-    res.set(http::field::connection, "Upgrade");
+    // RFC 9110 7.8: Upgrade is named in Connection; a client that asked to close is still closed on
+    res.set(http::field::connection, req.keep_alive() ? "Upgrade" : "Upgrade, close");
     return res;
   }
   // artifacts

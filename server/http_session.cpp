@@ -12,6 +12,17 @@
 namespace dem::server {
 namespace beast = boost::beast;
 namespace websocket = beast::websocket;
+namespace {
+
+// The methods a resource of this server may answer (the rest get a 405 listing what it allows);
+// any other method is implemented nowhere here: 501.
+bool routed_method(http::verb m) {
+  using v = http::verb;
+  return m == v::get || m == v::head || m == v::post || m == v::put || m == v::delete_ || m == v::options ||
+         m == v::patch;
+}
+
+}  // namespace
 
 HttpSession::HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& state, std::shared_ptr<void> ticket,
                          std::string refused_why)
@@ -38,7 +49,9 @@ void HttpSession::run() {
 
 void HttpSession::read() {
   parser_.emplace();
-  parser_->body_limit(state_.max_body);
+  // no limit while the header is read: a declared length past it is answered after the token's
+  // check (on_header), which then sets the limit for the body
+  parser_->body_limit(boost::none);
   stream_.expires_never();  // the request's own deadline, below
   start_deadline(state_.request_timeout);
   // the header first: the token and the body's size are checked before any body is read
@@ -97,11 +110,30 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
                                  printable(head.method_string()) +
                                      " is not a method this server knows (methods are "
                                      "case-sensitive: GET, HEAD, POST, DELETE, OPTIONS)"));
+  if (!routed_method(head.method()))  // TRACE, CONNECT, WebDAV's: implemented on no resource
+    return refuse(error_response(head_only, http::status::not_implemented,
+                                 std::string(head.method_string()) +
+                                     " is implemented on no resource of this server (GET, HEAD, POST, DELETE, "
+                                     "OPTIONS are)"));
   if (head.version() >= 11 && head.find(http::field::host) == head.end())
     return refuse(error_response(head_only, http::status::bad_request, "an HTTP/1.1 request needs a Host header"));
-  if (head.count(http::field::host) > 1)
-    return refuse(error_response(head_only, http::status::bad_request,
-                                 "the request has more than one Host header (RFC 9112 3.2)"));
+  // a header that names one thing, given twice: which one counts would depend on the reader
+  for (const char* name : {"Host", "Origin", "Authorization", "Idempotency-Key", "Transfer-Encoding"})
+    if (head.count(name) > 1)
+      return refuse(error_response(head_only, http::status::bad_request,
+                                   std::string("the request has more than one ") + name + " header (RFC 9110 5.3)"));
+  if (const auto coding = head.find(http::field::transfer_encoding); coding != head.end()) {
+    // RFC 9112 6.1: a body is framed by chunked, last; anything else cannot be read safely
+    const TransferCoding kind = classify_transfer_coding(coding->value());
+    if (kind == TransferCoding::NotChunkedLast)
+      return refuse(error_response(head_only, http::status::bad_request,
+                                   "Transfer-Encoding \"" + printable(coding->value()) +
+                                       "\" does not end in chunked: the body's length cannot be known (RFC 9112 6.1)"));
+    if (kind == TransferCoding::UnknownBeforeChunked)
+      return refuse(
+          error_response(head_only, http::status::not_implemented,
+                         "Transfer-Encoding \"" + printable(coding->value()) + "\": this server decodes chunked only"));
+  }
   if (is_absolute_form(head.target())) {
     const std::optional<AbsoluteTarget> absolute = split_absolute_form(head.target());
     if (!absolute)
@@ -112,17 +144,13 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
     head.target(absolute->origin_form);
     head.set(http::field::host, absolute->authority);
   }
-  if (head.target() == "*" && head.method() == http::verb::options) {  // RFC 9110 9.3.7: the server itself
-    http::response<http::string_body> res{http::status::no_content, head.version()};
-    res.set(http::field::allow, "GET, HEAD, POST, DELETE, OPTIONS");
-    res.set(http::field::date, http_date_now());
-    return refuse(std::move(res));
-  }
-  if (head.target().empty() || head.target()[0] != '/')
+  // RFC 9110 9.3.7: OPTIONS * asks about the server itself (answered after the token's check)
+  const bool server_options = head.target() == "*" && head.method() == http::verb::options;
+  if (!server_options && (head.target().empty() || head.target()[0] != '/'))
     return refuse(
         error_response(head_only, http::status::bad_request,
                        "malformed path (a path from the root, /..., is expected): " + printable(head.target())));
-  const std::optional<Target> target = parse_target(head.target());
+  const std::optional<Target> target = server_options ? std::optional<Target>(Target{}) : parse_target(head.target());
   if (!target)
     return refuse(error_response(head_only, http::status::bad_request, "malformed path: " + printable(head.target())));
   if (!state_.token.empty()) {
@@ -151,10 +179,18 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
                        "this server has no access token, so it answers only requests to 127.0.0.1 or localhost "
                        "from pages of its own; give it --token to serve others"));
   }
+  if (server_options) {
+    http::response<http::string_body> res{http::status::no_content, head.version()};
+    res.set(http::field::allow, "GET, HEAD, POST, DELETE, OPTIONS");
+    res.set(http::field::date, http_date_now());
+    return refuse(std::move(res));
+  }
+  // checked here, after the token: a stranger learns nothing of the limit
   if (parser_->content_length() && *parser_->content_length() > state_.max_body)
     return refuse(
         error_response(head_only, http::status::payload_too_large,
                        "the request body is over the limit of " + std::to_string(state_.max_body) + " bytes"));
+  parser_->body_limit(state_.max_body);  // a chunked body is cut off as it passes the limit
   const auto expect = head.find(http::field::expect);
   if (expect != head.end()) {
     if (!beast::iequals(expect->value(), "100-continue"))

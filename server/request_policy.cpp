@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cctype>
 #include <ctime>
+#include <string>
+#include <vector>
 
 namespace dem::server {
 namespace {
@@ -103,6 +105,26 @@ std::string http_date_now() {
   char buf[40];
   std::strftime(buf, sizeof buf, "%a, %d %b %Y %H:%M:%S GMT", &utc);  // the C locale's English names
   return buf;
+}
+
+TransferCoding classify_transfer_coding(std::string_view value) {
+  std::vector<std::string> codings;
+  while (true) {
+    const std::size_t comma = value.find(',');
+    std::string coding(value.substr(0, comma));
+    const auto blank = [](char c) { return c == ' ' || c == '\t'; };
+    while (!coding.empty() && blank(coding.back())) coding.pop_back();
+    std::size_t first = 0;
+    while (first < coding.size() && blank(coding[first])) ++first;
+    coding.erase(0, first);
+    std::transform(coding.begin(), coding.end(), coding.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (!coding.empty()) codings.push_back(coding);  // RFC 9110 5.6.1: empty list elements are ignored
+    if (comma == std::string_view::npos) break;
+    value.remove_prefix(comma + 1);
+  }
+  if (codings.empty() || codings.back() != "chunked") return TransferCoding::NotChunkedLast;
+  if (std::count(codings.begin(), codings.end(), "chunked") > 1) return TransferCoding::NotChunkedLast;
+  return codings.size() == 1 ? TransferCoding::Chunked : TransferCoding::UnknownBeforeChunked;
 }
 
 }  // namespace dem::server

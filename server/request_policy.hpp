@@ -42,6 +42,11 @@ bool same_authority(std::string_view a, std::string_view b);
 // quotes, commas, semicolons or backslashes (RFC 6265 cookie-octet).
 bool is_cookie_safe(std::string_view token);
 
+// What a request's Transfer-Encoding asks of the server (RFC 9112 6.1): the body is framed only
+// when chunked is the last coding and appears once; codings before it this server does not decode.
+enum class TransferCoding { Chunked, UnknownBeforeChunked, NotChunkedLast };
+TransferCoding classify_transfer_coding(std::string_view value);
+
 // The date of now for the Date header (RFC 9110 5.6.7): "Wed, 02 Dec 2026 10:00:00 GMT".
 std::string http_date_now();
 

@@ -1,6 +1,10 @@
 #include "server/static_files.hpp"
 
+#include <algorithm>
 #include <map>
+#include <system_error>
+
+#include "server/request_policy.hpp"
 
 namespace dem::server {
 namespace fs = std::filesystem;
@@ -33,9 +37,17 @@ constexpr const char* kNoViewerPage =
 
 http::message_generator serve_static(const Request& req, const Target& target, const fs::path& root,
                                      const std::string& set_cookie) {
+  constexpr const char* kAllowed = "GET, HEAD, OPTIONS";
+  if (req.method() == http::verb::options) {
+    http::response<http::string_body> res{http::status::no_content, req.version()};
+    res.set(http::field::allow, kAllowed);
+    res.set(http::field::date, http_date_now());
+    res.keep_alive(req.keep_alive());  // no Content-Length in a 204 (RFC 9110 8.6)
+    return res;
+  }
   if (req.method() != http::verb::get && req.method() != http::verb::head) {
-    auto res = error_response(req, http::status::method_not_allowed, "only GET serves files");
-    res.set(http::field::allow, "GET");
+    auto res = error_response(req, http::status::method_not_allowed, "only GET and HEAD serve files");
+    res.set(http::field::allow, kAllowed);
     return res;
   }
   fs::path path = root;
@@ -46,10 +58,16 @@ http::message_generator serve_static(const Request& req, const Target& target, c
   }
   std::error_code ec;
   if (fs::is_directory(path, ec)) path /= "index.html";
-  const bool found = fs::is_regular_file(path, ec);
+  bool found = fs::is_regular_file(path, ec);
+  if (found) {  // a link in the viewer's folder must not lead out of it (to the data, or to /etc)
+    const fs::path real = fs::canonical(path, ec), real_root = fs::canonical(root, ec);
+    const auto [root_end, real_at] = std::mismatch(real_root.begin(), real_root.end(), real.begin(), real.end());
+    found = !ec && root_end == real_root.end();
+  }
   if (!found && target.segments.empty()) {
     return text_response(req, http::status::ok, "text/html; charset=utf-8", kNoViewerPage);
   }
+  if (!found) return error_response(req, http::status::not_found, "no such file: " + std::string(req.target()));
   Headers headers{{http::field::content_type, mime_type(path)}};
   if (!set_cookie.empty()) headers.emplace_back(http::field::set_cookie, set_cookie);
   std::optional<http::message_generator> file = file_response(req, path, headers);
