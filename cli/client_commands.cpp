@@ -2,6 +2,8 @@
 // resume, watch, fetch). Exit status: 0 done, 1 the server or the job said no (or cannot be
 // reached), 2 bad arguments.
 #include <algorithm>
+#include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -24,7 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kCommonUsage = " [--server URL] [--token T]";
+const char* kCommonUsage = " [--server URL] [--token T] [--timeout S]";
 const char* kArchive = "outputs.tar";  // every other artifact in one file; fetched only by name
 
 struct Verb {
@@ -41,6 +43,7 @@ struct VerbArgs {
   std::map<std::string, std::string> values;
   std::set<std::string> flags;
   std::string server = "http://127.0.0.1:8080", token;
+  double timeout_seconds = 300;  // for the server's whole answer (a download: for its next bytes)
 
   bool flag(const std::string& f) const { return flags.count(f) > 0; }
   std::string value(const std::string& option) const {
@@ -67,7 +70,7 @@ std::optional<int> parse_verb_args(const Verb& verb, const std::vector<std::stri
       std::printf("usage: dem %s%s\n", verb.usage, kCommonUsage);
       return 0;
     }
-    const bool takes_value = a == "--server" || a == "--token" || listed(verb.value_options, a);
+    const bool takes_value = a == "--server" || a == "--token" || a == "--timeout" || listed(verb.value_options, a);
     if (takes_value) {
       if (k + 1 >= args.size()) return usage_error(verb, a + " needs a value");
       const std::string& v = args[++k];
@@ -75,7 +78,12 @@ std::optional<int> parse_verb_args(const Verb& verb, const std::vector<std::stri
         out.server = v;
       else if (a == "--token")
         out.token = v;
-      else
+      else if (a == "--timeout") {
+        char* end = nullptr;
+        out.timeout_seconds = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != '\0' || !(out.timeout_seconds > 0) || out.timeout_seconds > 1e6)
+          return usage_error(verb, "--timeout is a number of seconds in (0, 1e6] (got \"" + v + "\")");
+      } else
         out.values[a] = v;
     } else if (listed(verb.flags, a)) {
       out.flags.insert(a);
@@ -102,7 +110,9 @@ std::optional<std::int64_t> job_id(const std::string& text) {
 int with_server(const Verb& verb, const VerbArgs& a, const std::function<int(const ServerApi&)>& body) {
   std::optional<ServerApi> api;
   try {
-    api.emplace(client::HttpClient(a.server, a.token));
+    client::HttpClient http(a.server, a.token);
+    http.set_answer_timeout(std::chrono::milliseconds(static_cast<long long>(a.timeout_seconds * 1000)));
+    api.emplace(std::move(http));
   } catch (const client::ClientError& e) {
     return usage_error(verb, e.what());
   }
@@ -111,6 +121,9 @@ int with_server(const Verb& verb, const VerbArgs& a, const std::function<int(con
   } catch (const ApiError& e) {
     std::fprintf(stderr, "dem %s: %s\n", verb.name, describe(e).c_str());
     for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+  } catch (const nlohmann::json::exception& e) {  // a field of the wrong type: not dem-server's answer
+    std::fprintf(stderr, "dem %s: the server's answer is not of dem-server's form (%s)\n", verb.name,
+                 printable(e.what()).c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dem %s: %s\n", verb.name, e.what());
   }
@@ -134,9 +147,13 @@ void print_body(const std::string& body) {
   if (body.empty() || body.back() != '\n') std::fputc('\n', stdout);
 }
 
-// An artifact is a plain file name; anything else could write outside --out.
+// An artifact is a plain file name of letters, digits, '.', '_' and '-', not starting with '.': the
+// server's own rule, kept here because the list comes from a server, which might not be ours (a
+// name with ESC, a line break or a right-to-left mark made files of those names).
 bool is_artifact_name(const std::string& name) {
-  return !name.empty() && name[0] != '.' && name.find('/') == std::string::npos && name.find('\\') == std::string::npos;
+  if (name.empty() || name.size() > 100 || name[0] == '.') return false;
+  return std::all_of(name.begin(), name.end(),
+                     [](unsigned char c) { return std::isalnum(c) || c == '.' || c == '_' || c == '-'; });
 }
 
 }  // namespace

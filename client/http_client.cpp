@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 
@@ -24,17 +25,43 @@ std::string lower(std::string s) {
   return s;
 }
 
+// How long the server may take to accept a connection, and to send the next bytes of a download
+// (a whole answer: HttpClient::answer_timeout).
+constexpr auto kConnectTimeout = std::chrono::seconds(30);
+constexpr auto kDownloadIdleTimeout = std::chrono::milliseconds(60000);
+// An API answer (JSON) larger than this is not the server's: a client that kept reading an endless
+// body grew to 2 GB and died of bad_alloc (an independent tester's finding). Downloads go to disk.
+constexpr std::uint64_t kLargestAnswer = 256ull << 20;
+
+// Runs one asynchronous operation to its end. Beast's timeouts (expires_after) act only on
+// asynchronous operations: a blocking read of a server that accepts and never answers, or trickles
+// a byte a second, waited for ever.
+template <class Start>
+beast::error_code run_to_end(boost::asio::io_context& io, Start&& start) {
+  beast::error_code result = boost::asio::error::would_block;
+  start([&result](beast::error_code ec, auto&&...) { result = ec; });
+  io.restart();
+  io.run();
+  return result;
+}
+
+// The error of a timed-out operation in words a user can act on.
+std::string said(beast::error_code ec) {
+  return ec == beast::error::timeout ? "the server did not answer in time" : ec.message();
+}
+
 // Connects a TCP stream to the server, or says why not.
 void connect(beast::tcp_stream& stream, boost::asio::io_context& io, const HttpClient& client) {
-  try {
-    tcp::resolver resolver(io);
-    std::string host = client.host();  // "[::1]" names the address ::1
-    if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
-    stream.expires_after(std::chrono::seconds(30));
-    stream.connect(resolver.resolve(host, client.port()));
-  } catch (const boost::system::system_error& e) {
-    throw ClientError("cannot reach the server at " + client.url() + ": " + e.code().message());
+  std::string host = client.host();  // "[::1]" names the address ::1
+  if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+  beast::error_code ec;
+  tcp::resolver resolver(io);
+  const tcp::resolver::results_type addresses = resolver.resolve(host, client.port(), ec);
+  if (!ec) {
+    stream.expires_after(kConnectTimeout);
+    ec = run_to_end(io, [&](auto done) { stream.async_connect(addresses, done); });
   }
+  if (ec) throw ClientError("cannot reach the server at " + client.url() + ": " + said(ec));
 }
 
 template <class Message>
@@ -84,23 +111,23 @@ Response HttpClient::request(const std::string& method, const std::string& targe
   if (!content_type.empty()) req.set(http::field::content_type, content_type);
   req.body() = body;
   req.prepare_payload();
-  try {
-    stream.expires_after(std::chrono::seconds(120));  // a server that stops answering is not waited on forever
-    http::write(stream, req);
-    beast::flat_buffer buffer;
-    http::response_parser<http::string_body> parser;
-    parser.body_limit(boost::none);
-    if (req.method() == http::verb::head) parser.skip(true);  // a HEAD answer has a length but no body
-    http::read(stream, buffer, parser);
-    http::response<http::string_body> res = parser.release();
-    Response out = to_response(res);
-    out.body = std::move(res.body());
-    beast::error_code ignored;
-    stream.socket().shutdown(tcp::socket::shutdown_both, ignored);
-    return out;
-  } catch (const boost::system::system_error& e) {
-    throw ClientError(method + " " + url() + target + ": " + e.code().message());
-  }
+  beast::flat_buffer buffer;
+  http::response_parser<http::string_body> parser;
+  parser.body_limit(kLargestAnswer);
+  if (req.method() == http::verb::head) parser.skip(true);  // a HEAD answer has a length but no body
+  stream.expires_after(answer_timeout_);
+  beast::error_code ec = run_to_end(io, [&](auto done) { http::async_write(stream, req, done); });
+  if (!ec) ec = run_to_end(io, [&](auto done) { http::async_read(stream, buffer, parser, done); });
+  if (ec == http::error::body_limit)
+    throw ClientError(method + " " + url() + target + ": the answer is over " + std::to_string(kLargestAnswer >> 20) +
+                      " MB, more than any answer of dem-server");
+  if (ec) throw ClientError(method + " " + url() + target + ": " + said(ec));
+  http::response<http::string_body> res = parser.release();
+  Response out = to_response(res);
+  out.body = std::move(res.body());
+  beast::error_code ignored;
+  stream.socket().shutdown(tcp::socket::shutdown_both, ignored);
+  return out;
 }
 
 Response HttpClient::download(const std::string& target, const std::string& path) const {
@@ -109,34 +136,39 @@ Response HttpClient::download(const std::string& target, const std::string& path
   connect(stream, io, *this);
   http::request<http::empty_body> req{http::verb::get, target, 11};
   add_headers(req, *this, {});
-  stream.expires_never();  // a large file may take long
   const std::string partial = path + ".part";
-  try {
-    http::write(stream, req);
-    beast::flat_buffer buffer;
-    http::response_parser<http::file_body> parser;
-    parser.body_limit(boost::none);
-    beast::error_code ec;
-    parser.get().body().open(partial.c_str(), beast::file_mode::write, ec);
-    if (ec) throw ClientError("cannot write " + partial + ": " + ec.message());
-    http::read(stream, buffer, parser);
-    http::response<http::file_body> res = parser.release();
-    res.body().close();
-    Response out = to_response(res);
-    if (out.status == 200) {
-      std::filesystem::rename(partial, path);
-    } else {
-      std::FILE* f = std::fopen(partial.c_str(), "rb");
-      for (int c; f && (c = std::fgetc(f)) != EOF;) out.body.push_back(static_cast<char>(c));
-      if (f) std::fclose(f);
-      std::filesystem::remove(partial);
-    }
-    return out;
-  } catch (const boost::system::system_error& e) {
+  auto fail = [&](const std::string& why) {
     std::error_code ignored;
     std::filesystem::remove(partial, ignored);  // no half file left behind
-    throw ClientError("GET " + url() + target + ": " + e.code().message());
+    throw ClientError("GET " + url() + target + ": " + why);
+  };
+  stream.expires_after(answer_timeout_);
+  beast::error_code ec = run_to_end(io, [&](auto done) { http::async_write(stream, req, done); });
+  if (ec) fail(said(ec));
+  beast::flat_buffer buffer;
+  http::response_parser<http::file_body> parser;
+  parser.body_limit(boost::none);
+  parser.get().body().open(partial.c_str(), beast::file_mode::write, ec);
+  if (ec) throw ClientError("cannot write " + partial + ": " + ec.message());
+  // a large file may take long: what is timed is the wait for its next bytes
+  while (!parser.is_done()) {
+    stream.expires_after(std::min(kDownloadIdleTimeout, answer_timeout_));
+    ec = run_to_end(io, [&](auto done) { http::async_read_some(stream, buffer, parser, done); });
+    if (ec) fail(said(ec));
   }
+  http::response<http::file_body> res = parser.release();
+  res.body().close();
+  Response out = to_response(res);
+  if (out.status == 200) {
+    std::filesystem::rename(partial, path);
+  } else {
+    std::FILE* f = std::fopen(partial.c_str(), "rb");
+    for (int c; f && (c = std::fgetc(f)) != EOF && out.body.size() < (1u << 20);)
+      out.body.push_back(static_cast<char>(c));
+    if (f) std::fclose(f);
+    std::filesystem::remove(partial);
+  }
+  return out;
 }
 
 struct FrameStream::Impl {

@@ -2,6 +2,7 @@
 // client verbs and the server's integration tests use it.
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <optional>
@@ -39,6 +40,11 @@ class HttpClient {
   // response only when the status is not 200.
   Response download(const std::string& target, const std::string& path) const;
 
+  // How long a request may wait for the whole answer (default 300 s; a download: for its next bytes,
+  // 60 s or this, the shorter); past it a ClientError says the server did not answer in time.
+  void set_answer_timeout(std::chrono::milliseconds timeout) { answer_timeout_ = timeout; }
+  std::chrono::milliseconds answer_timeout() const { return answer_timeout_; }
+
   const std::string& host() const { return host_; }
   const std::string& port() const { return port_; }
   const std::string& token() const { return token_; }
@@ -46,6 +52,7 @@ class HttpClient {
 
  private:
   std::string host_, port_, token_;
+  std::chrono::milliseconds answer_timeout_{std::chrono::seconds(300)};
 };
 
 // The binary messages of a WebSocket (a job's frames), read one at a time.

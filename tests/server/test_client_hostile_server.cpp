@@ -6,11 +6,13 @@
 
 #include <boost/asio.hpp>
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 #include "support/command.hpp"
 
@@ -21,12 +23,23 @@ namespace fs = std::filesystem;
 namespace asio = boost::asio;
 using asio::ip::tcp;
 
-// Answers every request on a loopback port with what `answer(target)` gives (status 200, JSON
-// when it starts with '{'), one request a connection.
+// Answers every request on a loopback port, one request a connection: with what `answer(target)`
+// gives (status 200, JSON when it starts with '{'), or as `behave(socket, target)` does.
 class ScriptedServer {
  public:
+  using Behaviour = std::function<void(tcp::socket&, const std::string&, const std::atomic<bool>& stopping)>;
   explicit ScriptedServer(std::function<std::string(const std::string&)> answer)
-      : answer_(std::move(answer)), acceptor_(io_, tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0)) {
+      : ScriptedServer(Behaviour([answer](tcp::socket& socket, const std::string& target, const std::atomic<bool>&) {
+          const std::string body = answer(target);
+          const std::string head = "HTTP/1.1 200 OK\r\nContent-Type: " +
+                                   std::string(!body.empty() && body[0] == '{' ? "application/json" : "text/plain") +
+                                   "\r\nContent-Length: " + std::to_string(body.size()) +
+                                   "\r\nConnection: close\r\n\r\n";
+          boost::system::error_code ec;
+          asio::write(socket, asio::buffer(head + body), ec);
+        })) {}
+  explicit ScriptedServer(Behaviour behave)
+      : behave_(std::move(behave)), acceptor_(io_, tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0)) {
     thread_ = std::thread([this] { serve(); });
   }
   ~ScriptedServer() {
@@ -51,15 +64,11 @@ class ScriptedServer {
       std::istream lines(&request);
       std::string method, target;
       lines >> method >> target;
-      const std::string body = answer_(target);
-      const std::string head = "HTTP/1.1 200 OK\r\nContent-Type: " +
-                               std::string(!body.empty() && body[0] == '{' ? "application/json" : "text/plain") +
-                               "\r\nContent-Length: " + std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n";
-      asio::write(socket, asio::buffer(head + body), ec);
+      behave_(socket, target, stopping_);
     }
   }
 
-  std::function<std::string(const std::string&)> answer_;
+  Behaviour behave_;
   asio::io_context io_;
   tcp::acceptor acceptor_;
   std::atomic<bool> stopping_{false};
@@ -113,6 +122,63 @@ TEST_F(ClientAgainstHostileServer, ListAndStatusPrintNoControlCharacters) {
     EXPECT_EQ(r.output.find('\r'), std::string::npos) << verb << ": " << r.output;
     EXPECT_NE(r.output.find("name"), std::string::npos) << verb << ": " << r.output;
   }
+}
+
+// A server that accepts and never answers, or answers without end: the client gives up with a
+// message (it waited for ever, or read an endless body into memory until bad_alloc at 2 GB).
+TEST_F(ClientAgainstHostileServer, ASilentServerIsGivenUpOnAtTheTimeout) {
+  ScriptedServer silent([](tcp::socket&, const std::string&, const std::atomic<bool>& stopping) {
+    while (!stopping) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const CommandResult r = dem("status 1 --timeout 1", silent.url());
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("did not answer in time"), std::string::npos) << r.output;
+  EXPECT_LT(waited, 10) << r.output;
+  EXPECT_EQ(dem("status 1 --timeout nope", silent.url()).exit_code, 2);
+}
+
+TEST_F(ClientAgainstHostileServer, AnEndlessAnswerIsCutOff) {
+  ScriptedServer endless([](tcp::socket& socket, const std::string&, const std::atomic<bool>& stopping) {
+    boost::system::error_code ec;
+    asio::write(socket,
+                asio::buffer(std::string("HTTP/1.1 200 OK\r\nContent-Type: application/json\r\n"
+                                         "Transfer-Encoding: chunked\r\n\r\n")),
+                ec);
+    const std::string chunk = "100000\r\n" + std::string(0x100000, ' ') + "\r\n";  // 1 MB a chunk
+    while (!ec && !stopping) asio::write(socket, asio::buffer(chunk), ec);
+  });
+  const CommandResult r = run_command("ulimit -v 2000000; env -u DEM_SERVER -u DEM_SERVER_TOKEN " +
+                                      shell_quoted(DEM_BINARY_DIR "/dem") + " list --server " + endless.url());
+  EXPECT_EQ(r.exit_code, 1) << r.output.substr(0, 500);
+  EXPECT_NE(r.output.find("MB, more than any answer of dem-server"), std::string::npos) << r.output.substr(0, 500);
+}
+
+// Names the server's own rule would never make: a line break, ESC, a right-to-left mark, a space.
+// None becomes a file; the good one still does.
+TEST_F(ClientAgainstHostileServer, FetchRefusesNamesOutsideTheServersOwnRule) {
+  ScriptedServer server([&](const std::string& target) -> std::string {
+    if (target == "/api/jobs/1/artifacts")
+      return R"({"artifacts": [{"name": "a\nb.dat"}, {"name": "c\u001b[2Jd.dat"}, {"name": "e\u202ef.dat"},)"
+             R"( {"name": "g h.dat"}, {"name": "good.dat"}]})";
+    return "file contents\n";
+  });
+  const CommandResult r = dem("fetch 1 --out " + shell_quoted(dir_ / "deep" / "out"), server.url());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  std::vector<std::string> made;
+  for (const auto& e : fs::directory_iterator(dir_ / "deep" / "out")) made.push_back(e.path().filename().string());
+  EXPECT_EQ(made, std::vector<std::string>{"good.dat"}) << r.output;
+  EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << r.output;
+}
+
+// A field of the wrong type (a null name) is said in words, not as a JSON library's exception.
+TEST_F(ClientAgainstHostileServer, AnAnswerOfTheWrongFormIsSaidSo) {
+  ScriptedServer server(
+      [](const std::string&) -> std::string { return R"({"jobs": [{"id": 1, "name": null, "state": "queued"}]})"; });
+  const CommandResult r = dem("list", server.url());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("not of dem-server's form"), std::string::npos) << r.output;
 }
 
 }  // namespace
