@@ -132,13 +132,19 @@ Response action(const Request& req, const ActionResult& r, http::status done = h
   return json_response(req, done, to_json(r.job));
 }
 
+// A regular file itself, not a link to one.
+bool is_plain_file(const fs::path& path) {
+  std::error_code ec;
+  return fs::symlink_status(path, ec).type() == fs::file_type::regular;
+}
+
 Response list_artifacts(const Request& req, std::int64_t id, ApiContext& ctx) {
   const JobFolder folder = ctx.jobs.folder(id);
   nlohmann::json files = nlohmann::json::array();
   std::vector<std::pair<std::string, std::uintmax_t>> found;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(folder.outputs(), ec))
-    if (e.is_regular_file()) found.emplace_back(e.path().filename().string(), e.file_size());
+    if (is_plain_file(e.path())) found.emplace_back(e.path().filename().string(), e.file_size());
   if (fs::exists(folder.archive())) found.emplace_back(JobFolder::kArchiveName, fs::file_size(folder.archive()));
   std::sort(found.begin(), found.end());
   for (const auto& [name, size] : found)
@@ -154,6 +160,8 @@ http::message_generator artifact(const Request& req, std::int64_t id, const std:
                               std::to_string(id) + "/artifacts; no folders, no '..')");
   const JobFolder folder = ctx.jobs.folder(id);
   const fs::path path = name == JobFolder::kArchiveName ? folder.archive() : folder.outputs() / name;
+  if (!is_plain_file(path))  // a link planted in the job's folder leads anywhere (/etc/shadow): never followed
+    return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
   const bool tar = name == JobFolder::kArchiveName;
   std::optional<http::message_generator> file =
       file_response(req, path,

@@ -90,7 +90,8 @@ void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, c
     if (!(fields >> name >> size)) throw std::runtime_error(path + ": the list of output files ends early");
     if (!plain_file_name(name))
       throw std::runtime_error(path + ": listed output \"" + name.substr(0, 80) + "\" is not a plain file name");
-    sizes[name] = size;
+    if (!sizes.emplace(name, size).second)
+      throw std::runtime_error(path + ": output \"" + name.substr(0, 80) + "\" is listed twice");
   }
   if (summed) {
     std::getline(in, line);
@@ -102,6 +103,12 @@ void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, c
   }
   StateIO::read(sim, in);  // first: a state that does not fit leaves the files as they are
   StateIO::require_within_run(sim);
+  // resuming cuts and appends to these files: a link planted among them would have it cut and
+  // write a file anywhere
+  for (const fs::directory_entry& e : fs::directory_iterator(output_folder))
+    if (e.symlink_status().type() != fs::file_type::regular)
+      throw std::runtime_error("output " + e.path().string() +
+                               " is not a regular file (a link, or a folder): the job cannot be continued");
 
   for (const fs::directory_entry& e : fs::directory_iterator(output_folder)) {
     if (!e.is_regular_file()) continue;

@@ -43,15 +43,14 @@ std::array<char, kBlock> header(const std::string& name, std::uintmax_t size, st
   return h;
 }
 
-}  // namespace
-
-void write_tar(const std::string& folder, const std::string& archive) {
+// The archive of every regular file of `folder` (links are not followed: a link planted there would
+// put any file of the machine in the archive), written to `temporary` and synced.
+void write_tar_through(const std::string& folder, const std::string& temporary) {
   std::vector<fs::path> files;
   for (const fs::directory_entry& e : fs::directory_iterator(folder))
-    if (e.is_regular_file()) files.push_back(e.path());
+    if (e.symlink_status().type() == fs::file_type::regular) files.push_back(e.path());
   std::sort(files.begin(), files.end());
 
-  const std::string temporary = archive + ".tmp";
   FilePtr out_file = open_for_writing(temporary);
   std::FILE* out = out_file.get();
   std::vector<char> buffer(1 << 20);
@@ -83,6 +82,19 @@ void write_tar(const std::string& folder, const std::string& archive) {
   ok = ok && sync_file(out);
   ok = std::fclose(out_file.release()) == 0 && ok;
   if (!ok) throw std::runtime_error("cannot write " + temporary + " (disk full?)");
+}
+
+}  // namespace
+
+void write_tar(const std::string& folder, const std::string& archive) {
+  const std::string temporary = archive + ".tmp";
+  try {
+    write_tar_through(folder, temporary);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);  // a half archive (a full disk) is not left in the job's folder
+    throw;
+  }
   fs::rename(temporary, archive);
   sync_folder(fs::path(archive).parent_path());
 }

@@ -34,6 +34,18 @@ std::string read(const fs::path& p) {
 }
 void write(const fs::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; }
 
+// The header's checksum (its own line: CRC-32 of the lines before it) made to match again, as a
+// checkpoint written by hand or by a bug would.
+std::string resealed(std::string bytes) {
+  const std::size_t sum_at = bytes.find("header-crc32 ");
+  EXPECT_NE(sum_at, std::string::npos);
+  boost::crc_32_type crc;
+  crc.process_bytes(bytes.data(), sum_at);
+  const std::size_t line_end = bytes.find('\n', sum_at);
+  bytes.replace(sum_at, line_end - sum_at, "header-crc32 " + std::to_string(crc.checksum()));
+  return bytes;
+}
+
 class CheckpointHeader : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -98,15 +110,35 @@ TEST_F(CheckpointHeader, ANameLeavingTheFolderIsRefusedEvenWithAMatchingChecksum
   const std::size_t at = bytes.find("Energy.dat 40");
   ASSERT_NE(at, std::string::npos);
   bytes.replace(at, 10, "../E.dat");
-  // the header's checksum (its own line: CRC-32 of the lines before it) made to match again
-  const std::size_t sum_at = bytes.find("header-crc32 ");
-  ASSERT_NE(sum_at, std::string::npos);
-  boost::crc_32_type crc;
-  crc.process_bytes(bytes.data(), sum_at);
-  const std::size_t line_end = bytes.find('\n', sum_at);
-  bytes.replace(sum_at, line_end - sum_at, "header-crc32 " + std::to_string(crc.checksum()));
-  write(checkpoint(), bytes);
+  write(checkpoint(), resealed(bytes));
   expect_refused_and_untouched("not a plain file name");
+}
+
+// What an independent tester found next (2026-12-04): a name listed twice (the other file then lost
+// its length and was cut to the first's), and a link planted among the outputs, which resuming cut
+// and appended to wherever it led.
+TEST_F(CheckpointHeader, ANameListedTwiceIsRefused) {
+  std::string bytes = read(checkpoint());
+  const std::size_t at = bytes.find("Energy.dat 40");
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at, 13, "ANIMATION_3D.dat 40");
+  write(checkpoint(), resealed(bytes));
+  expect_refused_and_untouched("listed twice");
+}
+
+TEST_F(CheckpointHeader, ALinkAmongTheOutputsIsRefused) {
+  write(dir_ / "victim.txt", std::string(200, 'v'));
+  fs::remove(dir_ / "outputs" / "Energy.dat");
+  fs::create_symlink(dir_ / "victim.txt", dir_ / "outputs" / "Energy.dat");
+  Simulation sim(spec::to_scene(spec::parse_json(kSpec)));
+  try {
+    server::resume_from_checkpoint(sim, (dir_ / "outputs").string(), checkpoint().string());
+    FAIL() << "resumed through a link";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(read(dir_ / "victim.txt").size(), 200u);
+  EXPECT_EQ(read(dir_ / "outputs" / "ANIMATION_3D.dat").size(), 130u);
 }
 
 }  // namespace
