@@ -105,16 +105,6 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   Request head_only;
   head_only.version(head.version());
   if (head.method() == http::verb::head) head_only.method(http::verb::head);
-  if (head.method() == http::verb::unknown)
-    return refuse(error_response(head_only, http::status::not_implemented,
-                                 printable(head.method_string()) +
-                                     " is not a method this server knows (methods are "
-                                     "case-sensitive: GET, HEAD, POST, DELETE, OPTIONS)"));
-  if (!routed_method(head.method()))  // TRACE, CONNECT, WebDAV's: implemented on no resource
-    return refuse(error_response(head_only, http::status::not_implemented,
-                                 std::string(head.method_string()) +
-                                     " is implemented on no resource of this server (GET, HEAD, POST, DELETE, "
-                                     "OPTIONS are)"));
   if (head.version() >= 11 && head.find(http::field::host) == head.end())
     return refuse(error_response(head_only, http::status::bad_request, "an HTTP/1.1 request needs a Host header"));
   // a header that names one thing, given twice: which one counts would depend on the reader
@@ -179,6 +169,17 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
                        "this server has no access token, so it answers only requests to 127.0.0.1 or localhost "
                        "from pages of its own; give it --token to serve others"));
   }
+  // after the token's check: a stranger learns nothing of what the server implements
+  if (head.method() == http::verb::unknown)
+    return refuse(error_response(head_only, http::status::not_implemented,
+                                 printable(head.method_string()) +
+                                     " is not a method this server knows (methods are "
+                                     "case-sensitive: GET, HEAD, POST, DELETE, OPTIONS)"));
+  if (!routed_method(head.method()))  // TRACE, CONNECT, WebDAV's: implemented on no resource
+    return refuse(error_response(head_only, http::status::not_implemented,
+                                 std::string(head.method_string()) +
+                                     " is implemented on no resource of this server (GET, HEAD, POST, DELETE, "
+                                     "OPTIONS are)"));
   if (server_options) {
     http::response<http::string_body> res{http::status::no_content, head.version()};
     res.set(http::field::allow, "GET, HEAD, POST, DELETE, OPTIONS");
@@ -192,7 +193,8 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
                        "the request body is over the limit of " + std::to_string(state_.max_body) + " bytes"));
   parser_->body_limit(state_.max_body);  // a chunked body is cut off as it passes the limit
   const auto expect = head.find(http::field::expect);
-  if (expect != head.end()) {
+  // RFC 9110 10.1.1: an HTTP/1.0 request's 100-continue is ignored (and 15.2: no 1xx to a 1.0 client)
+  if (expect != head.end() && head.version() >= 11) {
     if (!beast::iequals(expect->value(), "100-continue"))
       return refuse(error_response(head_only, http::status::expectation_failed,
                                    "the only expectation this server meets is 100-continue"));
@@ -213,6 +215,11 @@ void HttpSession::read_body() {
 }
 
 void HttpSession::on_read_error(beast::error_code ec) {
+  if (ec == http::error::header_limit) {  // RFC 6585 5 (a request line past the limit counts here too)
+    Request head;
+    return refuse(error_response(head, http::status::request_header_fields_too_large,
+                                 "the request's header (its line and fields) is over the limit of 8 KB"));
+  }
   if (ec == http::error::body_limit) {  // a chunked body that grew past the limit
     Request head;
     return refuse(

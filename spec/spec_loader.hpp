@@ -34,6 +34,7 @@ struct SpecLimits {
   std::int64_t max_triangles = 50'000'000;
   int max_threads = 256;           // numerics.threads
   int max_materials = 256;         // every pair of them has its coefficients: a table of M x M
+  int max_walls = 10000;           // planes, plates and meshes: every particle is checked against each plane
   std::size_t max_name = 200;      // name, in bytes
   std::size_t max_problems = 100;  // problems listed in a SpecError (then "N more")
   // The memory a run may take, estimated from its particle count before any particle is made

@@ -75,6 +75,11 @@ TEST_F(ServerFraming, WithATokenEveryAnswerWaitsForTheToken) {
       "Content-Length: 999999999999\r\n\r\n");
   EXPECT_EQ(status_of(big), 401) << big;
   EXPECT_EQ(status_of(exchange("OPTIONS * HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer s3cret\r\n\r\n")), 204);
+  // which methods the server implements is not told to a stranger either (501 came first)
+  for (const std::string method : {"TRACE", "FOO"})
+    EXPECT_EQ(status_of(exchange(method + " /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")), 401) << method;
+  EXPECT_EQ(status_of(exchange("TRACE /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer s3cret\r\n\r\n")),
+            501);
 }
 
 // RFC 9110 8.6: no Content-Length in a 204. RFC 9110 15.5.6: a 405's Allow lists what the resource
@@ -97,6 +102,15 @@ TEST_F(ServerFraming, SmallConformanceDetails) {
     const std::string answer = exchange(method + " /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
     EXPECT_EQ(status_of(answer), 501) << method << ": " << answer;
   }
+  // RFC 9110 10.1.1 and 15.2: an HTTP/1.0 client's 100-continue is ignored, and it gets no 1xx
+  const std::string old_client =
+      exchange("GET /api/health HTTP/1.0\r\nHost: 127.0.0.1\r\nExpect: 100-continue\r\nContent-Length: 0\r\n\r\n");
+  EXPECT_EQ(status_of(old_client), 200) << old_client;
+  EXPECT_EQ(old_client.find(" 100 "), std::string::npos) << old_client;
+  // RFC 6585 5: a header past the server's limit
+  const std::string huge =
+      exchange("GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Big: " + std::string(9000, 'x') + "\r\n\r\n");
+  EXPECT_EQ(status_of(huge), 431) << huge.substr(0, 200);
   const long id = submit_json(pouring_spec(0.015, 100, 50))["id"];
   const std::string upgrade = exchange("GET /api/jobs/" + std::to_string(id) +
                                        "/frames HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
@@ -128,6 +142,28 @@ TEST_F(ServerFraming, LinksOutOfTheViewersFolderAreNotServed) {
   const client::Response inside = client_->get("/inside.txt");
   EXPECT_EQ(inside.status, 200);
   EXPECT_EQ(inside.body, "inside");
+}
+
+}  // namespace
+}  // namespace dem::test
+
+namespace dem::test {
+namespace {
+
+// A link planted among a job's outputs was listed and served: /etc/shadow to anyone who can reach the
+// server (an independent tester's finding).
+TEST_F(ServerFraming, LinksAmongAJobsOutputsAreNeitherListedNorServed) {
+  start_server();
+  const long id = submit_json(pouring_spec(0.015, 100, 50))["id"];
+  wait_for(id, "succeeded");
+  write_text(dir_ / "secret.txt", "not for the web");
+  fs::create_symlink(dir_ / "secret.txt", dir_ / "data" / "jobs" / std::to_string(id) / "outputs" / "Leak.dat");
+  const std::string artifacts = "/api/jobs/" + std::to_string(id) + "/artifacts";
+  const client::Response list = client_->get(artifacts);
+  EXPECT_EQ(list.status, 200);
+  EXPECT_EQ(list.body.find("Leak.dat"), std::string::npos) << list.body;
+  EXPECT_NE(list.body.find("ANIMATION_3D.dat"), std::string::npos) << list.body;
+  EXPECT_EQ(client_->get(artifacts + "/Leak.dat").status, 404);
 }
 
 }  // namespace

@@ -68,6 +68,15 @@ TEST(SpecLimits, MaterialsAreAtMost256AndRefusedBeforeTheirPairTable) {
   EXPECT_LT(seconds, 5.0);  // parsing the 1.3 MB only (the pair table took minutes)
 }
 
+TEST(SpecLimits, WallsAreAtMost10000AndRefusedBeforeTheyAreBuilt) {
+  std::string walls = R"(, "walls": [)";
+  for (int k = 0; k < 10001; ++k)
+    walls += std::string(k ? "," : "") + R"({"material": "floor", "plane": {"point": {"z": -1}, "normal": {"z": 1}}})";
+  const std::vector<std::string> p = problems(spec_with(many_particles(1, 0), walls + "]"));
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].rfind("walls: at most 10000 walls (got 10001)", 0), 0u) << p[0];
+}
+
 TEST(SpecLimits, ThreadsAreAtMost256) {
   const std::vector<std::string> p = problems(spec_with(many_particles(1, 0), R"(, "numerics": {"threads": 100000})"));
   ASSERT_EQ(p.size(), 1u);
