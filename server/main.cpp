@@ -99,25 +99,25 @@ int main(int argc, char** argv) {
       if (!whole(1, 64)) return bad("a whole number 1-64");
       options.concurrency = static_cast<int>(x);
     } else if (a == "--threads-per-job") {
-      if (!whole(0, 1024)) return bad("a whole number >= 0");
+      if (!whole(0, 1024)) return bad("a whole number from 0 to 1024");
       options.threads_per_job = static_cast<int>(x);
     } else if (a == "--max-body-mb") {
-      if (!number(v, x) || !(x > 0) || x > 4096) return bad("a size in MB, > 0");
+      if (!number(v, x) || !(x > 0) || x > 4096) return bad("a size in MB, > 0 and at most 4096");
       options.max_body = static_cast<std::size_t>(x * 1024 * 1024);
     } else if (a == "--max-output-mb") {
-      if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0");
+      if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0 and at most 1e9");
       options.max_output_bytes = x * 1024 * 1024;
     } else if (a == "--max-job-memory-mb") {
-      if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0");
+      if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0 and at most 1e9");
       options.max_job_memory_bytes = x * 1024 * 1024;
     } else if (a == "--request-timeout") {
-      if (!number(v, x) || !(x > 0) || x > 86400) return bad("a number of seconds > 0");
+      if (!number(v, x) || !(x > 0) || x > 86400) return bad("a number of seconds > 0 and at most 86400");
       options.request_timeout = x;
     } else if (a == "--max-connections") {
-      if (!whole(1, 1e6)) return bad("a whole number >= 1");
+      if (!whole(1, 1e6)) return bad("a whole number from 1 to 1e6");
       options.max_connections = static_cast<std::size_t>(x);
     } else if (a == "--max-connections-per-client") {
-      if (!whole(1, 1e6)) return bad("a whole number >= 1");
+      if (!whole(1, 1e6)) return bad("a whole number from 1 to 1e6");
       options.max_connections_per_client = static_cast<std::size_t>(x);
     } else if (a == "--keep-finished-days") {
       if (!number(v, x) || !(x > 0) || x > 1e6) return bad("a number of days > 0 and at most 1e6");

@@ -141,6 +141,23 @@ TEST_F(ServerLimits, TheConnectionAndTimeoutLimitsMustBePositive) {
   }
 }
 
+// A value past an option's upper bound is refused naming the bound (the message named only the
+// lower one: "--max-body-mb 1e12 must be a size in MB, > 0").
+TEST_F(ServerLimits, AnOptionPastItsUpperBoundNamesTheBound) {
+  const std::pair<const char*, const char*> cases[] = {{"--max-body-mb 1e12", "at most 4096"},
+                                                       {"--threads-per-job 100000", "from 0 to 1024"},
+                                                       {"--max-connections 2000000", "from 1 to 1e6"}};
+  for (const auto& [option, says] : cases) {
+    const std::string command =
+        std::string(DEM_BINARY_DIR) + "/dem-server --data '" + (dir_ / "d").string() + "' " + option + " 2>&1";
+    std::FILE* p = popen(command.c_str(), "r");
+    char buf[512] = {};
+    const std::size_t got = std::fread(buf, 1, sizeof buf - 1, p);
+    EXPECT_NE(pclose(p), 0) << option;
+    EXPECT_NE(std::string(buf, got).find(says), std::string::npos) << option << ": " << std::string(buf, got);
+  }
+}
+
 }  // namespace
 }  // namespace dem::test
 
