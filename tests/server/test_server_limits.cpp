@@ -10,76 +10,76 @@
 #include "support/raw_http.hpp"
 #include "support/server_test.hpp"
 
-    namespace dem::test {
-  namespace {
+namespace dem::test {
+namespace {
 
-  class ServerLimits : public ServerTest {
-   protected:
-    // dem-server started with `options`, which it must refuse: what it said (exit status not 0).
-    std::string refused_start(const std::string& options) {
-      const CommandResult r = run_command("timeout 20 " + std::string(DEM_BINARY_DIR) + "/dem-server --data " +
-                                          shell_quoted(dir_ / "d") + " " + options);
-      EXPECT_NE(r.exit_code, 0) << options;
-      return r.output;
-    }
-  };
-
-  TEST_F(ServerLimits, ASpecWhoseFramesPassTheOutputLimitIsRefused) {
-    start_server({"--max-output-mb", "1"});
-    // 486 spheres, a frame every step for 20,000 steps: 20,001 frames, about 1 GB of ANIMATION_3D.dat
-    const client::Response r =
-        client_->request("POST", "/api/jobs", pouring_spec(0.012, 20000, 1), "application/json", {});
-    EXPECT_EQ(r.status, 400) << r.body;
-    EXPECT_NE(r.body.find("--max-output-mb"), std::string::npos) << r.body;
-    EXPECT_NE(r.body.find("outputs"), std::string::npos) << r.body;
+class ServerLimits : public ServerTest {
+ protected:
+  // dem-server started with `options`, which it must refuse: what it said (exit status not 0).
+  std::string refused_start(const std::string& options) {
+    const CommandResult r = run_command("timeout 20 " + std::string(DEM_BINARY_DIR) + "/dem-server --data " +
+                                        shell_quoted(dir_ / "d") + " " + options);
+    EXPECT_NE(r.exit_code, 0) << options;
+    return r.output;
   }
+};
 
-  TEST_F(ServerLimits, AJobWhoseFilesGrowPastTheLimitIsStoppedAndFailed) {
-    start_server({"--max-output-mb", "2"});
-    // 35 frames of 447 spheres: an estimate of 1.6 MB at 100 bytes a sphere, 2.3 MB of animation
-    // written at about 150, and the force chains besides
-    const long id = submit_json(pouring_spec(0.012, 3400, 100, true))["id"];
-    const nlohmann::json j = wait_for(id, "failed,succeeded");
-    EXPECT_EQ(j.value("state", ""), "failed") << j.dump();
-    EXPECT_NE(j.value("error", "").find("--max-output-mb"), std::string::npos) << j.dump();
-    // where it stopped and how long it ran, as for any failure (it said step 0, progress 0, no time)
-    EXPECT_GT(j.value("step", 0L), 1000) << j.dump();
-    EXPECT_GT(j.value("progress", 0.0), 0.3) << j.dump();
-    EXPECT_GT(j.value("runSeconds", 0.0), 0.0) << j.dump();
-    std::uintmax_t total = 0;
-    for (const auto& f : fs::directory_iterator(dir_ / "data" / "jobs" / std::to_string(id) / "outputs"))
-      total += f.file_size();
-    EXPECT_GT(total, 2u << 20);
-    EXPECT_LT(total, 3u << 20);  // stopped at the frame that passed it
-    EXPECT_FALSE(read_bytes(dir_ / "data" / "jobs" / std::to_string(id) / "outputs" / "ANIMATION_3D.dat").empty());
-  }
+TEST_F(ServerLimits, ASpecWhoseFramesPassTheOutputLimitIsRefused) {
+  start_server({"--max-output-mb", "1"});
+  // 486 spheres, a frame every step for 20,000 steps: 20,001 frames, about 1 GB of ANIMATION_3D.dat
+  const client::Response r =
+      client_->request("POST", "/api/jobs", pouring_spec(0.012, 20000, 1), "application/json", {});
+  EXPECT_EQ(r.status, 400) << r.body;
+  EXPECT_NE(r.body.find("--max-output-mb"), std::string::npos) << r.body;
+  EXPECT_NE(r.body.find("outputs"), std::string::npos) << r.body;
+}
 
-  // A 45-million-sphere lattice took 2.9 GB of the server's memory while it was checked, then failed
-  // with a 500 (bad_alloc): what a job would need is estimated from its count and refused first.
-  TEST_F(ServerLimits, ASpecNeedingMoreMemoryThanTheLimitIsRefusedBeforeItIsBuilt) {
-    start_server({"--max-job-memory-mb", "100"});
-    nlohmann::json spec = nlohmann::json::parse(pouring_spec(0.012, 100, 0));
-    // 2 m / 0.02 m = 100 sites a side: a million spheres, about 1 GB to run
-    spec["lattices"].push_back({{"kind", "CUBIC"},
-                                {"min", {{"x", 10}, {"y", 0}, {"z", 0}}},
-                                {"max", {{"x", 12}, {"y", 2}, {"z", 2}}},
-                                {"radius", 0.01},
-                                {"material", "granite"}});
-    const auto start = std::chrono::steady_clock::now();
-    const client::Response r = client_->request("POST", "/api/jobs", spec.dump(), "application/json", {});
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_EQ(r.status, 400) << r.body;
-    EXPECT_NE(r.body.find("--max-job-memory-mb"), std::string::npos) << r.body;
-    EXPECT_NE(r.body.find("lattices[1]: would make"), std::string::npos) << r.body;
-    EXPECT_LT(seconds, 1.0) << "nothing was built";
-  }
+TEST_F(ServerLimits, AJobWhoseFilesGrowPastTheLimitIsStoppedAndFailed) {
+  start_server({"--max-output-mb", "2"});
+  // 35 frames of 447 spheres: an estimate of 1.6 MB at 100 bytes a sphere, 2.3 MB of animation
+  // written at about 150, and the force chains besides
+  const long id = submit_json(pouring_spec(0.012, 3400, 100, true))["id"];
+  const nlohmann::json j = wait_for(id, "failed,succeeded");
+  EXPECT_EQ(j.value("state", ""), "failed") << j.dump();
+  EXPECT_NE(j.value("error", "").find("--max-output-mb"), std::string::npos) << j.dump();
+  // where it stopped and how long it ran, as for any failure (it said step 0, progress 0, no time)
+  EXPECT_GT(j.value("step", 0L), 1000) << j.dump();
+  EXPECT_GT(j.value("progress", 0.0), 0.3) << j.dump();
+  EXPECT_GT(j.value("runSeconds", 0.0), 0.0) << j.dump();
+  std::uintmax_t total = 0;
+  for (const auto& f : fs::directory_iterator(dir_ / "data" / "jobs" / std::to_string(id) / "outputs"))
+    total += f.file_size();
+  EXPECT_GT(total, 2u << 20);
+  EXPECT_LT(total, 3u << 20);  // stopped at the frame that passed it
+  EXPECT_FALSE(read_bytes(dir_ / "data" / "jobs" / std::to_string(id) / "outputs" / "ANIMATION_3D.dat").empty());
+}
 
-  TEST_F(ServerLimits, TheLimitMustBeAPositiveSize) {
-    const std::string said = refused_start("--max-output-mb 0");
-    EXPECT_NE(said.find("--max-output-mb must be"), std::string::npos) << said;
-  }
+// A 45-million-sphere lattice took 2.9 GB of the server's memory while it was checked, then failed
+// with a 500 (bad_alloc): what a job would need is estimated from its count and refused first.
+TEST_F(ServerLimits, ASpecNeedingMoreMemoryThanTheLimitIsRefusedBeforeItIsBuilt) {
+  start_server({"--max-job-memory-mb", "100"});
+  nlohmann::json spec = nlohmann::json::parse(pouring_spec(0.012, 100, 0));
+  // 2 m / 0.02 m = 100 sites a side: a million spheres, about 1 GB to run
+  spec["lattices"].push_back({{"kind", "CUBIC"},
+                              {"min", {{"x", 10}, {"y", 0}, {"z", 0}}},
+                              {"max", {{"x", 12}, {"y", 2}, {"z", 2}}},
+                              {"radius", 0.01},
+                              {"material", "granite"}});
+  const auto start = std::chrono::steady_clock::now();
+  const client::Response r = client_->request("POST", "/api/jobs", spec.dump(), "application/json", {});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, 400) << r.body;
+  EXPECT_NE(r.body.find("--max-job-memory-mb"), std::string::npos) << r.body;
+  EXPECT_NE(r.body.find("lattices[1]: would make"), std::string::npos) << r.body;
+  EXPECT_LT(seconds, 1.0) << "nothing was built";
+}
 
-  }  // namespace
+TEST_F(ServerLimits, TheLimitMustBeAPositiveSize) {
+  const std::string said = refused_start("--max-output-mb 0");
+  EXPECT_NE(said.find("--max-output-mb must be"), std::string::npos) << said;
+}
+
+}  // namespace
 }  // namespace dem::test
 
 namespace dem::test {
