@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kCancelled = "cancelled on request";
+// Room for hundreds of the table's row updates (a few 4 KB pages each, with the WAL).
+constexpr std::uint64_t kReservedBytes = 1u << 20;
 
 // What a submission leaves when the server dies inside the transaction that inserts its row: the
 // spec (or part of it, or its temporary) and an empty outputs folder, nothing else.
@@ -61,6 +63,7 @@ void JobManager::refuse_outputs_past_limit(const Simulation& sim) const {
 
 JobManager::JobManager(ManagerOptions options, FrameHub& frames) : options_(std::move(options)), frames_(frames) {
   fs::create_directories(options_.data / "jobs");
+  reserve_ = std::make_unique<SpaceReserve>(options_.data / "space.reserve", kReservedBytes);
   store_ = std::make_unique<JobStore>((options_.data / "jobs.db").string());
   recover();
 }
@@ -140,9 +143,24 @@ int JobManager::threads_per_job() const {
   return std::max(1, omp_get_num_procs() / std::max(1, options_.concurrency));
 }
 
-void JobManager::save(const JobRecord& job) {
+// One row's update of the job table; on a full disk the reserve is given up and the update tried
+// once more (the table must learn how a job ended, whatever else the disk holds).
+void JobManager::update_row(const JobRecord& job) {
   try {
     store_->update(job);
+  } catch (const std::exception& e) {
+    if (!reserve_->release()) throw;
+    std::fprintf(stderr,
+                 "dem-server: %s: the job table could not be written (%s): the space held in reserve is freed for it\n",
+                 options_.data.c_str(), e.what());
+    store_->update(job);
+  }
+  reserve_->restore();  // once there is room again
+}
+
+void JobManager::save(const JobRecord& job) {
+  try {
+    update_row(job);
   } catch (const std::exception& e) {
     if (unsaved_.insert(job.id).second)
       std::fprintf(stderr, "dem-server: job %lld: its state is kept in memory until the table can be written: %s\n",
@@ -162,7 +180,7 @@ void JobManager::save_unsaved() {
       continue;
     }
     try {
-      store_->update(job->second);
+      update_row(job->second);
     } catch (const std::exception& e) {
       store_problem_ = e.what();
       return;

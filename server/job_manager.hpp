@@ -21,6 +21,7 @@
 #include "server/job_folder.hpp"
 #include "server/job_store.hpp"
 #include "server/retention.hpp"
+#include "server/space_reserve.hpp"
 
 namespace dem {
 class Simulation;
@@ -100,15 +101,17 @@ class JobManager {
   // Into the table; the caller holds mutex_. Never throws: a row that cannot be written (a full
   // disk) is kept in memory, listed in unsaved_, and written with the next write that succeeds.
   void save(const JobRecord& job);
-  void save_unsaved();                                          // the caller holds mutex_
-  ActionResult remove_locked(std::int64_t id);                  // the caller holds mutex_
-  void sweep();                                                 // applies the retention policy, until shutdown
+  void update_row(const JobRecord& job);        // throws when the table cannot be written even from the reserve
+  void save_unsaved();                          // the caller holds mutex_
+  ActionResult remove_locked(std::int64_t id);  // the caller holds mutex_
+  void sweep();                                 // applies the retention policy, until shutdown
   void refuse_outputs_past_limit(const Simulation& sim) const;  // throws spec::SpecError
   int threads_per_job() const;
 
   ManagerOptions options_;
   FrameHub& frames_;
   std::unique_ptr<JobStore> store_;
+  std::unique_ptr<SpaceReserve> reserve_;  // given up for the table when the disk fills
   mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::map<std::int64_t, JobRecord> jobs_;
