@@ -5,6 +5,7 @@
 
 #include "core/errors.hpp"
 #include "server/bundled_cases.hpp"
+#include "server/own_files.hpp"
 #include "server/request_policy.hpp"
 #include "server/version.hpp"
 #include "spec/spec_loader.hpp"
@@ -132,20 +133,16 @@ Response action(const Request& req, const ActionResult& r, http::status done = h
   return json_response(req, done, to_json(r.job));
 }
 
-// A regular file itself, not a link to one.
-bool is_plain_file(const fs::path& path) {
-  std::error_code ec;
-  return fs::symlink_status(path, ec).type() == fs::file_type::regular;
-}
-
 Response list_artifacts(const Request& req, std::int64_t id, ApiContext& ctx) {
   const JobFolder folder = ctx.jobs.folder(id);
   nlohmann::json files = nlohmann::json::array();
   std::vector<std::pair<std::string, std::uintmax_t>> found;
   std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(folder.outputs(), ec))
-    if (is_plain_file(e.path())) found.emplace_back(e.path().filename().string(), e.file_size());
-  if (fs::exists(folder.archive())) found.emplace_back(JobFolder::kArchiveName, fs::file_size(folder.archive()));
+  if (is_own_folder(folder.root) && is_own_folder(folder.outputs()))
+    for (const fs::directory_entry& e : fs::directory_iterator(folder.outputs(), ec))
+      if (is_own_file(e.path())) found.emplace_back(e.path().filename().string(), e.file_size());
+  if (is_own_folder(folder.root) && is_own_file(folder.archive()))
+    found.emplace_back(JobFolder::kArchiveName, fs::file_size(folder.archive()));
   std::sort(found.begin(), found.end());
   for (const auto& [name, size] : found)
     files.push_back(
@@ -160,9 +157,10 @@ http::message_generator artifact(const Request& req, std::int64_t id, const std:
                               std::to_string(id) + "/artifacts; no folders, no '..')");
   const JobFolder folder = ctx.jobs.folder(id);
   const fs::path path = name == JobFolder::kArchiveName ? folder.archive() : folder.outputs() / name;
-  if (!is_plain_file(path))  // a link planted in the job's folder leads anywhere (/etc/shadow): never followed
-    return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
   const bool tar = name == JobFolder::kArchiveName;
+  const bool own = is_own_folder(folder.root) && (tar || is_own_folder(folder.outputs())) && is_own_file(path);
+  if (!own)  // a link planted in the job's folder leads anywhere (/etc/shadow): never followed
+    return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
   std::optional<http::message_generator> file =
       file_response(req, path,
                     {{http::field::content_type, tar ? "application/x-tar" : "text/plain; charset=utf-8"},

@@ -1,6 +1,7 @@
 #include "server/checkpoint.hpp"
 
 #include <boost/crc.hpp>
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <string_view>
 
 #include "server/durable_file.hpp"
+#include "server/own_files.hpp"
 #include "sim/state_io.hpp"
 
 namespace dem::server {
@@ -31,7 +33,7 @@ std::uint32_t crc32(std::string_view bytes) {
 
 // An output file's name as listed: a plain name inside the outputs folder, nothing that leads out.
 bool plain_file_name(const std::string& name) {
-  return !name.empty() && name != "." && name != ".." && name.find('/') == std::string::npos &&
+  return !name.empty() && name[0] != '.' && name.find('/') == std::string::npos &&
          name.find('\\') == std::string::npos && name.find('\0') == std::string::npos;
 }
 
@@ -84,10 +86,16 @@ void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, c
   for (std::size_t k = 0; k < count; ++k) {
     if (!std::getline(in, line)) throw std::runtime_error(path + ": the list of output files ends early");
     header += line + '\n';
-    std::istringstream fields(line);
-    std::string name;
+    // "NAME SIZE", the size in decimal digits only ("0x10" read as 0 once cut a file to nothing)
+    const std::size_t space = line.rfind(' ');
+    const std::string name = space == std::string::npos ? line : line.substr(0, space);
+    const std::string digits = space == std::string::npos ? "" : line.substr(space + 1);
     std::uintmax_t size = 0;
-    if (!(fields >> name >> size)) throw std::runtime_error(path + ": the list of output files ends early");
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), size);
+    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size())
+      throw std::runtime_error(path + ": the line \"" + line.substr(0, 80) +
+                               "\" of its list of output files is not "
+                               "NAME SIZE");
     if (!plain_file_name(name))
       throw std::runtime_error(path + ": listed output \"" + name.substr(0, 80) + "\" is not a plain file name");
     if (!sizes.emplace(name, size).second)
@@ -105,10 +113,15 @@ void resume_from_checkpoint(Simulation& sim, const std::string& output_folder, c
   StateIO::require_within_run(sim);
   // resuming cuts and appends to these files: a link planted among them would have it cut and
   // write a file anywhere
+  if (!is_own_folder(output_folder) || !is_own_folder(fs::path(output_folder).parent_path()))
+    throw std::runtime_error(output_folder +
+                             " or its job folder is not a folder of the job's own (a link?): the job "
+                             "cannot be continued");
   for (const fs::directory_entry& e : fs::directory_iterator(output_folder))
-    if (e.symlink_status().type() != fs::file_type::regular)
+    if (!is_own_file(e.path()))
       throw std::runtime_error("output " + e.path().string() +
-                               " is not a regular file (a link, or a folder): the job cannot be continued");
+                               " is not a regular file of the job's own (a link, a folder, or a file with another "
+                               "name elsewhere): the job cannot be continued");
 
   for (const fs::directory_entry& e : fs::directory_iterator(output_folder)) {
     if (!e.is_regular_file()) continue;

@@ -119,10 +119,6 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
       return refuse(error_response(head_only, http::status::bad_request,
                                    "Transfer-Encoding \"" + printable(coding->value()) +
                                        "\" does not end in chunked: the body's length cannot be known (RFC 9112 6.1)"));
-    if (kind == TransferCoding::UnknownBeforeChunked)
-      return refuse(
-          error_response(head_only, http::status::not_implemented,
-                         "Transfer-Encoding \"" + printable(coding->value()) + "\": this server decodes chunked only"));
   }
   if (is_absolute_form(head.target())) {
     const std::optional<AbsoluteTarget> absolute = split_absolute_form(head.target());
@@ -180,6 +176,11 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
                                  std::string(head.method_string()) +
                                      " is implemented on no resource of this server (GET, HEAD, POST, DELETE, "
                                      "OPTIONS are)"));
+  if (const auto coding = head.find(http::field::transfer_encoding);
+      coding != head.end() && classify_transfer_coding(coding->value()) == TransferCoding::UnknownBeforeChunked)
+    return refuse(
+        error_response(head_only, http::status::not_implemented,
+                       "Transfer-Encoding \"" + printable(coding->value()) + "\": this server decodes chunked only"));
   if (server_options) {
     http::response<http::string_body> res{http::status::no_content, head.version()};
     res.set(http::field::allow, "GET, HEAD, POST, DELETE, OPTIONS");

@@ -9,6 +9,7 @@
 
 #include "output/run_writers.hpp"
 #include "server/checkpoint.hpp"
+#include "server/own_files.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::server {
@@ -117,6 +118,9 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
       scene.numerics.threads = hooks.threads;
     Simulation sim(std::move(scene));
     std::filesystem::create_directories(folder.outputs());
+    if (!is_own_folder(folder.root) || !is_own_folder(folder.outputs()))
+      throw std::runtime_error(folder.outputs().string() +
+                               " is not a folder of the job's own (a link?): the job's files are not written there");
     const bool resume = std::filesystem::exists(folder.checkpoint());
     if (resume) resume_from_checkpoint(sim, folder.outputs().string(), folder.checkpoint().string());
     if (hooks.on_start) hooks.on_start(sim);

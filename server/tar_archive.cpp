@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "server/own_files.hpp"
+
 #include "output/legacy_output.hpp"
 #include "server/durable_file.hpp"
 
@@ -48,7 +50,7 @@ std::array<char, kBlock> header(const std::string& name, std::uintmax_t size, st
 void write_tar_through(const std::string& folder, const std::string& temporary) {
   std::vector<fs::path> files;
   for (const fs::directory_entry& e : fs::directory_iterator(folder))
-    if (e.symlink_status().type() == fs::file_type::regular) files.push_back(e.path());
+    if (is_own_file(e.path())) files.push_back(e.path());
   std::sort(files.begin(), files.end());
 
   FilePtr out_file = open_for_writing(temporary);

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <unistd.h>
 
 #include "server/checkpoint.hpp"
@@ -139,6 +140,44 @@ TEST_F(CheckpointHeader, ALinkAmongTheOutputsIsRefused) {
   }
   EXPECT_EQ(read(dir_ / "victim.txt").size(), 200u);
   EXPECT_EQ(read(dir_ / "outputs" / "ANIMATION_3D.dat").size(), 130u);
+}
+
+// The next round (2026-12-04): the outputs folder itself replaced by a link, a hard link to a file
+// elsewhere among the outputs, a listed name starting with '.', a length not in decimal digits.
+TEST_F(CheckpointHeader, AnOutputsFolderThatIsALinkIsRefused) {
+  fs::rename(dir_ / "outputs", dir_ / "elsewhere");
+  fs::create_directory_symlink(dir_ / "elsewhere", dir_ / "outputs");
+  Simulation sim(spec::to_scene(spec::parse_json(kSpec)));
+  try {
+    server::resume_from_checkpoint(sim, (dir_ / "outputs").string(), checkpoint().string());
+    FAIL() << "resumed into a linked folder";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a folder of the job's own"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(read(dir_ / "elsewhere" / "ANIMATION_3D.dat").size(), 130u);
+}
+
+TEST_F(CheckpointHeader, AHardLinkAmongTheOutputsIsRefused) {
+  write(dir_ / "victim.txt", std::string(200, 'v'));
+  fs::remove(dir_ / "outputs" / "Energy.dat");
+  fs::create_hard_link(dir_ / "victim.txt", dir_ / "outputs" / "Energy.dat");
+  Simulation sim(spec::to_scene(spec::parse_json(kSpec)));
+  EXPECT_THROW(server::resume_from_checkpoint(sim, (dir_ / "outputs").string(), checkpoint().string()),
+               std::runtime_error);
+  EXPECT_EQ(read(dir_ / "victim.txt").size(), 200u);
+}
+
+TEST_F(CheckpointHeader, NamesStartingWithADotAndLengthsNotInDigitsAreRefused) {
+  const std::string bytes = read(checkpoint());
+  for (const auto& [from, to, says] :
+       {std::tuple<std::string, std::string, std::string>{"Energy.dat 40", ".hidden 40", "not a plain file name"},
+        {"ANIMATION_3D.dat 100", "ANIMATION_3D.dat 0x10", "is not NAME SIZE"},
+        {"ANIMATION_3D.dat 100", "ANIMATION_3D.dat +100", "is not NAME SIZE"}}) {
+    std::string edited = bytes;
+    edited.replace(edited.find(from), from.size(), to);
+    write(checkpoint(), resealed(edited));
+    expect_refused_and_untouched(says);
+  }
 }
 
 }  // namespace

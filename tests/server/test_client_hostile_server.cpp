@@ -108,7 +108,7 @@ TEST_F(ClientAgainstHostileServer, FetchWritesOnlyPlainFileNamesInsideItsFolder)
 
 TEST_F(ClientAgainstHostileServer, ListAndStatusPrintNoControlCharacters) {
   const std::string job =
-      R"({"id": 1, "name": "a\u001b]0;owned\u0007\u001b[2Jname\r\nfake line", "state": "succeeded", "step": 1,)"
+      R"({"id": 1, "name": "a\u001b]0;owned\u0007\u001b[2Jname\r\nfake line\u202etxt.exe", "state": "succeeded", "step": 1,)"
       R"( "totalSteps": 1, "progress": 1})";
   ScriptedServer server([&](const std::string& target) -> std::string {
     if (target == "/api/jobs") return R"({"jobs": [)" + job + "]}";
@@ -120,6 +120,7 @@ TEST_F(ClientAgainstHostileServer, ListAndStatusPrintNoControlCharacters) {
     EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << verb << ": " << r.output;
     EXPECT_EQ(r.output.find('\x07'), std::string::npos) << verb << ": " << r.output;
     EXPECT_EQ(r.output.find('\r'), std::string::npos) << verb << ": " << r.output;
+    EXPECT_EQ(r.output.find("\xe2\x80\xae"), std::string::npos) << verb << ": a right-to-left override";
     EXPECT_NE(r.output.find("name"), std::string::npos) << verb << ": " << r.output;
   }
 }

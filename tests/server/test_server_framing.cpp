@@ -76,6 +76,9 @@ TEST_F(ServerFraming, WithATokenEveryAnswerWaitsForTheToken) {
   EXPECT_EQ(status_of(big), 401) << big;
   EXPECT_EQ(status_of(exchange("OPTIONS * HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer s3cret\r\n\r\n")), 204);
   // which methods the server implements is not told to a stranger either (501 came first)
+  EXPECT_EQ(status_of(exchange("POST /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: gzip, chunked\r\n\r\n"
+                               "0\r\n\r\n")),
+            401);  // the codings it decodes are not told either
   for (const std::string method : {"TRACE", "FOO"})
     EXPECT_EQ(status_of(exchange(method + " /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")), 401) << method;
   EXPECT_EQ(status_of(exchange("TRACE /api/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer s3cret\r\n\r\n")),
@@ -164,6 +167,19 @@ TEST_F(ServerFraming, LinksAmongAJobsOutputsAreNeitherListedNorServed) {
   EXPECT_EQ(list.body.find("Leak.dat"), std::string::npos) << list.body;
   EXPECT_NE(list.body.find("ANIMATION_3D.dat"), std::string::npos) << list.body;
   EXPECT_EQ(client_->get(artifacts + "/Leak.dat").status, 404);
+  // a hard link to a file elsewhere is a link too
+  write_text(dir_ / "other.txt", "another file of the machine");
+  fs::create_hard_link(dir_ / "other.txt", dir_ / "data" / "jobs" / std::to_string(id) / "outputs" / "Hard.dat");
+  EXPECT_EQ(client_->get(artifacts).body.find("Hard.dat"), std::string::npos);
+  EXPECT_EQ(client_->get(artifacts + "/Hard.dat").status, 404);
+  // and the outputs folder itself replaced by a link to another folder
+  const fs::path outputs = dir_ / "data" / "jobs" / std::to_string(id) / "outputs";
+  fs::create_directories(dir_ / "fake");
+  write_text(dir_ / "fake" / "ANIMATION_3D.dat", "TOPSECRET");
+  fs::remove_all(outputs);
+  fs::create_directory_symlink(dir_ / "fake", outputs);
+  EXPECT_EQ(client_->get(artifacts).body.find("ANIMATION_3D.dat"), std::string::npos);
+  EXPECT_EQ(client_->get(artifacts + "/ANIMATION_3D.dat").status, 404);
 }
 
 }  // namespace

@@ -47,5 +47,15 @@ TEST_F(TarArchive, ALinkAmongTheOutputsIsNotArchived) {
   EXPECT_EQ(tar.find("the machine's own file"), std::string::npos);
 }
 
+TEST_F(TarArchive, AHardLinkAmongTheOutputsIsNotArchived) {
+  std::ofstream(dir_ / "secret.txt") << "the machine's own file";
+  fs::create_hard_link(dir_ / "secret.txt", dir_ / "outputs" / "Hard.dat");
+  server::write_tar((dir_ / "outputs").string(), (dir_ / "outputs.tar").string());
+  std::ifstream in(dir_ / "outputs.tar", std::ios::binary);
+  const std::string tar((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(tar.find("Energy.dat"), std::string::npos);
+  EXPECT_EQ(tar.find("Hard.dat"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace dem::test
