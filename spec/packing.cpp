@@ -4,6 +4,8 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 namespace dem::spec {
@@ -37,9 +39,17 @@ std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::
     }
   }
   const bool bounded = d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal;
+  // A spread so wide that hardly a draw falls between the bounds (or that overflows to NaN: a
+  // fuzzed lognormal spread of 6.7e209 made every draw NaN, which passed as inside) must end.
+  const double budget = 100.0 * count + 100000;
+  double draws = 0;
   while (static_cast<int>(out.size()) < count) {
     const double x = draw();
-    if (bounded && (x < d.d_min || x > d.d_max)) continue;  // truncated: drawn again
+    if (++draws > budget)
+      throw std::runtime_error("hardly any size drawn from this distribution falls between dMin and dMax (" +
+                               std::to_string(out.size()) + " of " + std::to_string(count) + " in " +
+                               std::to_string(static_cast<long long>(budget)) + " draws): narrow the spread");
+    if (!std::isfinite(x) || (bounded && !(x >= d.d_min && x <= d.d_max))) continue;  // truncated: drawn again
     out.push_back(x);
   }
   return out;

@@ -317,16 +317,21 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
   if (check.count() != before) return;
   std::mt19937_64 rng(in.seed() == 0 ? 1u : in.seed());
   std::vector<double> diameters;
-  if (in.count() > 0) {
-    diameters = sample_diameters(d, in.count(), rng);
-  } else {  // draw until the spheres' volume makes the solid fraction
-    const double target = in.solid_fraction() * (region ? region_volume : (hi - lo).prod());
-    double volume = 0;
-    while (volume < target && diameters.size() < 10000000) {
-      const double dia = sample_diameters(d, 1, rng)[0];
-      diameters.push_back(dia);
-      volume += std::numbers::pi / 6 * dia * dia * dia;
+  try {
+    if (in.count() > 0) {
+      diameters = sample_diameters(d, in.count(), rng);
+    } else {  // draw until the spheres' volume makes the solid fraction
+      const double target = in.solid_fraction() * (region ? region_volume : (hi - lo).prod());
+      double volume = 0;
+      while (volume < target && diameters.size() < 10000000) {
+        const double dia = sample_diameters(d, 1, rng)[0];
+        diameters.push_back(dia);
+        volume += std::numbers::pi / 6 * dia * dia * dia;
+      }
     }
+  } catch (const std::runtime_error& e) {
+    check.fail(sp, e.what());
+    return;
   }
   if (!check.room(path, scene.particles.size(), static_cast<double>(diameters.size()))) return;
   try {

@@ -58,6 +58,27 @@ TEST(SizeSamples, TruncationDrawsAgainInsideTheBounds) {
   }
 }
 
+// Found by the spec fuzzer: a lognormal spread of 6.7e209 overflowed to NaN diameters, which passed
+// the truncation's test and reached the packing's cell index (undefined behaviour). A spread that
+// leaves hardly a draw between the bounds ends with a clear error instead of drawing on.
+TEST(SizeSamples, ASpreadThatLeavesNothingBetweenTheBoundsIsAnError) {
+  SizeDistribution d;
+  d.kind = SizeKind::Lognormal;
+  d.mean = 0.04;
+  d.spread = 6.7329739539819182e+209;
+  d.d_min = 0.0224;
+  d.d_max = 0.063;
+  std::mt19937_64 rng(3);
+  try {
+    sample_diameters(d, 100, rng);
+    FAIL() << "drew diameters from a distribution that gives NaN";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("between dMin and dMax"), std::string::npos) << e.what();
+  }
+  d.spread = 1e9;  // finite, but 1.6e-4 of the draws land between the bounds
+  EXPECT_THROW(sample_diameters(d, 100, rng), std::runtime_error);
+}
+
 TEST(SizeSamples, TwoSizesKeepTheirShares) {
   SizeDistribution d{SizeKind::Two, 0, 0, 0.005, 0.02, 0.8};
   std::mt19937_64 rng(3);
