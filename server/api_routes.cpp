@@ -138,10 +138,11 @@ Response list_artifacts(const Request& req, std::int64_t id, ApiContext& ctx) {
   nlohmann::json files = nlohmann::json::array();
   std::vector<std::pair<std::string, std::uintmax_t>> found;
   std::error_code ec;
-  if (is_own_folder(folder.root) && is_own_folder(folder.outputs()))
+  const bool own_root = is_own_folder(folder.root);
+  if (own_root && is_own_folder(folder.outputs()))
     for (const fs::directory_entry& e : fs::directory_iterator(folder.outputs(), ec))
       if (is_own_file(e.path())) found.emplace_back(e.path().filename().string(), e.file_size());
-  if (is_own_folder(folder.root) && is_own_file(folder.archive()))
+  if (own_root && is_own_file(folder.archive()))
     found.emplace_back(JobFolder::kArchiveName, fs::file_size(folder.archive()));
   std::sort(found.begin(), found.end());
   for (const auto& [name, size] : found)

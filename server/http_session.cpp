@@ -112,14 +112,16 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
     if (head.count(name) > 1)
       return refuse(error_response(head_only, http::status::bad_request,
                                    std::string("the request has more than one ") + name + " header (RFC 9110 5.3)"));
-  if (const auto coding = head.find(http::field::transfer_encoding); coding != head.end()) {
-    // RFC 9112 6.1: a body is framed by chunked, last; anything else cannot be read safely
-    const TransferCoding kind = classify_transfer_coding(coding->value());
-    if (kind == TransferCoding::NotChunkedLast)
-      return refuse(error_response(head_only, http::status::bad_request,
-                                   "Transfer-Encoding \"" + printable(coding->value()) +
-                                       "\" does not end in chunked: the body's length cannot be known (RFC 9112 6.1)"));
-  }
+  // RFC 9112 6.1: a body is framed by chunked, last; anything else cannot be read safely (400 here),
+  // and a coding before chunked is one this server does not decode (501, after the token's check)
+  const std::string_view coding = head[http::field::transfer_encoding];
+  const TransferCoding coding_kind = head.find(http::field::transfer_encoding) == head.end()
+                                         ? TransferCoding::Chunked
+                                         : classify_transfer_coding(coding);
+  if (coding_kind == TransferCoding::NotChunkedLast)
+    return refuse(error_response(head_only, http::status::bad_request,
+                                 "Transfer-Encoding \"" + printable(coding) +
+                                     "\" does not end in chunked: the body's length cannot be known (RFC 9112 6.1)"));
   if (is_absolute_form(head.target())) {
     const std::optional<AbsoluteTarget> absolute = split_absolute_form(head.target());
     if (!absolute)
@@ -176,11 +178,9 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
                                  std::string(head.method_string()) +
                                      " is implemented on no resource of this server (GET, HEAD, POST, DELETE, "
                                      "OPTIONS are)"));
-  if (const auto coding = head.find(http::field::transfer_encoding);
-      coding != head.end() && classify_transfer_coding(coding->value()) == TransferCoding::UnknownBeforeChunked)
-    return refuse(
-        error_response(head_only, http::status::not_implemented,
-                       "Transfer-Encoding \"" + printable(coding->value()) + "\": this server decodes chunked only"));
+  if (coding_kind == TransferCoding::UnknownBeforeChunked)
+    return refuse(error_response(head_only, http::status::not_implemented,
+                                 "Transfer-Encoding \"" + printable(coding) + "\": this server decodes chunked only"));
   if (server_options) {
     http::response<http::string_body> res{http::status::no_content, head.version()};
     res.set(http::field::allow, "GET, HEAD, POST, DELETE, OPTIONS");
