@@ -45,6 +45,10 @@ struct ContactOutput {
   V3<T> shear_force;  // tangential part of force (its lever torque is the force loop's)
   V3<T> roll_moment;  // on i (j gets the opposite)
   T fn;               // normal force magnitude (>= 0 unless tension is allowed)
+  // How fn answers an approach: dF_n/d(delta) (N/m) and the dashpot's coefficient of the normal
+  // speed (N s/m). A servo wall sums them over its contacts to keep its loop stable (wall_motion.hpp).
+  T kn = T{};
+  T cn = T{};
 };
 
 // What a normal model tells the tangential and rolling models.
@@ -54,6 +58,7 @@ struct NormalResponse {
   T kn_tangent;  // dFn/d(delta), for the rolling spring
   T kt;          // tangential stiffness
   T ct;          // tangential damping
+  T cn = T{};    // the normal dashpot's coefficient of the normal speed in fn (N s/m)
   // For a law whose stiffnesses change with the overlap (Hertz's k_t and dF_n/d(delta) both go as
   // a = sqrt(R* delta)), over the drift: the stiffness before over now, and the mean over now (the
   // stiffness of the step's travel); 1 and 1 where they do not change. The tangential and rolling

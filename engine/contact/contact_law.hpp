@@ -137,6 +137,8 @@ struct ContactLaw {
     const T fn = NoTensile ? lane_max(nr.fn, T{}) : nr.fn;
     ContactOutput<T> out;
     out.fn = fn;
+    out.kn = nr.kn_tangent;
+    out.cn = nr.cn;
     if constexpr (kFriction) {
       out.shear_force = Tangential::evaluate(p.tangential, nr, lane_max(fn, T{}), c, shear);
     } else {

@@ -61,8 +61,9 @@ struct HertzNormal {
       const T window = lane_sqrt(lane_sqrt(c.r_eff * c.travel)) * reach * lane_sqrt(lane_sqrt(reach)) * 0.8;
       damping_quarter = select(boundary, window, quarter);
     }
-    NormalResponse<T> out{f_elastic - p.hertz_cn * damping_quarter * c.sqrt_m_eff * c.vn_now, 2.0 * p.e_star * sqrt_rd,
-                          kt, p.hertz_ct * scale};
+    const T cn = p.hertz_cn * damping_quarter * c.sqrt_m_eff;
+    NormalResponse<T> out{f_elastic - cn * c.vn_now, 2.0 * p.e_star * sqrt_rd, kt, p.hertz_ct * scale};
+    out.cn = cn;
     stiffness_change(c, out);
     return out;
   }

@@ -55,7 +55,9 @@ struct LinearNormal {
     const T spring = spring_with_first_touch(
         p.kn * c.delta, c.delta, c.first_touch, [&](T x) { return spring_energy(p.kn, x); },
         [&](T x) { return p.kn * x; });
-    return {spring - c.onset * cn * c.vn_now, p.kn, p.kt_ratio * p.kn, p.ct_ratio * cn};
+    NormalResponse<T> out{spring - c.onset * cn * c.vn_now, p.kn, p.kt_ratio * p.kn, p.ct_ratio * cn};
+    out.cn = c.onset * cn;
+    return out;
   }
 
   template <class T>

@@ -471,6 +471,8 @@ class ForceKernelImpl final : public ForceKernel {
       r.force = weight * r.force;
       r.shear_force = weight * r.shear_force;
       r.fn *= weight;
+      r.kn *= weight;
+      r.cn *= weight;
       if constexpr (Law::kRolling) r.roll_moment = weight * r.roll_moment;
     }
     f += r.force.get(0);
@@ -498,7 +500,7 @@ class ForceKernelImpl final : public ForceKernel {
       if (p.inv_mass[i] == 0 || !wall.contact(p.x[i], ri, normal, delta)) {
         const bool parted = wc.touching[e] && p.inv_mass[i] != 0;
         wc.touching[e] = 0;
-        wc.fn[e] = wc.ft[e] = 0;
+        wc.fn[e] = wc.ft[e] = wc.kn[e] = wc.cn[e] = 0;
         wc.force[e].setZero();
         if (parted) {  // since the last sample: the spring's impulse it could not see (spring_boundary_correction)
           const Vec3 n = wall.normal_towards(p.x[i]);
@@ -522,6 +524,8 @@ class ForceKernelImpl final : public ForceKernel {
       const ContactOutput<double> r = wall_contact(s, table, i, normal, delta, point, wall.pose, wall.material,
                                                    wc.constants[e], wc.shear[e], roll, f, t, !wc.touching[e]);
       wc.fn[e] = r.fn;
+      wc.kn[e] = r.kn;
+      wc.cn[e] = r.cn;
       if (s.record_contacts) wc.ft[e] = std::sqrt(squared_norm(r.shear_force));
       wc.force[e] = r.force.get(0);
       wc.point[e] = point;
@@ -600,6 +604,8 @@ class ForceKernelImpl final : public ForceKernel {
         }
         slot.point = point;
         slot.fn = r.fn;
+        slot.kn = r.kn;
+        slot.cn = r.cn;
         if (s.record_contacts) slot.ft = std::sqrt(squared_norm(r.shear_force));
         slot.delta = touch.delta;
         slot.weight = touch.weight;

@@ -237,11 +237,19 @@ void Simulation::settle_walls(double t_new, double dt) {
     load.torque -= (point - centre).cross(force_on_particle);
     if (is_contact) ++load.contacts;
   };
+  // Summed whatever the contact's normal: along the load's direction each counts at most that much,
+  // so the servo's cap is on the safe side.
+  auto respond = [&](int k, double kn, double cn) {
+    boundary_loads_[k].response.stiffness += kn;
+    boundary_loads_[k].response.damping += cn;
+  };
   if (!wc.row_start.empty())
     for (int i = 0; i < n; ++i)
       for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
-        if (wc.touching[e] || !wc.force[e].isZero(0))
+        if (wc.touching[e] || !wc.force[e].isZero(0)) {
           add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e], wc.touching[e] != 0);
+          respond(boundary_of_plane_[wc.wall[e]], wc.kn[e], wc.cn[e]);
+        }
   MeshContacts& mc = state_.mesh_contacts;
   for (int i = 0; i < n && !mc.used.empty(); ++i) {
     for (int k = 0, used = mc.count(i); k < used; ++k) {
@@ -250,6 +258,7 @@ void Simulation::settle_walls(double t_new, double dt) {
       const MeshSlot& slot = mc.slot(i, k);
       const int boundary = state_.meshes[slot.mesh].boundary;
       add(boundary, slot.force - slot.pull, slot.point);
+      respond(boundary, slot.kn, slot.cn);
       if (!slot.pull.isZero(0)) add(boundary, slot.pull, p.x[i], /*is_contact=*/false);
     }
     if (MeshParting& parting = mc.parted[i]; parting.mesh >= 0) {
@@ -259,7 +268,7 @@ void Simulation::settle_walls(double t_new, double dt) {
   }
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
     if (!drivers_[k].load_controlled()) continue;
-    drivers_[k].end_step(t_new, dt, boundary_loads_[k].force);
+    drivers_[k].end_step(t_new, dt, boundary_loads_[k].force, boundary_loads_[k].response);
     if (plane_index_[k] >= 0)
       state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
     else
@@ -659,6 +668,8 @@ void Simulation::build_wall_contacts(const WallContacts& previous, const std::ve
   }
   wc.fn.assign(wc.wall.size(), 0.0);
   wc.ft.assign(wc.wall.size(), 0.0);
+  wc.kn.assign(wc.wall.size(), 0.0);
+  wc.cn.assign(wc.wall.size(), 0.0);
   wc.force.assign(wc.wall.size(), Vec3::Zero());
   wc.point.assign(wc.wall.size(), Vec3::Zero());
 }

@@ -20,6 +20,7 @@ struct BoundaryLoad {
   Vec3 force = Vec3::Zero();
   Vec3 torque = Vec3::Zero();
   int contacts = 0;
+  ContactResponse response;  // how that force answers the wall's motion (a servo's loop gain)
 };
 
 // A particle touching a wall, for the wall force-chain file.

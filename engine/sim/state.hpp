@@ -27,6 +27,9 @@ struct WallContacts {
   std::vector<std::uint8_t> touching;
   std::vector<Vec3> force;  // on the particle, last step (zero when apart)
   std::vector<Vec3> point;  // contact point (the middle of the overlap), last step
+  // The contact's dF_n/d(delta) and normal dashpot coefficient, last step (0 when apart): a servo
+  // wall's loop gain. Set by every step's force pass before it is read; not saved.
+  std::vector<double> kn, cn;
 };
 
 // A particle's contact with a mesh, kept from step to step: the spring history follows the contact
@@ -40,7 +43,8 @@ struct MeshSlot {
   Vec3 point = Vec3::Zero();  // the contact point (the middle of the overlap)
   Vec3 pull = Vec3::Zero();   // the part of `force` that acts through the particle's centre (a valley weight's pull)
   double fn = 0, ft = 0, delta = 0;
-  double weight = 1;  // the face's share at a valley (mesh/mesh_wall.hpp): fn and force include it
+  double kn = 0, cn = 0;  // dF_n/d(delta) and the normal dashpot's coefficient (WallContacts::kn)
+  double weight = 1;      // the face's share at a valley (mesh/mesh_wall.hpp): fn and force include it
 };
 
 // The spring's push on a particle on the step after it parted from a mesh's face (the impulse the

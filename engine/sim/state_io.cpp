@@ -16,8 +16,9 @@
 namespace dem {
 namespace {
 
-// 5: a CRC-32 of everything before it as the last four bytes; 4: orientations, bonds' bonded states
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '8'};
+// 9: the walls' contact response (a servo's gain cap); 5: a CRC-32 of everything before it as the
+// last four bytes; 4: orientations, bonds' bonded states
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '9'};
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
@@ -371,6 +372,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   expect_size(wc.roll, rolling_spring ? entries : 0, "the wall contacts' rolling springs");
   expect_size(wc.constants, entries, "the wall contacts' constants");
   for (const auto* v : {&wc.fn, &wc.ft}) expect_size(*v, entries, "the wall contacts' values");
+  wc.kn.assign(entries, 0.0);  // the next force pass sets them
+  wc.cn.assign(entries, 0.0);
   expect_size(wc.touching, entries, "the wall contacts' values");
 
   MeshContacts& mc = s.mesh_contacts;
@@ -442,7 +445,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   expect_size(sim.boundary_loads_, sim.drivers_.size(), "the walls' loads");
   for (int k : loads_starting) {  // a load that starts now feels the particles' push from the start, as at t = 0
     WallDriver& d = sim.drivers_[k];
-    d.end_step(sim.time(), 0, sim.boundary_loads_[k].force);
+    d.end_step(sim.time(), 0, sim.boundary_loads_[k].force, sim.boundary_loads_[k].response);
     if (sim.plane_index_[k] >= 0)
       s.walls[sim.plane_index_[k]].move_to(d.pose());
     else

@@ -36,6 +36,13 @@ struct PlainMotion {
   Vec3 center = Vec3::Zero();
 };
 
+// How the particles' push on a wall answers the wall's motion, summed over its contacts: the
+// normal stiffness dF_n/d(delta) (N/m) and the normal dashpots' coefficient (N s/m).
+struct ContactResponse {
+  double stiffness = 0;
+  double damping = 0;
+};
+
 class WallDriver {
  public:
   WallDriver() = default;
@@ -46,7 +53,12 @@ class WallDriver {
   const WallPose& pose() const { return pose_; }
 
   void begin_step(double t_new, double dt);
-  void end_step(double t_new, double dt, const Vec3& reaction);
+  // `response`: how the reaction answers the wall's motion; a servo caps its gain with it.
+  void end_step(double t_new, double dt, const Vec3& reaction, const ContactResponse& response);
+
+  // The gain a servo uses: its own, at most what keeps its loop stable at step dt with contacts
+  // that answer with `response` (wall_motion.cpp).
+  static double servo_gain(const LoadControl& load, double dt, const ContactResponse& response);
 
   // Displacement along the load direction, and the force the wall applies to the particles along
   // it (the reaction's component against the direction); both 0 for walls without a load.

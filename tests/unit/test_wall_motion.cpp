@@ -44,6 +44,21 @@ TEST(WallDriver, SpinTurnsAboutTheCentre) {
   EXPECT_TRUE(d.pose().velocity_at({1, 0.5, 0}).isApprox(Vec3(0, 1.0, 0), 1e-12));
 }
 
+// A servo's gain is its own below what its contacts allow, and alpha / (K dt / 2 + C) past it
+// (alpha = 1/2): then g (K dt + 2 C) = 1 and g C <= 1/2, inside the loop's stability bounds 2 and 1.
+TEST(WallDriver, ServoGainIsCappedByItsContactsResponse) {
+  LoadControl servo;
+  servo.kind = LoadControl::Kind::Servo;
+  servo.gain = 1e-5;
+  const double dt = 1e-4;
+  EXPECT_EQ(WallDriver::servo_gain(servo, dt, {}), 1e-5);                   // no contacts: its own
+  EXPECT_EQ(WallDriver::servo_gain(servo, dt, {1e8, 1e3}), 1e-5);           // g (K dt + 2 C) = 0.12
+  const double capped = WallDriver::servo_gain(servo, dt, {2.6e8, 7.8e4});  // the ballast bed's plate
+  EXPECT_DOUBLE_EQ(capped, 0.5 / (0.5 * 2.6e8 * dt + 7.8e4));
+  EXPECT_DOUBLE_EQ(capped * (2.6e8 * dt + 2 * 7.8e4), 1.0);
+  EXPECT_LT(capped * 7.8e4, 0.5 + 1e-15);
+}
+
 TEST(MovingWalls, PlatesAndMeshesFollowTheirMotionInASimulation) {
   Scene s = base_scene(LinearNormal::kName, 2500, 1e7, 0.25, 0.5, 0.3, 1e4);
   s.particles.push_back(sphere({5, 5, 5}, 0.01));  // far away: only the walls move

@@ -110,6 +110,27 @@ TEST(ServoPlate, HoldsItsTargetForce) {
   EXPECT_LT(worst, 0.01 * load.target);
 }
 
+// A servo whose gain is far past what the bed's contacts allow at this step: each step's correction
+// would overshoot the target by more than the gap it closes, and the plate's force would alternate
+// step by step and grow (a 5,000-stone bed under a 250 kN servo did, at gain 1e-5: the contacts'
+// dashpots made the loop's gain 1.8 of its limit 2). The engine caps the gain at what its contacts
+// allow (docs/physics.md, "Loaded walls"), so the plate holds its target as a slower servo does.
+TEST(ServoPlate, HoldsItsTargetWithAGainPastTheLoopsLimit) {
+  LoadControl load = servo_load();
+  load.gain = 1.0;  // 1,000x the gain above: g C alone is about 60 for this bed's contacts
+  Simulation sim(loaded_bed(load, 0.002));
+  const int plate = static_cast<int>(sim.scene().walls.size()) - 1;
+  double worst = 0;
+  while (sim.time() < 0.2) {
+    sim.step();
+    ASSERT_TRUE(std::isfinite(sim.wall_driver(plate).applied_force())) << "at t = " << sim.time();
+    if (sim.time() >= 0.15) worst = std::max(worst, std::abs(sim.wall_driver(plate).applied_force() - load.target));
+  }
+  report("servo plate, gain 1 m/(N s): largest |force - target| / target over the last 50 ms", worst / load.target,
+         0.0);
+  EXPECT_LT(worst, 0.01 * load.target);
+}
+
 // BallastDEM's two stages: the bed settles under a plate that only rests on it, the state is saved,
 // and a run continued from it with a spec that loads the plate follows the load's cycle from the
 // continuation on (its clock starts there).
