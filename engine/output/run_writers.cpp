@@ -5,6 +5,7 @@
 #include "output/energy_output.hpp"
 #include "output/legacy_output.hpp"
 #include "output/statistics_output.hpp"
+#include "output/wall_statistics_output.hpp"
 
 namespace dem {
 
@@ -22,6 +23,8 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
   if (ForceDisplacementWriter::loading_wall(sim) >= 0)
     writers.push_back(std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string(), append));
   writers.push_back(std::make_unique<StatisticsWriter>(dir.string(), sim, append));
+  if (WallStatisticsWriter::wanted(sim))
+    writers.push_back(std::make_unique<WallStatisticsWriter>(dir.string(), append));
   writers.push_back(std::make_unique<EnergyWriter>((dir / "Energy.dat").string(), append));
   return writers;
 }

@@ -10,7 +10,8 @@
 
 namespace dem {
 
-// ANIMATION_3D.dat, ForceChain_3D.dat, Wall*.dat, Force_Displacement.dat and the statistics files
+// ANIMATION_3D.dat, ForceChain_3D.dat, Wall*.dat (the wall statistics too), Force_Displacement.dat
+// and the statistics files
 // (not restart.dat: the caller decides how it saves state). `append`: continue the files of a run
 // resumed from a saved state.
 std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, const std::string& folder, bool append);
