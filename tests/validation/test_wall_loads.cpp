@@ -131,6 +131,45 @@ TEST(ServoPlate, HoldsItsTargetWithAGainPastTheLoopsLimit) {
   EXPECT_LT(worst, 0.01 * load.target);
 }
 
+// The capped servo at the stable limit over a sphere whose dashpots relax its speed fast (linear law,
+// restitution 0.05, C dt / m = 0.36): the particle answers within the step, and with the last
+// step's force alone the plate's force swung between 1.4 and 16.4 N for ever around its 10 N target
+// (an independent tester's scene). The servo closes the gap of the last two steps' mean force.
+TEST(ServoPlate, HoldsItsTargetOverAHeavilyDampedSphereAtTheStableLimit) {
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0.25, 0.05, 0.3, 1e5);
+  const double r = 0.005;
+  s.gravity = {0, 0, -kG};
+  s.particles.push_back(sphere({0, 0, r}, r));
+  s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}, "floor"));
+  const double z = 2 * r + 1e-4;
+  WallInit plate{
+      "press",
+      1,
+      PlateShape{{Vec3(-2 * r, -2 * r, z), Vec3(2 * r, -2 * r, z), Vec3(2 * r, 2 * r, z), Vec3(-2 * r, 2 * r, z)}},
+      {},
+      {}};
+  LoadControl load;
+  load.kind = LoadControl::Kind::Servo;
+  load.direction = {0, 0, -1};
+  load.target = 10;
+  load.gain = 1e6;
+  load.max_speed = 0.05;
+  plate.load = load;
+  s.walls.push_back(plate);
+  s.time.dt = Simulation(s).time_step().stable_limit;
+  s.time.steps = 13300;
+  Simulation sim(s);
+  const int press = 1;
+  double worst = 0;
+  while (sim.step_count() < sim.total_steps()) {
+    sim.step();
+    if (sim.step_count() > 12000) worst = std::max(worst, std::abs(sim.wall_driver(press).applied_force() - 10));
+  }
+  report("servo over a damped sphere at the stable limit: largest |force - target| / target, last 1,300 steps",
+         worst / 10, 0.0);
+  EXPECT_LT(worst, 0.01 * 10);
+}
+
 // BallastDEM's two stages: the bed settles under a plate that only rests on it, the state is saved,
 // and a run continued from it with a spec that loads the plate follows the load's cycle from the
 // continuation on (its clock starts there).
