@@ -17,10 +17,12 @@ std::vector<std::pair<double, double>> WallStatisticsWriter::force_density(const
     largest = std::max(largest, f);
   }
   if (!(largest > 0)) return {};
-  const double width = sum / static_cast<double>(forces.size()) / 10;
-  // a force of 1e15 N beside thousands near zero would ask for 1e19 bins: past 1,000 the bins widen
-  const auto bins = static_cast<std::size_t>(std::min(1000.0, std::floor(largest / width) + 1));
-  const double bin_width = std::max(width, largest / static_cast<double>(bins) * (1 + 1e-12));
+  // [0, largest] cut into bins about a tenth of the mean wide: the largest force closes the last
+  // bin (a bin edge at the mean put equal forces in a bin past them, by round-off or not). A force
+  // of 1e15 N beside thousands near zero would ask for 1e13 bins: past 1,000 the bins widen.
+  const double tenths = 10 * largest / (sum / static_cast<double>(forces.size()));
+  const auto bins = static_cast<std::size_t>(std::clamp(std::ceil(tenths * (1 - 1e-9)), 1.0, 1000.0));
+  const double bin_width = largest / static_cast<double>(bins);
   std::vector<double> count(bins, 0.0);
   for (double f : forces) count[std::min(bins - 1, static_cast<std::size_t>(std::max(f, 0.0) / bin_width))] += 1;
   std::vector<std::pair<double, double>> rows;
@@ -32,7 +34,10 @@ std::vector<std::pair<double, double>> WallStatisticsWriter::force_density(const
 }
 
 void WallStatisticsWriter::frame(const Simulation& sim) {
-  const legacy::NumberFormat format = file_format(sim);
+  // The manuals print no sample of these files, so there are no legacy widths to keep; and a
+  // density in 1/N printed with four decimals is 0.0000 for forces of kilonewtons.
+  const legacy::NumberFormat format =
+      file_format(sim) == legacy::NumberFormat::LegacyFixed ? legacy::NumberFormat::Scientific : file_format(sim);
   const double t = sim.time();
 
   const std::vector<WallContact> walls = sim.wall_contacts();

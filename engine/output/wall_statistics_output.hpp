@@ -8,8 +8,8 @@
 //                            time, Z, the share of grains with Z contacts (walls included; a clump
 //                            is one grain with its members' contacts)                     [s, -, -]
 //   Wall_PDF_ForceChain.dat  per frame, the probability density of the normal contact force over
-//                            every touching contact (pairs and walls), in bins a tenth of the mean
-//                            force wide from 0 up to the largest: time, bin centre, density
+//                            every touching contact (pairs and walls), [0, the largest] in bins
+//                            about a tenth of the mean force wide: time, bin centre, density
 //                                                                                         [s, N, 1/N]
 // Written for every scene with a wall.
 #pragma once
@@ -28,8 +28,8 @@ class WallStatisticsWriter final : public Observer {
   WallStatisticsWriter(const std::string& folder, bool append = false);
   void frame(const Simulation& sim) override;
 
-  // The normal forces' histogram as (bin centre, density) rows: bins mean / 10 wide from 0 to the
-  // largest force; none without a positive force.
+  // The normal forces' histogram as (bin centre, density) rows: [0, the largest force] in
+  // ceil(10 largest / mean) bins (at most 1,000); none without a positive force.
   static std::vector<std::pair<double, double>> force_density(const std::vector<double>& forces);
 
  private:
