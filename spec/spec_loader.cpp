@@ -256,11 +256,13 @@ LoadControl load(const api::Load& in, const std::string& path, Checker& check) {
     check.non_negative(path + ".servo.target", sv.target(), kForce);
     check.positive(path + ".servo.gain", sv.gain(), kGain);
     check.positive(path + ".servo.maxSpeed", sv.max_speed(), kSpeed);
-    if (in.mass() != 0) check.positive(path + ".mass", in.mass(), kMass);
+    // a servo sets its speed: a mass would be read and never used (its weight did not act either)
+    if (in.mass() != 0)
+      check.fail(path + ".mass",
+                 "a servo moves at the speed it sets, so it has no mass: give `mass` with `cyclic` only");
     l.target = sv.target();
     l.gain = sv.gain();
     l.max_speed = sv.max_speed();
-    l.mass = in.mass();
   } else {
     check.fail(path, "needs a control: cyclic or servo");
   }

@@ -665,6 +665,9 @@ TEST(SpecLoader, BadLoadsAreNamed) {
   EXPECT_TRUE(has_problem(p, "walls[0].load:", "needs a control: cyclic or servo"));
   p = problems_of(wall(R"("load": {"servo": {"target": 100, "gain": -1, "maxSpeed": 0.1}})"));
   EXPECT_TRUE(has_problem(p, "walls[0].load.servo.gain:", "must be a positive number"));
+  // a servo's mass was accepted and never used (an independent tester's finding)
+  p = problems_of(wall(R"("load": {"mass": 1, "servo": {"target": 100, "gain": 1e-3, "maxSpeed": 0.1}})"));
+  EXPECT_TRUE(has_problem(p, "walls[0].load.mass:", "a servo moves at the speed it sets, so it has no mass"));
   p = problems_of(
       wall(R"("motion": {"velocity": {"x": 1}}, "load": {"servo": {"target": 1, "gain": 1, "maxSpeed": 1}})"));
   EXPECT_TRUE(has_problem(p, "walls[0]:", "has both a motion and a load"));
