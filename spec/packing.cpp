@@ -10,7 +10,7 @@
 
 namespace dem::spec {
 
-std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::mt19937_64& rng) {
+std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::mt19937_64& rng, SizeDraws* so_far) {
   std::vector<double> out;
   out.reserve(count);
   std::function<double()> draw;
@@ -41,17 +41,20 @@ std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::
   const bool bounded = d.kind == SizeKind::Normal || d.kind == SizeKind::Lognormal;
   // A spread so wide that hardly a draw falls between the bounds (or that overflows to NaN: a
   // fuzzed lognormal spread of 6.7e209 made every draw NaN, which passed as inside) must end.
-  const double budget = 100.0 * count + 100000;
-  double draws = 0;
+  SizeDraws alone;
+  SizeDraws& draws = so_far ? *so_far : alone;
+  const double budget = 100.0 * (draws.kept + count) + 100000;
   while (static_cast<int>(out.size()) < count) {
     const double x = draw();
-    if (++draws > budget)
+    if (++draws.made > budget)
       throw std::runtime_error("hardly any size drawn from this distribution falls between dMin and dMax (" +
-                               std::to_string(out.size()) + " of " + std::to_string(count) + " in " +
-                               std::to_string(static_cast<long long>(budget)) + " draws): narrow the spread");
+                               std::to_string(static_cast<long long>(draws.kept) + static_cast<long long>(out.size())) +
+                               " kept in " + std::to_string(static_cast<long long>(budget)) +
+                               " draws): narrow the spread");
     if (!std::isfinite(x) || (bounded && !(x >= d.d_min && x <= d.d_max))) continue;  // truncated: drawn again
     out.push_back(x);
   }
+  draws.kept += count;
   return out;
 }
 

@@ -27,7 +27,17 @@ struct SizeDistribution {
   double small_fraction = 0.5;
 };
 
-std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::mt19937_64& rng);
+// The draws made and the diameters kept by the calls of one sampling (a packing filled to a solid
+// fraction asks for its diameters one at a time): its budget of draws is the whole sampling's.
+struct SizeDraws {
+  double made = 0;
+  double kept = 0;
+};
+
+// `count` diameters from `d`, truncated ones drawn again. Throws std::runtime_error when the draws
+// pass 100 per diameter kept (over `so_far` and this call) plus 100,000.
+std::vector<double> sample_diameters(const SizeDistribution& d, int count, std::mt19937_64& rng,
+                                     SizeDraws* so_far = nullptr);
 
 // Places spheres of the given diameters at random in the box [lo, hi] without overlap, largest
 // first (random sequential addition), each wholly inside. Throws std::runtime_error naming how many

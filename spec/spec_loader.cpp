@@ -325,8 +325,9 @@ void add_packing(const api::Packing& in, const std::string& path, const std::str
     } else {  // draw until the spheres' volume makes the solid fraction
       const double target = in.solid_fraction() * (region ? region_volume : (hi - lo).prod());
       double volume = 0;
+      SizeDraws draws;  // one budget for the whole packing, not one per diameter
       while (volume < target && diameters.size() < 10000000) {
-        const double dia = sample_diameters(d, 1, rng)[0];
+        const double dia = sample_diameters(d, 1, rng, &draws)[0];
         diameters.push_back(dia);
         volume += std::numbers::pi / 6 * dia * dia * dia;
       }

@@ -155,6 +155,22 @@ TEST(PackingSpec, BadPackingsAreNamed) {
   }
 }
 
+// Filling to a solid fraction draws one diameter at a time: the draw budget must be the packing's,
+// not each diameter's. A spread that leaves 1.6e-4 of the draws between the bounds was refused for
+// a count and drawn on for a solid fraction (about 2.4 million draws here; a fuzzed one could ask
+// for 1e7 diameters of 1e5 draws each).
+TEST(PackingSpec, ASolidFractionIsRefusedTheSpreadACountIs) {
+  std::string text = with_seed(1);
+  text.replace(text.find("\"spread\": 0.002"), 15, "\"spread\": 1e9");
+  try {
+    to_scene(parse_json(text));
+    ADD_FAILURE() << "a spread leaving 1.6e-4 of the draws inside the bounds filled a solid fraction";
+  } catch (const SpecError& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_NE(e.problems()[0].find("between dMin and dMax"), std::string::npos) << e.problems()[0];
+  }
+}
+
 // A packing fills around the particles listed before it (here a 3 cm boulder in the middle of the
 // box and a lattice row along its floor): none overlaps them. It once put spheres 2.4 radii into a
 // listed particle, and the first step threw them apart.
