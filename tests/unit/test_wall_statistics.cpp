@@ -13,6 +13,7 @@
 #include "output/run_writers.hpp"
 #include "output/wall_statistics_output.hpp"
 #include "spec/spec_loader.hpp"
+#include "support/command.hpp"
 #include "support/scenes.hpp"
 
 namespace dem::test {
@@ -20,17 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class WallStatistics : public ::testing::Test {
+// A private folder per test (DemCommandTest's), removed afterwards.
+class WallStatistics : public DemCommandTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("dem_wall_statistics_" + std::string(info->name()) + "_" +
-                                        std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // Every writer of a run, one frame now (as a run's first frame), closed; returns the rows of `name`.
   std::vector<std::vector<double>> written(const Simulation& sim, const char* name, std::size_t columns) {
     {
@@ -43,8 +36,6 @@ class WallStatistics : public ::testing::Test {
     EXPECT_TRUE(read.problem.empty()) << name << ": " << read.problem;
     return read.frames;
   }
-
-  fs::path dir_;
 };
 
 // Three spheres in a row on a floor, the middle one pressed into both neighbours and all three
