@@ -114,10 +114,10 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
                                    std::string("the request has more than one ") + name + " header (RFC 9110 5.3)"));
   // RFC 9112 6.1: a body is framed by chunked, last; anything else cannot be read safely (400 here),
   // and a coding before chunked is one this server does not decode (501, after the token's check)
-  const std::string_view coding = head[http::field::transfer_encoding];
-  const TransferCoding coding_kind = head.find(http::field::transfer_encoding) == head.end()
-                                         ? TransferCoding::Chunked
-                                         : classify_transfer_coding(coding);
+  const auto coding_field = head.find(http::field::transfer_encoding);
+  const beast::string_view coding = coding_field == head.end() ? beast::string_view{} : coding_field->value();
+  const TransferCoding coding_kind =
+      coding_field == head.end() ? TransferCoding::Chunked : classify_transfer_coding(coding);
   if (coding_kind == TransferCoding::NotChunkedLast)
     return refuse(error_response(head_only, http::status::bad_request,
                                  "Transfer-Encoding \"" + printable(coding) +
