@@ -26,7 +26,8 @@ class TriangleGrid {
     std::array<int, 3> a, b;
     for (int d = 0; d < 3; ++d) {
       const double from = (lo[d] - origin_[d]) / cell_, to = (hi[d] - origin_[d]) / cell_;
-      if (to < 0 || from >= dims_[d]) return;  // the box misses the mesh
+      // the box misses the mesh (or is not a box: a NaN coordinate, reached by the saved-state fuzzer)
+      if (!(to >= 0 && from < dims_[d])) return;
       a[d] = from < 0 ? 0 : static_cast<int>(from);
       b[d] = to >= dims_[d] ? dims_[d] - 1 : static_cast<int>(to);
     }

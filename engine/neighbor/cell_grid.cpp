@@ -27,7 +27,7 @@ CellGrid::CellGrid(const Vec3& lo, const Vec3& hi, double cell_size, std::size_t
 
 std::array<int, 3> CellGrid::cell_of(const Vec3& x) const {
   std::array<int, 3> c;
-  for (int d = 0; d < 3; ++d) c[d] = clamp_index(static_cast<int>(std::floor((x[d] - origin_[d]) / cell_)), d);
+  for (int d = 0; d < 3; ++d) c[d] = index_of(x[d], d);
   return c;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "core/vec.hpp"
@@ -25,8 +26,8 @@ class CellGrid {
   void for_each_near(const Vec3& x, double reach, Visit&& visit) const {
     std::array<int, 3> lo, hi;
     for (int d = 0; d < 3; ++d) {
-      lo[d] = clamp_index(static_cast<int>(std::floor((x[d] - reach - origin_[d]) / cell_)), d);
-      hi[d] = clamp_index(static_cast<int>(std::floor((x[d] + reach - origin_[d]) / cell_)), d);
+      lo[d] = index_of(x[d] - reach, d);
+      hi[d] = index_of(x[d] + reach, d);
     }
     for (int iz = lo[2]; iz <= hi[2]; ++iz)
       for (int iy = lo[1]; iy <= hi[1]; ++iy) {
@@ -37,7 +38,13 @@ class CellGrid {
   }
 
  private:
-  int clamp_index(int i, int d) const { return i < 0 ? 0 : (i >= dims_[d] ? dims_[d] - 1 : i); }
+  // The cell along axis d of a coordinate, clamped to the grid before it becomes an int: a
+  // coordinate past the int range, or NaN (0 then), was undefined behaviour (the saved-state fuzzer
+  // reached a NaN position through a build before the stability guard saw it).
+  int index_of(double coordinate, int d) const {
+    const double i = std::floor((coordinate - origin_[d]) / cell_);
+    return i >= 0 ? (i < dims_[d] ? static_cast<int>(i) : dims_[d] - 1) : 0;
+  }
 
   Vec3 origin_;
   double cell_ = 1;
