@@ -3,7 +3,8 @@
 // without resealing it, so the fuzzer's bytes are sealed here: what is tested is every check the
 // reader makes against the job before it follows an index or a count, then a few steps from the
 // state it accepted. The job: bonded spheres with rolling springs on a mesh floor under a loaded
-// plate, so that every section of the state has something in it. With DEM_FUZZ_WRITE_SEED=PATH set,
+// plate, in two stages (the bonds glued and the plate's load changed at the second, where the
+// state is written), so that every section of the state has something in it. With DEM_FUZZ_WRITE_SEED=PATH set,
 // writes a real state of that job (the seed of the corpus) and stops.
 #include <boost/crc.hpp>
 
@@ -41,7 +42,9 @@ const char* kJob = R"({
      "load": {"mass": 0.05, "cyclic": {"fMin": 1, "fMax": 10, "frequency": 20, "cycles": 2}}}],
   "gravity": {"z": -9.81},
   "numerics": {"threads": 1},
-  "time": {"steps": 400},
+  "stages": [{"name": "settle", "steps": 150},
+             {"name": "bond", "steps": 250, "bond": true, "gravity": {"z": -5},
+              "wallChanges": [{"wall": "press", "load": {"servo": {"target": 2, "gain": 1e-3, "maxSpeed": 0.01}}}]}],
   "outputs": {"everySteps": 400}
 })";
 

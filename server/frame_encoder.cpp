@@ -73,6 +73,11 @@ EncodedFrame FrameEncoder::encode(const Simulation& sim, bool with_force_chains)
     base.set_fragments(bytes_of(by_id));
   }
   add_walls(sim, base);
+  if (!sim.scene().stages.empty()) {
+    base.set_stage(sim.stage_name());
+    for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k)
+      if (!sim.wall_present(k)) base.add_absent_walls(static_cast<std::uint32_t>(k));
+  }
   const ClumpBodies& bodies = sim.state().bodies;
   if (!bodies.empty()) {
     std::vector<float> centres, turns;

@@ -28,6 +28,8 @@ inline constexpr Quantity kCoefficient{1e-12, 1e3, ""};  // friction, stiffness 
 inline constexpr Quantity kMass{1e-30, 1e15, "kg"};      // a nanometre grain of light foam to a mountain
 inline constexpr Quantity kInertia{1e-50, 1e30, "kg m^2"};
 inline constexpr Quantity kFrequency{1e-9, 1e9, "Hz"};
+inline constexpr Quantity kDuration{1e-12, 1e12, "s"};  // a stage's length
+inline constexpr Quantity kEnergy{0, 1e30, "J"};
 inline constexpr Quantity kGain{1e-15, 1e6, "m/(N s)"};  // a servo's speed per newton of force error
 
 }  // namespace dem::spec

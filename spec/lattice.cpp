@@ -55,6 +55,31 @@ std::vector<Vec3> lattice_sites(LatticeKind kind, const Vec3& lo, const Vec3& hi
   return out;
 }
 
+std::vector<Vec3> lattice_sites_counted(LatticeKind kind, const Vec3& lo, double radius, double spacing,
+                                        const std::array<int, 3>& n) {
+  const double s = spacing * 2 * radius;
+  const Vec3 start = lo + Vec3::Constant(radius);
+  std::vector<Vec3> out;
+  if (kind == LatticeKind::Cubic) {
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) out.push_back(start + s * Vec3(i, j, k));
+  } else if (kind == LatticeKind::Fcc) {
+    const double h = std::sqrt(2.0) * s / 2;
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = (j + k) % 2; i < 2 * n[0]; i += 2) out.push_back(start + h * Vec3(i, j, k));
+  } else {
+    const double row = s * std::sqrt(3.0) / 2, layer = s * std::sqrt(2.0 / 3.0);
+    for (int k = 0; k < n[2]; ++k) {
+      const Vec3 shift = (k % 2) ? Vec3(s / 2, s / (2 * std::sqrt(3.0)), 0) : Vec3::Zero();
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) out.push_back(start + shift + Vec3(s * (i + 0.5 * (j % 2)), row * j, layer * k));
+    }
+  }
+  return out;
+}
+
 double lattice_site_bound(LatticeKind kind, const Vec3& lo, const Vec3& hi, double radius, double spacing) {
   const double s = spacing * 2 * radius;
   const Vec3 room = (hi - lo).array() - 2 * radius;  // where centres may lie

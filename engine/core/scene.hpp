@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
@@ -119,6 +120,11 @@ struct WallInit {
   std::variant<PlaneShape, PlateShape, MeshShape> shape;
   std::optional<PrescribedMotion> motion;
   std::optional<LoadControl> load;
+  // A staged run's wall is there from the start of stage first_stage to the end of last_stage
+  // (Scene::stages); its motion's time counts from the start of first_stage.
+  int first_stage = 0;
+  int last_stage = std::numeric_limits<int>::max();
+  bool present_at(int stage) const { return stage >= first_stage && stage <= last_stage; }
 };
 
 struct Box {
@@ -127,9 +133,9 @@ struct Box {
   bool contains(const Vec3& x) const { return (x.array() >= min.array()).all() && (x.array() <= max.array()).all(); }
 };
 
-// Bonds glued at the start between neighbours whose gap is at most gap_tolerance times the smaller
-// radius (both centres inside `region` when given): parallel bonds (Potyondy & Cundall 2004), or
-// contact bonds (forces only). The PDEM-EGD manual's BOND_MODEL, RPBN/RPBS, BSTRENGTH and BRATIO.
+// Bonds glued at the start (or at a stage's start: Stage::glue_bonds) between neighbours whose gap is at most
+// gap_tolerance times the smaller radius (both centres inside `region` when given): parallel bonds (Potyondy & Cundall
+// 2004), or contact bonds (forces only). The PDEM-EGD manual's BOND_MODEL, RPBN/RPBS, BSTRENGTH and BRATIO.
 struct BondSettings {
   std::string model = "PARALLEL";    // a bond model of bonds/bond_models.hpp: PARALLEL or CONTACT
   double radius_multiplier = 1;      // lambda: Rb = lambda min(RA, RB)
@@ -181,6 +187,37 @@ struct TimeSettings {
   bool allow_unstable_dt = false;
 };
 
+// A wall's new motion or load from a stage's start (neither: it stops where it is).
+struct WallChange {
+  int wall = 0;                            // index in Scene::walls
+  std::optional<PrescribedMotion> motion;  // its time counts from the stage's start; it turns about the
+                                           // wall's centre where the stage finds it
+  std::optional<LoadControl> load;
+};
+
+// One stage of a staged run (the PDEM-EGD manual's fill, grow, bond, release; the BallastDEM
+// manual's settle, then load): how long it runs, what may end it early, and what changes at its
+// first step. Each stage keeps what the one before had, except what it changes.
+struct Stage {
+  std::string name;
+  double duration = 0;  // s, its longest length; or
+  std::int64_t steps = 0;
+  // Ends it early once min_duration has passed (< 0: a tenth of its length): the particles' kinetic
+  // energy below until_kinetic_energy (J; 0: no such end), or the particles' force on wall
+  // until_wall (-1: none) at least until_wall_force (N).
+  double until_kinetic_energy = 0;
+  int until_wall = -1;
+  double until_wall_force = 0;
+  double min_duration = -1;
+  std::optional<Vec3> gravity;
+  std::optional<double> local_damping;
+  std::optional<std::vector<Interaction>> interactions;  // the whole table from this stage on
+  std::vector<WallChange> wall_changes;
+  bool glue_bonds = false;   // Scene::bonds between the particles touching at its start (none at t = 0 then)
+  double growth_factor = 1;  // the radii grow by this over the stage, linearly in time (the PDEM-EGD manual's GROWTH)
+  bool ends_early() const { return until_kinetic_energy > 0 || until_wall >= 0; }
+};
+
 struct Scene {
   std::string name;
   std::vector<Material> materials;
@@ -203,6 +240,8 @@ struct Scene {
     std::int64_t steps = 0;
   };
   std::optional<Growth> growth;
+  // A staged run: the stages one after another (none: one run of `time`'s length).
+  std::vector<Stage> stages;
 
   const Interaction& interaction(int a, int b) const {
     return interactions[static_cast<size_t>(a) * materials.size() + b];

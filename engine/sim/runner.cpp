@@ -10,7 +10,6 @@ namespace dem {
 RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const RunOptions& options) {
   using Clock = std::chrono::steady_clock;
   RunOutcome outcome;
-  const std::int64_t total = sim.total_steps();
   const std::int64_t every = sim.scene().outputs.every_steps;
   const int check_every = std::max(1, sim.scene().numerics.check_interval);
   const StabilityGuard guard(sim);
@@ -27,15 +26,19 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
       frame();
       if (options.after_step) options.after_step(sim, true);
     }
-    while (sim.step_count() < total) {
+    // a stage that ends early makes the run shorter: the total is asked anew before every step
+    while (sim.step_count() < sim.total_steps()) {
       if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
         outcome.cancelled = true;
         outcome.ok = false;
         outcome.error = "cancelled";
         break;
       }
-      const std::int64_t next = sim.step_count() + 1;
-      const bool frame_due = (every > 0 && next % every == 0) || next == total;
+      sim.update_stage();
+      const std::int64_t next = sim.step_count() + 1, total = sim.total_steps();
+      // every stage's last step is a frame too: the packing filled, grown, settled
+      const bool frame_due = (every > 0 && next % every == 0) || next == total ||
+                             (!sim.scene().stages.empty() && next == sim.stage_end_step());
       sim.record_contacts(frame_due);
       sim.step();
       guard.check_finite(sim);

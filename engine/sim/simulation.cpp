@@ -65,7 +65,7 @@ double mean_diameter(const std::vector<double>& radius) {
 
 }  // namespace
 
-Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(scene)) {
+Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(scene)), select_(select) {
 #ifdef _OPENMP
   if (scene_.numerics.threads > 0) omp_set_num_threads(scene_.numerics.threads);
 #endif
@@ -113,6 +113,10 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
     }
   }
   boundary_loads_.assign(boundaries, BoundaryLoad{});
+  wall_present_.assign(boundaries, 1);
+  if (scene_.growth && scene_.growth->steps > 0)
+    growth_plan_ = GrowthPlan{1, scene_.growth->factor, 0, scene_.growth->steps};
+  if (!scene_.stages.empty()) apply_stage_settings(0, /*restore=*/false);
   boundary_of_plane_.assign(state_.walls.size(), 0);
   for (int k = 0; k < boundaries; ++k)
     if (plane_index_[k] >= 0) boundary_of_plane_[plane_index_[k]] = k;
@@ -120,11 +124,13 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   move_walls(0, 0);
   build_neighbors();
   refuse_coincident_particles();
+  // bonds are glued now, or at the start of the stage that glues them (then from the stage's contacts)
+  int bonding_stage = 0;
+  for (std::size_t k = 0; k < scene_.stages.size(); ++k)
+    if (scene_.stages[k].glue_bonds) bonding_stage = static_cast<int>(k);
   if (scene_.bonds) {
     state_.particles.q.assign(state_.particles.size(), Quat::Identity());  // the bonds measure turns from here
-    std::vector<int> stone;  // breakable stones glue only inside themselves
-    for (const ParticleInit& p : scene_.particles) stone.push_back(p.stone);
-    state_.bonds = BondSet(*scene_.bonds, state_.particles, state_.neighbors, stone);
+    if (bonding_stage == 0) glue_bonds();
   }
   // Forces at t = 0 for the first half kick: a zero step leaves history and velocities unchanged.
   // They come first so that the step knows the initial contacts (the speed their stored energy gives).
@@ -133,27 +139,56 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
   settle_walls(0, 0);
   // the step knows whether any bond was made (a bonds block that glued nothing does not shorten it)
-  time_step_ = choose_time_step(scene_, *kernel_, !state_.bonds.empty(), kernel_->summarize(state_).release_speed);
+  // (a stage that glues bonds later needs a step that resolves them from the start)
+  time_step_ = choose_time_step(scene_, *kernel_, !state_.bonds.empty() || bonding_stage > 0,
+                                kernel_->summarize(state_).release_speed);
   state_.dt = time_step_.dt;
   // A prescribed motion must not carry a wall through a particle between two force evaluations.
   const double wall_reach = 0.5 * scene_.numerics.max_overlap_fraction * smallest_given_radius_;
-  for (int k = 0; k < boundaries && !scene_.particles.empty(); ++k) {
-    if (!scene_.walls[k].motion) continue;
-    const double move = fastest_wall_speed(scene_, scene_.walls[k]) * state_.dt;
-    if (move <= wall_reach) continue;
+  auto check_motion = [&](const WallInit& wall, const std::string& where) {
+    if (!wall.motion || scene_.particles.empty()) return;
+    const double move = fastest_wall_speed(scene_, wall) * state_.dt;
+    if (move <= wall_reach) return;
     char buf[480];
     std::snprintf(
         buf, sizeof buf,
-        "walls[%d] (%s): its motion moves it up to %.3e m in one step of %.6e s, more than %.3g of the smallest "
+        "%s (%s): its motion moves it up to %.3e m in one step of %.6e s, more than %.3g of the smallest "
         "particle radius (%.3e m): it would pass through particles unseen; make it slower, or the step smaller "
         "(time.dt or time.dtFraction)",
-        k, scene_.walls[k].name.c_str(), move, state_.dt, 0.5 * scene_.numerics.max_overlap_fraction,
+        where.c_str(), wall.name.c_str(), move, state_.dt, 0.5 * scene_.numerics.max_overlap_fraction,
         smallest_given_radius_);
     throw SceneError(buf);
-  }
+  };
+  for (int k = 0; k < boundaries; ++k) check_motion(scene_.walls[k], "walls[" + std::to_string(k) + "]");
+  for (std::size_t s = 0; s < scene_.stages.size(); ++s)
+    for (std::size_t c = 0; c < scene_.stages[s].wall_changes.size(); ++c) {
+      WallInit changed = scene_.walls[scene_.stages[s].wall_changes[c].wall];
+      changed.motion = scene_.stages[s].wall_changes[c].motion;
+      check_motion(changed, "stages[" + std::to_string(s) + "].wallChanges[" + std::to_string(c) + "]");
+    }
   // Step counts are int64 and times step * dt: past 2^53 steps neither is exact any more.
   constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
-  if (scene_.time.steps > 0) {
+  if (!scene_.stages.empty()) {
+    double steps = 0;
+    for (std::size_t k = 0; k < scene_.stages.size(); ++k) {
+      const Stage& stage = scene_.stages[k];
+      const double n =
+          stage.steps > 0 ? static_cast<double>(stage.steps) : std::ceil(stage.duration / state_.dt - 1e-9);
+      steps += std::max(1.0, n);
+      if (!(steps <= kMaxSteps)) {
+        char buf[400];
+        std::snprintf(buf, sizeof buf,
+                      "stages[%zu]: the stages up to this one would take %.3g steps of %.6e s, more than a run can "
+                      "count (at most 2^53 = 9.0e15); shorten them, or make the contacts softer or the particles "
+                      "heavier",
+                      k, steps, state_.dt);
+        throw SceneError(buf);
+      }
+    }
+    stage_end_step_ = stage_steps(0);
+    plan_stage_growth(0);
+    recount_total_steps();
+  } else if (scene_.time.steps > 0) {
     if (scene_.time.steps > (std::int64_t{1} << 53))
       throw SceneError("time.steps: " + std::to_string(scene_.time.steps) +
                        " is more than a run can count (at most 2^53)");
@@ -171,6 +206,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
     }
     total_steps_ = static_cast<std::int64_t>(steps);
   }
+  if (scene_.stages.empty()) stage_end_step_ = total_steps_;
   if (scene_.outputs.every_steps == 0 && scene_.outputs.interval_seconds > 0) {
     // an interval longer than the run gives its first and last frames only
     const double every = scene_.outputs.interval_seconds / state_.dt;
@@ -207,14 +243,14 @@ Vec3 Simulation::angular_momentum() const {
 }
 
 bool Simulation::has_moving_walls() const {
-  for (const WallDriver& d : drivers_)
-    if (d.moves()) return true;
+  for (std::size_t k = 0; k < drivers_.size(); ++k)
+    if (wall_present_[k] && drivers_[k].moves()) return true;
   return false;
 }
 
 void Simulation::move_walls(double t_new, double dt) {
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!drivers_[k].moves()) continue;
+    if (!wall_present_[k] || !drivers_[k].moves()) continue;
     drivers_[k].begin_step(t_new, dt);
     if (plane_index_[k] >= 0)
       state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
@@ -267,7 +303,7 @@ void Simulation::settle_walls(double t_new, double dt) {
     }
   }
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!drivers_[k].load_controlled()) continue;
+    if (!wall_present_[k] || !drivers_[k].load_controlled()) continue;
     drivers_[k].end_step(t_new, dt, boundary_loads_[k].force, boundary_loads_[k].response);
     if (plane_index_[k] >= 0)
       state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
@@ -281,7 +317,7 @@ void Simulation::settle_walls(double t_new, double dt) {
 double Simulation::wall_shift_since_build() const {
   double shift = 0;
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!drivers_[k].moves()) continue;
+    if (!wall_present_[k] || !drivers_[k].moves()) continue;
     const WallPose& now = drivers_[k].pose();
     const WallPose& then = pose_at_build_[k];
     const Eigen::Matrix3d turn = then.rotation.transpose() * now.rotation;
@@ -297,7 +333,7 @@ void Simulation::check_wall_moves(const std::vector<WallPose>& before) {
   if (first_too_fast_) return;
   const double reach = 0.5 * scene_.numerics.max_overlap_fraction * smallest_given_radius_;
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!drivers_[k].moves()) continue;
+    if (!wall_present_[k] || !drivers_[k].moves()) continue;
     const WallPose& now = drivers_[k].pose();
     const Eigen::Matrix3d turn = before[k].rotation.transpose() * now.rotation;
     const double angle = std::acos(std::clamp((turn.trace() - 1) / 2, -1.0, 1.0));
@@ -366,7 +402,7 @@ void Simulation::add_work(double& account, double work) {
 void Simulation::add_wall_work(const std::vector<WallPose>& before, const std::vector<BoundaryLoad>& loads_before) {
   double work = 0;
   for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!drivers_[k].moves()) continue;
+    if (!wall_present_[k] || !drivers_[k].moves()) continue;
     const WallPose& now = drivers_[k].pose();
     const Vec3 shift = now.displacement - before[k].displacement;
     const Eigen::AngleAxisd turn(Eigen::Matrix3d(now.rotation * before[k].rotation.transpose()));
@@ -378,6 +414,7 @@ void Simulation::add_wall_work(const std::vector<WallPose>& before, const std::v
 }
 
 void Simulation::step() {
+  update_stage();
   const double t_new = static_cast<double>(step_ + 1) * state_.dt;
   const bool walls_move = has_moving_walls();
   std::vector<WallPose> poses_before;
@@ -435,11 +472,11 @@ void Simulation::step() {
   }
 }
 
-// The radii's scale (Scene::growth) after this step: the factor reached linearly over its steps.
+// The radii's scale (Scene::growth, or a stage's) after this step: reached linearly over its steps.
 double Simulation::grown_scale() const {
-  const Scene::Growth& g = *scene_.growth;
-  const double share = std::min(1.0, static_cast<double>(step_ + 1) / static_cast<double>(g.steps));
-  return 1 + (g.factor - 1) * share;
+  const GrowthPlan& g = *growth_plan_;
+  const double share = std::min(1.0, static_cast<double>(step_ + 1 - g.start) / static_cast<double>(g.steps));
+  return g.from + (g.to - g.from) * share;
 }
 
 std::vector<double> Simulation::grown_radii() const {
@@ -450,7 +487,10 @@ std::vector<double> Simulation::grown_radii() const {
   return radius;
 }
 
-bool Simulation::growing() const { return scene_.growth && scene_.growth->steps > 0 && step_ < scene_.growth->steps; }
+bool Simulation::growing() const {
+  return growth_plan_ && growth_plan_->steps > 0 && step_ >= growth_plan_->start &&
+         step_ < growth_plan_->start + growth_plan_->steps;
+}
 
 double Simulation::growth_energy_at_positions_now() const {
   if (!growing()) return 0;
@@ -458,7 +498,7 @@ double Simulation::growth_energy_at_positions_now() const {
 }
 
 double Simulation::grow(double contacts_work_at_start) {
-  if (!growing()) return scene_.growth ? largest_given_radius_ * (growth_scale_ - growth_at_build_) : 0;
+  if (!growing()) return largest_given_radius_ * (growth_scale_ - growth_at_build_);
   Particles& p = state_.particles;
   // The work of this step's growth: what the larger radii add to the energy stored in the contacts
   // (the elastic energy the ledger counts) at the positions of the step's start and of its end,
@@ -647,7 +687,7 @@ void Simulation::build_wall_contacts(const WallContacts& previous, const std::ve
   for (int i = 0; i < n; ++i) {
     const int old = new_to_old.empty() ? i : new_to_old[i];
     for (int w = 0; w < static_cast<int>(state_.walls.size()); ++w) {
-      if (state_.walls[w].distance(p.x[i]) >= p.radius[i] + skin_) continue;
+      if (!wall_present_[boundary_of_plane_[w]] || state_.walls[w].distance(p.x[i]) >= p.radius[i] + skin_) continue;
       Vec3 shear = Vec3::Zero(), roll = Vec3::Zero();
       std::uint8_t touching = 0;  // at the last force evaluation (the force loop's first and last steps)
       if (!previous.row_start.empty()) {
@@ -696,7 +736,7 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
   for (int i = 0; i < n; ++i) mc.constants[i] = wall_constants(p, i);
   const double r_max = n > 0 ? *std::max_element(p.radius.begin(), p.radius.end()) : 0.0;
   for (MeshWall& mesh : state_.meshes) {
-    if (!mesh.grid_stale) continue;
+    if (!mesh.grid_stale || !wall_present_[mesh.boundary]) continue;
     mesh.grid.build(mesh.vertices, mesh.triangles, 2 * r_max + skin_);
     mesh.grid_stale = false;
   }
@@ -713,6 +753,7 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
       const Vec3 lo = p.x[i] - Vec3::Constant(reach), hi = p.x[i] + Vec3::Constant(reach);
       for (int m = 0; m < static_cast<int>(state_.meshes.size()); ++m) {
         const MeshWall& mesh = state_.meshes[m];
+        if (!wall_present_[mesh.boundary]) continue;
         near.clear();
         mesh.grid.for_each_in_box(lo, hi, [&](int t) { near.push_back(t); });
         std::sort(near.begin(), near.end());
@@ -838,6 +879,152 @@ std::vector<PairContact> Simulation::pair_contacts() const {
       if (state_.pairs.touching[k])
         out.push_back({static_cast<int>(i), nl.partner[k], state_.pairs.fn[k], std::sqrt(state_.pairs.ft_squared[k])});
   return out;
+}
+
+// ---- stages (Scene::stages) ----
+
+const std::string& Simulation::stage_name() const {
+  static const std::string none;
+  return scene_.stages.empty() ? none : scene_.stages[stage_].name;
+}
+
+std::int64_t Simulation::stage_steps(int k) const {
+  const Stage& stage = scene_.stages[k];
+  if (stage.steps > 0) return stage.steps;
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(stage.duration / state_.dt - 1e-9)));
+}
+
+void Simulation::recount_total_steps() {
+  total_steps_ = stage_end_step_;
+  for (int k = stage_ + 1; k < static_cast<int>(scene_.stages.size()); ++k) total_steps_ += stage_steps(k);
+}
+
+void Simulation::update_stage() {
+  if (scene_.stages.empty()) return;
+  if (step_ >= stage_end_step_ && stage_ + 1 < static_cast<int>(scene_.stages.size())) enter_stage(stage_ + 1);
+  if (step_ + 1 < stage_end_step_ && stage_end_condition_holds()) {
+    stage_end_step_ = step_ + 1;
+    recount_total_steps();
+  }
+}
+
+bool Simulation::stage_end_condition_holds() const {
+  const Stage& stage = scene_.stages[stage_];
+  if (!stage.ends_early()) return false;
+  const std::int64_t wait =
+      stage.min_duration >= 0 ? std::llround(stage.min_duration / state_.dt) : stage_steps(stage_) / 10;
+  if (step_ - stage_start_step_ < wait) return false;
+  if (stage.until_kinetic_energy > 0 && kinetic_energy() < stage.until_kinetic_energy) return true;
+  return stage.until_wall >= 0 && boundary_loads_[stage.until_wall].force.norm() >= stage.until_wall_force;
+}
+
+void Simulation::plan_stage_growth(int k) {
+  growth_plan_.reset();
+  const Stage& stage = scene_.stages[k];
+  if (stage.growth_factor == 1) return;
+  double from = 1;  // the stages before grew to this (each runs its whole length: none ends early)
+  for (int j = 0; j < k; ++j) from *= scene_.stages[j].growth_factor;
+  growth_plan_ = GrowthPlan{from, from * stage.growth_factor, stage_start_step_, stage_end_step_ - stage_start_step_};
+}
+
+void Simulation::apply_stage_settings(int k, bool restore) {
+  Vec3 gravity = scene_.gravity;
+  double damping = scene_.numerics.local_damping;
+  const std::vector<Interaction>* table = nullptr;  // nullptr: the scene's own
+  for (int j = 0; j <= k; ++j) {
+    const Stage& stage = scene_.stages[j];
+    if (stage.gravity) gravity = *stage.gravity;
+    if (stage.local_damping) damping = *stage.local_damping;
+    if (stage.interactions) table = &*stage.interactions;
+  }
+  state_.gravity = gravity;
+  state_.local_damping = damping;
+  if (scene_.stages[k].interactions || (restore && table)) {
+    // the force loop holds its own table of the pairs' coefficients (contact/pair_table.hpp)
+    std::vector<Interaction> own = std::move(scene_.interactions);
+    scene_.interactions = *table;
+    kernel_ = select_(scene_, !scene_.walls.empty());
+    scene_.interactions = std::move(own);
+  }
+  const double now = time();
+  for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
+    const bool there = scene_.walls[w].present_at(k);
+    if (there && !wall_present_[w] && !restore) drivers_[w].start_clock(now);  // a wall come now
+    wall_present_[w] = there;
+  }
+  for (WallDriver& d : drivers_) d.set_gravity(gravity);
+  if (!restore) {
+    for (const WallChange& c : scene_.stages[k].wall_changes) drivers_[c.wall].change(c.motion, c.load, now, gravity);
+    return;
+  }
+  // every wall's motion and load as stage k has them, for StateIO to compare with the saved ones
+  for (std::size_t w = 0; w < scene_.walls.size(); ++w)
+    for (int j = k; j >= 0; --j) {
+      const auto& changes = scene_.stages[j].wall_changes;
+      const auto c = std::find_if(changes.begin(), changes.end(),
+                                  [&](const WallChange& change) { return change.wall == static_cast<int>(w); });
+      if (c == changes.end()) continue;
+      drivers_[w].change(c->motion, c->load, 0, gravity);
+      break;
+    }
+}
+
+void Simulation::restore_stage(int k, std::int64_t start, std::int64_t end) {
+  stage_ = k;
+  stage_start_step_ = start;
+  stage_end_step_ = end;
+  apply_stage_settings(k, /*restore=*/true);
+  plan_stage_growth(k);
+  recount_total_steps();
+}
+
+void Simulation::glue_bonds() {
+  std::vector<int> stone;  // breakable stones glue only inside themselves
+  for (const ParticleInit& p : scene_.particles) stone.push_back(p.stone);
+  state_.bonds = BondSet(*scene_.bonds, state_.particles, state_.neighbors, stone);
+}
+
+// A mesh gone at a stage's start leaves no contact behind: its slots are emptied, the others kept
+// in order (the first slots in use, as MeshContacts wants them).
+void Simulation::drop_slots_of_absent_meshes() {
+  MeshContacts& mc = state_.mesh_contacts;
+  constexpr int kSlots = MeshContacts::kSlots;
+  for (std::size_t i = 0; i < mc.used.size(); ++i) {
+    if (!mc.used[i]) continue;
+    int kept = 0;
+    for (int k = 0; k < kSlots; ++k) {
+      const MeshSlot slot = mc.slots[i * kSlots + k];
+      if (slot.mesh >= 0 && wall_present_[state_.meshes[slot.mesh].boundary]) mc.slots[i * kSlots + kept++] = slot;
+    }
+    for (int k = kept; k < kSlots; ++k) mc.slots[i * kSlots + k] = MeshSlot{};
+    mc.used[i] = kept > 0;
+  }
+}
+
+void Simulation::enter_stage(int k) {
+  const double before = mechanical_energy();
+  stage_ = k;
+  stage_start_step_ = step_;
+  stage_end_step_ = step_ + stage_steps(k);
+  apply_stage_settings(k, /*restore=*/false);
+  plan_stage_growth(k);
+  drop_slots_of_absent_meshes();
+  build_neighbors();  // without the walls gone, with the walls come
+  if (scene_.stages[k].glue_bonds && scene_.bonds) glue_bonds();
+  // Forces anew, as at t = 0 (a zero step leaves history and velocities unchanged): a wall gone
+  // pushes no more, a new gravity pulls from the stage's first half kick.
+  // The last step's kicks are spent: the force loop's prediction of the velocities at the step's
+  // end must not add them again (and a saved state does not hold the spin's).
+  std::fill(state_.half_kick.begin(), state_.half_kick.end(), Vec3::Zero());
+  std::fill(state_.spin_kick.begin(), state_.spin_kick.end(), Vec3::Zero());
+  const double dt = state_.dt;
+  state_.dt = 0;
+  kernel_->compute_and_kick(state_);
+  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
+  settle_walls(time(), 0);
+  state_.dt = dt;
+  add_work(ledger_.stages, mechanical_energy() - before);
+  recount_total_steps();
 }
 
 }  // namespace dem

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -60,14 +61,15 @@ struct TooFast {
 };
 
 // The work done on the particles since the start by what feeds energy in, J: moving and loaded
-// walls, constant external forces, and radius growth (larger overlaps, and masses and weights that
-// grow at their speeds and heights). The mechanical energy minus this work, against its start, is
-// what damping, friction and integration took out (or put in).
+// walls, constant external forces, radius growth, and the changes at a stage's start (larger overlaps, and masses and
+// weights that grow at their speeds and heights). The mechanical energy minus this work, against its start, is what
+// damping, friction and integration took out (or put in).
 struct EnergyLedger {
   double walls = 0;
   double external = 0;
   double growth = 0;
-  double total() const { return walls + external + growth; }
+  double stages = 0;  // what a stage's changes (gravity, friction, walls gone) did to the mechanical energy
+  double total() const { return walls + external + growth + stages; }
   double magnitude = 0;       // sum of the sizes of every step's contributions (for the guard's slack)
   double initial_energy = 0;  // the mechanical energy at t = 0 (kinetic, elastic, gravitational)
 };
@@ -96,6 +98,19 @@ class Simulation {
   // on by default; a runner turns it on just before the steps whose frames it writes.
   void record_contacts(bool on) { state_.record_contacts = on; }
   bool contacts_recorded() const { return contacts_recorded_; }
+
+  // A staged run (Scene::stages; a run without stages is one stage, 0): the stage the last step
+  // belonged to, where it started and where it ends (moved earlier when its end condition holds).
+  int stage() const { return stage_; }
+  std::int64_t stage_start_step() const { return stage_start_step_; }
+  std::int64_t stage_end_step() const { return stage_end_step_; }
+  const std::string& stage_name() const;  // "" without stages
+  // Enters the next stage when this one is over, and makes the coming step this stage's last when
+  // its end condition holds now. step() calls it first; a runner calls it before it decides
+  // whether the coming step is a frame (the last step of a run is one).
+  void update_stage();
+  // Whether scene wall k is there in this stage (a stage may add or remove walls).
+  bool wall_present(int k) const { return wall_present_[k] != 0; }
 
   double kinetic_energy() const;        // translational + rotational, J
   double rotational_energy() const;     // the rotational part, J
@@ -162,8 +177,22 @@ class Simulation {
   // The contacts' reduced masses, radii and rolling inertias from the particles' radii and masses
   // now (they are computed at each build; growth changes them in between).
   void refresh_contact_constants();
+  // Stages (Scene::stages).
+  std::int64_t stage_steps(int k) const;  // its longest length in steps
+  void enter_stage(int k);                // at its first step: its changes, glued bonds, forces anew
+  // The settings stage k runs with (gravity, damping, friction, walls there, growth), from the
+  // scene's and the changes of stages 0..k; with `restore`, also every wall's motion and load as
+  // stage k has them (a saved state is read into a simulation made at step 0).
+  void apply_stage_settings(int k, bool restore);
+  bool stage_end_condition_holds() const;
+  void recount_total_steps();
+  void plan_stage_growth(int k);
+  void restore_stage(int k, std::int64_t start, std::int64_t end);  // StateIO: a saved state's stage
+  void glue_bonds();
+  void drop_slots_of_absent_meshes();
 
   Scene scene_;
+  KernelSelector select_;
   SimState state_;
   TimeStepReport time_step_;
   std::unique_ptr<ForceKernel> kernel_;
@@ -184,6 +213,17 @@ class Simulation {
   double smallest_given_radius_ = 0;  // of the scene's particles
   double growth_scale_ = 1;           // radii now over their given sizes (Scene::growth)
   double growth_at_build_ = 1;        // the same at the last build
+  // The growth under way (Scene::growth, or a stage's): the scale goes from `from` to `to` over
+  // `steps` steps from `start`.
+  struct GrowthPlan {
+    double from = 1, to = 1;
+    std::int64_t start = 0, steps = 0;
+  };
+  std::optional<GrowthPlan> growth_plan_;
+  int stage_ = 0;
+  std::int64_t stage_start_step_ = 0;
+  std::int64_t stage_end_step_ = 0;
+  std::vector<std::uint8_t> wall_present_;  // per scene wall, in this stage
   std::optional<NonFinite> first_non_finite_;
   std::optional<TooFast> first_too_fast_;
   bool moved_too_far_ = false;  // set by the last drift

@@ -140,6 +140,16 @@ void StabilityGuard::check(const Simulation& sim) const {
                     growth->factor, static_cast<long long>(growth->steps), static_cast<long long>(sim.step_count()));
       throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner + why);
     }
+    if (!sim.scene().stages.empty() && sim.scene().stages[sim.stage()].growth_factor > 1) {  // a stage grows them
+      const Stage& stage = sim.scene().stages[sim.stage()];
+      char why[320];
+      std::snprintf(why, sizeof why,
+                    "; likely cause: the radii grow too fast for the contacts to push the particles apart "
+                    "(stage \"%s\" grows them by %.6g over %lld steps; make it longer)",
+                    stage.name.c_str(), stage.growth_factor,
+                    static_cast<long long>(sim.stage_end_step() - sim.stage_start_step()));
+      throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner + why);
+    }
     throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner +
                            "; likely cause: the contact stiffness is too low for the load, or the time step "
                            "too large (" +

@@ -16,9 +16,10 @@
 namespace dem {
 namespace {
 
-// 9: the walls' contact response (a servo's gain cap); 5: a CRC-32 of everything before it as the
-// last four bytes; 4: orientations, bonds' bonded states
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', 'T', '9'};
+// 10: the stage (Scene::stages) and the walls' motion clocks; 9: the walls' contact response (a
+// servo's gain cap); 5: a CRC-32 of everything before it as the last four bytes; 4: orientations,
+// bonds' bonded states
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', '1', '0'};
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
@@ -141,6 +142,9 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   w.put(sim.last_build_step_);
   w.put(sim.contacts_recorded_);
   w.put(s.time);
+  w.put(sim.stage_);
+  w.put(sim.stage_start_step_);
+  w.put(sim.stage_end_step_);
   const Particles& p = s.particles;
   w.put(p.x);
   w.put(p.v);
@@ -261,8 +265,6 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   if (particles != n) mismatch("particles", static_cast<double>(particles), static_cast<double>(n));
   if (walls != sim.drivers_.size())
     mismatch("walls", static_cast<double>(walls), static_cast<double>(sim.drivers_.size()));
-  if (bonds != s.bonds.bonds().size())
-    mismatch("bonds", static_cast<double>(bonds), static_cast<double>(s.bonds.bonds().size()));
   if (dt != s.dt) mismatch("time step", dt, s.dt);
   r.get(sim.step_, "the step count");
   r.get(sim.builds_, "the step count");
@@ -274,6 +276,37 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     inconsistent("the last neighbour build, step " + std::to_string(sim.last_build_step_) + ", is not before step " +
                  std::to_string(sim.step_));
   if (!std::isfinite(s.time)) inconsistent("the time is not finite");
+  int stage = 0;
+  std::int64_t stage_start = 0, stage_end = 0;
+  r.get(stage, "the stage");
+  r.get(stage_start, "the stage");
+  r.get(stage_end, "the stage");
+  const int stages = std::max<int>(1, static_cast<int>(sim.scene_.stages.size()));
+  // (a run without stages may be stepped past its end by a caller of step(): its one stage's end is its length)
+  if (stage < 0 || stage >= stages || stage_start < 0 || stage_start > sim.step_ ||
+      (!sim.scene_.stages.empty() && stage_end < sim.step_))
+    inconsistent("its stage " + std::to_string(stage) + " (steps " + std::to_string(stage_start) + " to " +
+                 std::to_string(stage_end) + ") does not hold step " + std::to_string(sim.step_) + " of a run of " +
+                 std::to_string(stages) + " stages");
+  if (!sim.scene_.stages.empty()) {
+    // A stage its end condition ended is saved ending at the step it reached; any other ends where
+    // this spec says (a continued run may lengthen it).
+    const std::int64_t full_end = stage_start + sim.stage_steps(stage);
+    const std::int64_t end = stage_end == sim.step_ && stage_end < full_end ? stage_end : full_end;
+    if (end < sim.step_)
+      throw std::runtime_error("the saved state is at step " + std::to_string(sim.step_) + ", past the end of stage " +
+                               std::to_string(stage + 1) + " (\"" + sim.scene_.stages[stage].name + "\") at step " +
+                               std::to_string(end) + " in this spec");
+    sim.restore_stage(stage, stage_start, end);
+  } else if (stage != 0 || stage_start != 0) {
+    inconsistent("it is in stage " + std::to_string(stage + 1) + " of a run without stages");
+  }
+  // bonds glued at a stage's start are in the state from that stage on, and only then
+  bool glued_since_start = false;
+  for (int k = 1; k <= stage && k < static_cast<int>(sim.scene_.stages.size()); ++k)
+    glued_since_start = glued_since_start || sim.scene_.stages[k].glue_bonds;
+  if (!glued_since_start && bonds != s.bonds.bonds().size())
+    mismatch("bonds", static_cast<double>(bonds), static_cast<double>(s.bonds.bonds().size()));
 
   Particles& p = s.particles;
   r.get(p.x, "the particles");
@@ -459,7 +492,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
 
   std::vector<Bond> saved_bonds;
   r.get(saved_bonds, "the bonds");
-  expect_size(saved_bonds, s.bonds.bonds().size(), "the bonds");
+  expect_size(saved_bonds, static_cast<std::size_t>(bonds), "the bonds");
   for (std::size_t k = 0; k < saved_bonds.size(); ++k) {
     const Bond& bond = saved_bonds[k];
     std::uint8_t state = 0, moments = 0;

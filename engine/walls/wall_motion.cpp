@@ -25,19 +25,21 @@ WallDriver::WallDriver(const WallInit& init, const Vec3& centroid, const Vec3& g
 
 void WallDriver::begin_step(double t_new, double dt) {
   if (motion_) {
-    // exact integral of v(t) = v0 + A sin(w t + phi)
+    // exact integral of v(t) = v0 + A sin(w t + phi), t counted from the motion's start
     const PrescribedMotion& m = *motion_;
+    const double t = t_new - motion_start_;
     const double w = 2 * std::numbers::pi * m.frequency;
-    Vec3 shift = m.velocity * t_new;
+    Vec3 shift = m.velocity * t;
     Vec3 velocity = m.velocity;
     if (w > 0) {
-      shift += m.amplitude * ((std::cos(m.phase) - std::cos(w * t_new + m.phase)) / w);
-      velocity += m.amplitude * std::sin(w * t_new + m.phase);
+      shift += m.amplitude * ((std::cos(m.phase) - std::cos(w * t + m.phase)) / w);
+      velocity += m.amplitude * std::sin(w * t + m.phase);
     }
-    pose_.displacement = shift;
+    pose_.displacement = origin_displacement_ + shift;
     pose_.velocity = velocity;
     const double spin = m.angular_velocity.norm();
-    if (spin > 0) pose_.rotation = Eigen::AngleAxisd(spin * t_new, m.angular_velocity / spin).toRotationMatrix();
+    if (spin > 0)
+      pose_.rotation = Eigen::AngleAxisd(spin * t, m.angular_velocity / spin).toRotationMatrix() * origin_rotation_;
     pose_.angular_velocity = m.angular_velocity;
   } else if (load_) {
     const Vec3& d = load_->direction;
@@ -134,6 +136,9 @@ WallDriver::Record WallDriver::record() const {
   r.accel = accel_;
   r.applied_force = applied_force_;
   r.load_start = load_start_;
+  r.motion_start = motion_start_;
+  r.origin_displacement = origin_displacement_;
+  r.origin_rotation = origin_rotation_;
   return r;
 }
 
@@ -157,6 +162,9 @@ WallDriver WallDriver::from_record(const Record& r) {
   d.accel_ = r.accel;
   d.applied_force_ = r.applied_force;
   d.load_start_ = r.load_start;
+  d.motion_start_ = r.motion_start;
+  d.origin_displacement_ = r.origin_displacement;
+  d.origin_rotation_ = r.origin_rotation;
   return d;
 }
 
@@ -185,5 +193,37 @@ bool WallDriver::continue_from(const WallDriver& saved, double now) {
   load_start_ = now;
   return true;
 }
+
+bool WallDriver::change(const std::optional<PrescribedMotion>& motion, const std::optional<LoadControl>& load,
+                        double now, const Vec3& gravity) {
+  const std::optional<LoadControl> old_load = load_;
+  const Vec3 velocity = pose_.velocity;
+  motion_ = motion;
+  load_ = load;
+  if (load_) load_->direction.normalize();
+  set_gravity(gravity);
+  pose_.velocity = Vec3::Zero();
+  pose_.angular_velocity = Vec3::Zero();
+  if (motion_) {
+    start_clock(now);
+    return false;
+  }
+  if (!load_) return false;
+  const bool same_direction = old_load && old_load->direction == load_->direction;
+  speed_ = velocity.dot(load_->direction);
+  accel_ = same_direction ? accel_ : 0.0;
+  applied_force_ = same_direction ? applied_force_ : 0.0;
+  pose_.velocity = speed_ * load_->direction;
+  load_start_ = now;
+  return true;
+}
+
+void WallDriver::start_clock(double now) {
+  motion_start_ = now;
+  origin_displacement_ = pose_.displacement;
+  origin_rotation_ = pose_.rotation;
+}
+
+void WallDriver::set_gravity(const Vec3& gravity) { gravity_along_ = load_ ? gravity.dot(load_->direction) : 0.0; }
 
 }  // namespace dem

@@ -77,6 +77,18 @@ class WallDriver {
   // end_step(now, 0, reaction), as a fresh run does at t = 0.
   bool continue_from(const WallDriver& saved, double now);
 
+  // A stage's start (Scene::stages): from `now` the wall follows `motion` or `load` (neither: it
+  // stops where it is). A motion's time counts from now, and it turns about the wall's centre
+  // where it is; a load keeps the wall's speed along its direction, and its cyclic clock starts
+  // now. Returns true when a load starts now (the caller gives it the particles' reaction with
+  // end_step(now, 0, ...), as continue_from's caller does).
+  bool change(const std::optional<PrescribedMotion>& motion, const std::optional<LoadControl>& load, double now,
+              const Vec3& gravity);
+  // A wall that appears at a stage's start: its motion's time counts from `now`.
+  void start_clock(double now);
+  // A stage changes gravity: a loaded wall's weight follows.
+  void set_gravity(const Vec3& gravity);
+
   // What a saved state holds of a driver: numbers, and flags as whole bytes. A state read from a
   // file may hold any bytes, and an optional's flag (a bool) copied from one that is neither 0 nor 1
   // is undefined behaviour (the saved-state fuzzer found it), so the flags are bytes and checked.
@@ -86,6 +98,9 @@ class WallDriver {
     LoadControl load;
     WallPose pose;
     double gravity_along = 0, speed = 0, accel = 0, applied_force = 0, load_start = 0;
+    double motion_start = 0;
+    Vec3 origin_displacement = Vec3::Zero();
+    Eigen::Matrix3d origin_rotation = Eigen::Matrix3d::Identity();
   };
   Record record() const;
   // Throws std::runtime_error for a flag other than 0 or 1.
@@ -100,6 +115,11 @@ class WallDriver {
   double accel_ = 0;
   double applied_force_ = 0;
   double load_start_ = 0;  // the time the load began (its cyclic clock's zero)
+  // The prescribed motion's clock starts at motion_start_ with the wall at the origin pose (the
+  // start of the run, or of the stage that gave the motion).
+  double motion_start_ = 0;
+  Vec3 origin_displacement_ = Vec3::Zero();
+  Eigen::Matrix3d origin_rotation_ = Eigen::Matrix3d::Identity();
 };
 
 }  // namespace dem

@@ -230,5 +230,33 @@ TEST(Lattice, SiteBoundIsTheCountOrAboveIt) {
   EXPECT_GT(huge, 1e100);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Counted lattices (the PDEM-EGD manual's NICEX, NICEY, NICEZ)
+
+TEST(Lattice, ACountedLatticeHoldsTheProductOfItsCountsAtItsSpacing) {
+  const std::array<int, 3> counts{11, 13, 42};  // the manual's sample
+  for (LatticeKind kind : {LatticeKind::Cubic, LatticeKind::Fcc, LatticeKind::Hex}) {
+    const std::vector<Vec3> sites = lattice_sites_counted(kind, Vec3(1, 2, 3), 0.0075, 1.02, counts);
+    ASSERT_EQ(sites.size(), 11u * 13u * 42u) << static_cast<int>(kind);
+    const Vec3 lo = Vec3(1, 2, 3);
+    for (const Vec3& c : sites) ASSERT_TRUE((c.array() >= (lo.array() + 0.0075 - 1e-12)).all());
+  }
+  // the nearest neighbours at spacing x diameter, twelve of them in the close packings
+  for (LatticeKind kind : {LatticeKind::Fcc, LatticeKind::Hex}) {
+    const std::vector<Vec3> sites = lattice_sites_counted(kind, Vec3::Zero(), 0.5, 1.0, {4, 4, 4});
+    const NeighbourStats n = brute_force_neighbours(sites, 1.0);
+    EXPECT_NEAR(n.nearest, 1.0, 1e-12);
+    EXPECT_EQ(n.max_at_nearest, 12);
+  }
+}
+
+TEST(Lattice, ACountedLatticeIsTheFilledBoxOfItsSize) {
+  // counted from lo, the same sites as the box that holds exactly that many
+  const double r = 0.5, s = 1.0;
+  const std::vector<Vec3> counted = lattice_sites_counted(LatticeKind::Cubic, Vec3::Zero(), r, s, {3, 4, 5});
+  const auto [lo, hi] = tight_box(Vec3::Zero(), Vec3(2, 3, 4), r);
+  EXPECT_EQ(counted, lattice_sites(LatticeKind::Cubic, lo, hi, r, s));
+}
+
 }  // namespace
 }  // namespace dem::spec

@@ -4,7 +4,10 @@
 
 #include <cmath>
 #include <numeric>
+#include <string>
+#include <utility>
 
+#include "spec/lattice.hpp"
 #include "spec/packing.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -214,6 +217,103 @@ TEST(PackingSpec, FillsAClosedMesh) {
     volume += 4.0 / 3.0 * M_PI * r * r * r;
   }
   EXPECT_NEAR(volume / (0.3 * 0.3 * 0.3 / 6), 0.2, 0.005);
+}
+
+// A closed mesh (the tetrahedron above) filled with a lattice: every site whose sphere lies wholly
+// inside, and no other (counted against the box's lattice and the four face planes).
+std::string lattice_in_tetrahedron(const std::string& kind, const std::string& extra) {
+  return R"({
+  "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}],
+  "lattices": [{"kind": ")" +
+         kind + R"(", "material": "rock", )" + extra + R"(
+                "inside": {"vertices": [{}, {"x": 0.3}, {"y": 0.3}, {"z": 0.3}],
+                           "triangles": [{"i": 1, "j": 3, "k": 2}, {"i": 1, "j": 2, "k": 4}, {"i": 1, "j": 4, "k": 3}, {"i": 2, "j": 3, "k": 4}]}}],
+  "time": {"steps": 1}
+})";
+}
+
+bool in_tetrahedron(const Vec3& x, double r) {
+  return x.x() >= r && x.y() >= r && x.z() >= r && (x.sum() - 0.3) / std::sqrt(3.0) <= -r;
+}
+
+TEST(LatticeSpec, HexAndFccFillAClosedMeshWithEverySiteThatFits) {
+  for (const auto& [name, kind] : {std::pair{"HEX", LatticeKind::Hex}, std::pair{"FCC", LatticeKind::Fcc}}) {
+    const Scene s = to_scene(parse_json(lattice_in_tetrahedron(name, R"("radius": 0.01,)")));
+    std::size_t expected = 0;
+    for (const Vec3& x : lattice_sites(kind, Vec3::Zero(), Vec3::Constant(0.3), 0.01, 1.0))
+      expected += in_tetrahedron(x, 0.01 * (1 - 1e-9));  // touching a face is inside
+    EXPECT_EQ(s.particles.size(), expected) << name;
+    EXPECT_GT(expected, 300u) << name;
+    for (const ParticleInit& p : s.particles) ASSERT_TRUE(in_tetrahedron(p.position, 0.01 * (1 - 1e-9))) << name;
+  }
+}
+
+TEST(LatticeSpec, SizesAreDrawnIntoSitesSpacedForTheLargest) {
+  // the manual's IPATTERN 2 (uniform) with Dmax/D 1.05 and Dmin/D 0.95, D = 15 mm
+  const Scene s = to_scene(parse_json(
+      lattice_in_tetrahedron("HEX", R"("sizes": {"kind": "UNIFORM", "dMin": 0.01425, "dMax": 0.01575}, "seed": 7,)")));
+  ASSERT_GT(s.particles.size(), 100u);
+  double sum = 0;
+  for (const ParticleInit& p : s.particles) {
+    ASSERT_GE(p.radius, 0.01425 / 2);
+    ASSERT_LE(p.radius, 0.01575 / 2);
+    ASSERT_TRUE(in_tetrahedron(p.position, p.radius));
+    sum += 2 * p.radius;
+  }
+  EXPECT_NEAR(sum / static_cast<double>(s.particles.size()), 0.015, 0.0003);
+  // no two overlap: the sites are a largest diameter apart
+  for (std::size_t a = 0; a < s.particles.size(); ++a)
+    for (std::size_t b = a + 1; b < s.particles.size(); ++b)
+      ASSERT_GE((s.particles[a].position - s.particles[b].position).norm(),
+                s.particles[a].radius + s.particles[b].radius);
+}
+
+TEST(LatticeSpec, CountsGiveThatManySitesFromMin) {
+  const char* spec = R"({
+  "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}],
+  "lattices": [{"kind": "HEX", "material": "rock", "radius": 0.0075, "min": {"x": 1},
+                "countX": 11, "countY": 13, "countZ": 42}],
+  "time": {"steps": 1}
+})";
+  const Scene s = to_scene(parse_json(spec));
+  EXPECT_EQ(s.particles.size(), 11u * 13u * 42u);
+  EXPECT_EQ(s.particles[0].position, Vec3(1.0075, 0.0075, 0.0075));
+}
+
+TEST(LatticeSpec, BadLatticesAreNamed) {
+  const std::string base = R"({
+  "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}],
+  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}],
+  "lattices": [{"kind": "HEX", "material": "rock", LATTICE}],
+  "time": {"steps": 1}
+})";
+  auto with = [&](const std::string& lattice) {
+    std::string json = base;
+    return json.replace(json.find("LATTICE"), 7, lattice);
+  };
+  const std::pair<std::string, std::string> cases[] = {
+      {R"("radius": 0.01, "countX": 3, "countY": 3)",
+       "lattices[0].countZ: must be in [1, 1000000] when a count is given (got 0): give all three, or none"},
+      {R"("radius": 0.01, "countX": 3, "countY": 3, "countZ": 3, "max": {"x": 1, "y": 1, "z": 1})",
+       "lattices[0].max: the counts give the lattice's size: leave max out"},
+      {R"("radius": 0.01, "sizes": {"mean": 0.02}, "max": {"x": 1, "y": 1, "z": 1})",
+       "lattices[0].radius: give radius or sizes, not both"},
+      {R"("sizes": {"kind": "UNIFORM", "dMin": 0.02, "dMax": 0.01}, "max": {"x": 1, "y": 1, "z": 1})",
+       "lattices[0].sizes.dMax: must be >= dMin"},
+      {R"("radius": 0.01, "inside": {"vertices": [{}, {"x": 0.001}, {"y": 0.001}, {"z": 0.001}], "triangles": [{"i": 1, "j": 3, "k": 2}, {"i": 1, "j": 2, "k": 4}, {"i": 1, "j": 4, "k": 3}, {"i": 2, "j": 3, "k": 4}]})",
+       "lattices[0]: the mesh is too small to hold one particle of radius 0.01"},
+  };
+  for (const auto& [lattice, expected] : cases) {
+    std::string problems;
+    try {
+      to_scene(parse_json(with(lattice)));
+    } catch (const SpecError& e) {
+      problems = e.what();
+    }
+    EXPECT_NE(problems.find(expected), std::string::npos) << lattice << "\ngave: " << problems;
+  }
 }
 
 }  // namespace
