@@ -16,7 +16,7 @@ namespace {
 
 Progress progress_of(const nlohmann::json& job) {
   return Progress{job.value("step", std::int64_t{0}), job.value("totalSteps", std::int64_t{0}),
-                  job.value("stepsPerSecond", 0.0), job.value("secondsLeft", 0.0)};
+                  job.value("stepsPerSecond", 0.0), job.value("secondsLeft", 0.0), job.value("stage", std::string())};
 }
 
 bool has_ended(const std::string& state) { return state != "queued" && state != "running"; }
@@ -83,7 +83,7 @@ int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, bo
   if (show && shown >= 0 && shown < last.total) {
     // the printer closes its line (and logs its last line) only at the last step
     if (job.value("state", "") == "succeeded")
-      show(Progress{last.total, last.total, rate, 0});
+      show(Progress{last.total, last.total, rate, 0, last.stage});
     else if (terminal)
       std::fputc('\n', stderr);
   }

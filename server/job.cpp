@@ -59,6 +59,7 @@ nlohmann::json to_json(const JobRecord& job) {  // dumped with invalid UTF-8 rep
   if (job.state == JobState::Running) {
     j["stepsPerSecond"] = job.steps_per_second;
     j["secondsLeft"] = job.seconds_left;
+    if (!job.stage.empty()) j["stage"] = job.stage;
   }
   if (!job.error.empty()) j["error"] = job.error;
   if (!job.idempotency_key.empty()) j["idempotencyKey"] = job.idempotency_key;

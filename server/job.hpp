@@ -30,6 +30,7 @@ struct JobRecord {
   double time_step = 0;               // s
   double steps_per_second = 0;        // while running
   double seconds_left = 0;            // while running
+  std::string stage;                  // while running: a staged run's stage (not kept in the job table)
   std::int64_t checkpoint_step = -1;  // step of the last checkpoint; -1: none
   double run_seconds = 0;             // wall time of its stepping (summed over resumed runs)
   double stream_seconds = 0;          // of which the engine spent making live frames

@@ -48,8 +48,10 @@ fs::path unaccounted_place(const fs::path& data, const std::string& name) {
 void JobManager::refuse_outputs_past_limit(const Simulation& sim) const {
   const Scene& scene = sim.scene();
   if (!scene.outputs.animation || scene.outputs.every_steps <= 0) return;
+  // and a staged run's frame at the end of each stage
   const double frames =
-      std::floor(static_cast<double>(sim.total_steps()) / static_cast<double>(scene.outputs.every_steps)) + 1;
+      std::floor(static_cast<double>(sim.total_steps()) / static_cast<double>(scene.outputs.every_steps)) + 1 +
+      static_cast<double>(scene.stages.size());
   const double bytes = frames * static_cast<double>(sim.particles().size()) * 100.0;
   if (bytes <= options_.max_output_bytes) return;
   char buf[400];
@@ -465,6 +467,8 @@ void JobManager::run_one(const JobRecord& job) {
   hooks.on_progress = [&](const Progress& p) {
     update([&](JobRecord& j) {
       j.step = p.step;
+      j.total_steps = p.total;  // a stage that ended early shortened the run
+      j.stage = p.stage;
       j.steps_per_second = p.steps_per_second;
       j.seconds_left = p.seconds_left;
       const auto now = std::chrono::steady_clock::now();

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "output/energy_output.hpp"
+#include "output/stage_log_output.hpp"
 #include "output/legacy_output.hpp"
 #include "output/statistics_output.hpp"
 #include "output/wall_statistics_output.hpp"
@@ -26,6 +27,8 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
   if (WallStatisticsWriter::wanted(sim))
     writers.push_back(std::make_unique<WallStatisticsWriter>(dir.string(), append));
   writers.push_back(std::make_unique<EnergyWriter>((dir / "Energy.dat").string(), append));
+  if (StageLogWriter::wanted(sim))
+    writers.push_back(std::make_unique<StageLogWriter>((dir / "Stages.dat").string(), append));
   return writers;
 }
 

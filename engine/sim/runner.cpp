@@ -22,7 +22,11 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
   std::int64_t steps_at_report = sim.step_count();
   try {
     guard.check(sim);
+    const bool staged = !sim.scene().stages.empty();
+    int stage = sim.stage();
     if (sim.step_count() == 0) {  // a continued run's first frame is its saved state's last
+      if (staged)
+        for (Observer* o : observers) o->stage_begun(sim);
       frame();
       if (options.after_step) options.after_step(sim, true);
     }
@@ -35,10 +39,14 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
         break;
       }
       sim.update_stage();
+      if (staged && sim.stage() != stage) {
+        stage = sim.stage();
+        for (Observer* o : observers) o->stage_begun(sim);
+      }
       const std::int64_t next = sim.step_count() + 1, total = sim.total_steps();
       // every stage's last step is a frame too: the packing filled, grown, settled
-      const bool frame_due = (every > 0 && next % every == 0) || next == total ||
-                             (!sim.scene().stages.empty() && next == sim.stage_end_step());
+      const bool frame_due =
+          (every > 0 && next % every == 0) || next == total || (staged && next == sim.stage_end_step());
       sim.record_contacts(frame_due);
       sim.step();
       guard.check_finite(sim);
@@ -52,7 +60,8 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
         if (since >= options.progress_seconds || s == total) {
           const double rate = static_cast<double>(s - steps_at_report) / std::max(since, 1e-9);
           if (options.on_progress)
-            options.on_progress({s, total, rate, rate > 0 ? static_cast<double>(total - s) / rate : 0});
+            options.on_progress(
+                {s, total, rate, rate > 0 ? static_cast<double>(total - s) / rate : 0, sim.stage_name()});
           if (options.periodically) {
             guard.check_writable(sim);  // the server saves a checkpoint here
             options.periodically(sim);

@@ -25,13 +25,17 @@ class Observer {
   virtual ~Observer() = default;
   virtual void frame(const Simulation& sim) = 0;
   virtual void finish(const Simulation&, const RunOutcome&) {}
+  // A staged run's stage begins (before its first step; the run's first stage too, when it starts
+  // at step 0).
+  virtual void stage_begun(const Simulation&) {}
 };
 
 struct Progress {
   std::int64_t step;
-  std::int64_t total;
+  std::int64_t total;  // a stage that ends early shortens it
   double steps_per_second;
   double seconds_left;
+  std::string stage;  // a staged run's stage, "" without stages
 };
 
 struct RunOptions {

@@ -266,6 +266,32 @@ TEST_F(Cli, RunContinuedFromItsSavedStateWritesTheSameFiles) {
   EXPECT_EQ(bytes(part / "ANIMATION_3D.dat"), before);
 }
 
+// A staged run: Stages.dat lists each stage's start, every stage's last step is a frame, and the
+// progress line names the stage.
+TEST_F(Cli, RunOfAStagedJobLogsItsStagesAndWritesAFrameAtEachStagesEnd) {
+  const std::string staged = good_with(R"("time": {"steps": 12},)", R"("stages": [{"name": "close", "steps": 7},
+    {"name": "after impact", "steps": 5, "gravity": {"z": -9.81}}],)");
+  const fs::path out = dir_ / "staged";
+  const Result r = dem("run " + shell_quoted(write_spec("staged.json", staged)) + " --out " + shell_quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("stage after impact"), std::string::npos) << r.output;
+  std::ifstream log(out / "Stages.dat");
+  std::string header, first, second, rest;
+  std::getline(log, header);
+  std::getline(log, first);
+  std::getline(log, second);
+  EXPECT_EQ(header, "stage start_step start_time name");
+  EXPECT_EQ(first, "1 0 0.0000000000000000e+00 close");
+  EXPECT_EQ(second.substr(0, 4), "2 7 ");
+  EXPECT_NE(second.find(" after impact"), std::string::npos) << second;
+  EXPECT_FALSE(std::getline(log, rest));
+  // frames at steps 0, 5, 7 (the first stage's end), 10, 12
+  std::ifstream anim(out / "ANIMATION_3D.dat");
+  const auto frames = dem::legacy::read_animation(anim);
+  ASSERT_EQ(frames.frames.size(), 5u);
+  EXPECT_EQ(frames.frames[2].step, 7);
+}
+
 // A bonded 2 x 2 x 2 block dropped on a floor: the statistics files have a row per frame, and the
 // animation's part column names the block's fragment.
 TEST_F(Cli, RunOfABondedBlockWritesTheStatistics) {
