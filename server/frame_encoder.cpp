@@ -34,13 +34,14 @@ void add_walls(const Simulation& sim, api::Frame& frame) {
     auto put = [&](const Vec3& c) {
       for (int d = 0; d < 3; ++d) corners.push_back(static_cast<float>(c[d]));
     };
+    if (!sim.wall_present(k)) continue;  // a staged run's wall gone (or not yet come)
     if (const int p = sim.plane_index(k); p >= 0) {
       if (walls[p].kind != Wall::Kind::Plate) continue;  // infinite planes do not move into view
       const auto& c = walls[p].corners;
       for (const Vec3& v : {c[0], c[1], c[2], c[0], c[2], c[3]}) put(v);
     } else if (const int m = sim.mesh_index(k); m >= 0) {
       const MeshWall& mesh = sim.meshes()[m];
-      if (!sim.wall_driver(k).moves()) continue;  // a fixed mesh is the viewer's to load once
+      if (!sim.wall_varies(k)) continue;  // a fixed mesh is the viewer's to load once (Wall.dat)
       for (const auto& t : mesh.triangles)
         for (int c = 0; c < 3; ++c) put(mesh.vertices[t[c]]);
     }

@@ -1,5 +1,7 @@
 #include "output/legacy_output.hpp"
 
+#include <limits>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
@@ -105,41 +107,50 @@ legacy::AnimationFrame AnimationWriter::make_frame(const Simulation& sim, const 
   return frame;
 }
 
-bool WallWriter::wanted(const Simulation& sim) { return !sim.meshes().empty() || sim.has_moving_walls(); }
+bool WallWriter::wanted(const Simulation& sim) { return !sim.meshes().empty() || sim.any_wall_varies(); }
 
 WallWriter::WallWriter(const std::string& folder, const Simulation& sim, bool append) {
   const double unit = sim.scene().outputs.length_unit;
   if (!sim.meshes().empty() && !append) {
     TriangleMesh all;
     for (const MeshWall& m : sim.meshes()) {
+      // a mesh a stage adds or removes is drawn in the frames while it is there, not here
+      const WallInit& init = sim.scene().walls[m.boundary];
+      if (init.first_stage > 0 || init.last_stage != std::numeric_limits<int>::max()) continue;
       const int base = static_cast<int>(all.vertices.size());
       all.vertices.insert(all.vertices.end(), m.vertices.begin(), m.vertices.end());
       for (const auto& t : m.triangles) all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
     }
-    OutputFile mesh_file(folder + "/Wall.dat", false);
-    write_legacy_mesh(mesh_file.get(), all, unit);
-    mesh_file.flush();
+    if (!all.triangles.empty()) {
+      OutputFile mesh_file(folder + "/Wall.dat", false);
+      write_legacy_mesh(mesh_file.get(), all, unit);
+      mesh_file.flush();
+    }
   }
-  if (sim.has_moving_walls()) animation_ = OutputFile(folder + "/Wall_Animation_3D.dat", append);
+  if (sim.any_wall_varies()) animation_ = OutputFile(folder + "/Wall_Animation_3D.dat", append);
 }
 
-// Every plate (numbered 1.. in scene order among plates), then the triangles of moving meshes
+// Every plate there now (numbered 1.. in scene order among plates, those of a staged run's other
+// stages counted), then the triangles of the meshes that move, come or go, while they are there
 // (numbered 1.. across those meshes).
 legacy::WallFrame WallWriter::make_frame(const Simulation& sim) {
   const double unit = sim.scene().outputs.length_unit;
   legacy::WallFrame frame;
   frame.step = sim.step_count();
   int plate_id = 0;
-  for (const Wall& w : sim.walls()) {
+  for (int k = 0; k < static_cast<int>(sim.walls().size()); ++k) {
+    const Wall& w = sim.walls()[k];
     if (w.kind != Wall::Kind::Plate) continue;
+    ++plate_id;
+    if (!sim.wall_present(sim.boundary_of_plane(k))) continue;
     legacy::AnimationPlate plate;
-    plate.id = ++plate_id;
+    plate.id = plate_id;
     for (int k = 0; k < 4; ++k) plate.corners[k] = w.corners[k] / unit;
     frame.plates.push_back(plate);
   }
   int triangle_id = 0;
   for (const MeshWall& m : sim.meshes()) {
-    if (!sim.wall_driver(m.boundary).moves()) continue;
+    if (!sim.wall_varies(m.boundary) || !sim.wall_present(m.boundary)) continue;
     for (const auto& t : m.triangles) {
       legacy::AnimationTriangle tri;
       tri.id = ++triangle_id;
@@ -174,6 +185,15 @@ void WallForceChainWriter::frame(const Simulation& sim) {
 }
 
 ForceDisplacementWriter::ForceDisplacementWriter(const std::string& path, bool append) : file_(path, append) {}
+
+bool ForceDisplacementWriter::wanted(const Simulation& sim) {
+  for (const WallInit& w : sim.scene().walls)
+    if (w.load) return true;
+  for (const Stage& stage : sim.scene().stages)
+    for (const WallChange& c : stage.wall_changes)
+      if (c.load) return true;
+  return false;
+}
 
 int ForceDisplacementWriter::loading_wall(const Simulation& sim) {
   for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k)

@@ -102,7 +102,9 @@ class ForceDisplacementWriter final : public Observer {
  public:
   explicit ForceDisplacementWriter(const std::string& path, bool append = false);
   void frame(const Simulation& sim) override;
-  static int loading_wall(const Simulation& sim);  // index in Scene::walls, or -1
+  static int loading_wall(const Simulation& sim);  // index in Scene::walls, or -1 (now)
+  // Some wall has a load, from the start or from a stage on (rows are written while one has).
+  static bool wanted(const Simulation& sim);
 
  private:
   OutputFile file_;

@@ -21,7 +21,7 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
   if (WallWriter::wanted(sim)) writers.push_back(std::make_unique<WallWriter>(dir.string(), sim, append));
   if (scene.outputs.force_chains && !scene.walls.empty())
     writers.push_back(std::make_unique<WallForceChainWriter>((dir / "Wall_ForceChain_3D.dat").string(), append));
-  if (ForceDisplacementWriter::loading_wall(sim) >= 0)
+  if (ForceDisplacementWriter::wanted(sim))
     writers.push_back(std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string(), append));
   writers.push_back(std::make_unique<StatisticsWriter>(dir.string(), sim, append));
   if (WallStatisticsWriter::wanted(sim))

@@ -117,6 +117,12 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   if (scene_.growth && scene_.growth->steps > 0)
     growth_plan_ = GrowthPlan{1, scene_.growth->factor, 0, scene_.growth->steps};
   if (!scene_.stages.empty()) apply_stage_settings(0, /*restore=*/false);
+  wall_varies_.assign(boundaries, 0);
+  for (int k = 0; k < boundaries; ++k)
+    wall_varies_[k] = drivers_[k].moves() || scene_.walls[k].first_stage > 0 ||
+                      scene_.walls[k].last_stage != std::numeric_limits<int>::max();
+  for (const Stage& stage : scene_.stages)
+    for (const WallChange& c : stage.wall_changes) wall_varies_[c.wall] = 1;
   boundary_of_plane_.assign(state_.walls.size(), 0);
   for (int k = 0; k < boundaries; ++k)
     if (plane_index_[k] >= 0) boundary_of_plane_[plane_index_[k]] = k;
@@ -240,6 +246,10 @@ Vec3 Simulation::angular_momentum() const {
       total += p.x[i].cross(p.mass[i] * p.v[i]) + p.w[i] / p.inv_inertia[i];
   for (std::size_t k = 0; k < b.size(); ++k) total += b.x[k].cross(b.mass[k] * b.v[k]) + b.rotation[k].angular_momentum;
   return total;
+}
+
+bool Simulation::any_wall_varies() const {
+  return std::any_of(wall_varies_.begin(), wall_varies_.end(), [](std::uint8_t v) { return v != 0; });
 }
 
 bool Simulation::has_moving_walls() const {

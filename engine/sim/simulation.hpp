@@ -111,6 +111,10 @@ class Simulation {
   void update_stage();
   // Whether scene wall k is there in this stage (a stage may add or remove walls).
   bool wall_present(int k) const { return wall_present_[k] != 0; }
+  // Whether scene wall k may move, come or go at some point of the run (its own motion or load, a
+  // stage's change, a stage adding or removing it): outputs draw such a wall in every frame.
+  bool wall_varies(int k) const { return wall_varies_[k] != 0; }
+  bool any_wall_varies() const;
 
   double kinetic_energy() const;        // translational + rotational, J
   double rotational_energy() const;     // the rotational part, J
@@ -140,6 +144,7 @@ class Simulation {
   // Index in walls() or meshes() of scene wall k (-1 when it is the other kind).
   int plane_index(int k) const { return plane_index_[k]; }
   int mesh_index(int k) const { return mesh_index_[k]; }
+  int boundary_of_plane(int p) const { return boundary_of_plane_[p]; }  // scene wall of walls()[p]
   bool has_moving_walls() const;
 
   // Set by the first step that left a particle's position, velocity or spin non-finite (every step
@@ -224,6 +229,7 @@ class Simulation {
   std::int64_t stage_start_step_ = 0;
   std::int64_t stage_end_step_ = 0;
   std::vector<std::uint8_t> wall_present_;  // per scene wall, in this stage
+  std::vector<std::uint8_t> wall_varies_;   // per scene wall
   std::optional<NonFinite> first_non_finite_;
   std::optional<TooFast> first_too_fast_;
   bool moved_too_far_ = false;  // set by the last drift

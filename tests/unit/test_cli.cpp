@@ -292,6 +292,35 @@ TEST_F(Cli, RunOfAStagedJobLogsItsStagesAndWritesAFrameAtEachStagesEnd) {
   EXPECT_EQ(frames.frames[2].step, 7);
 }
 
+// A staged run's walls in the files: a mesh the second stage removes is drawn in the wall frames
+// while it is there (and not in Wall.dat, which the viewer shows for the whole run), a plate given
+// a load at the second stage starts Force_Displacement.dat's rows there.
+TEST_F(Cli, RunOfAStagedJobDrawsAWallWhileItIsThereAndLogsALoadFromItsStage) {
+  const std::string staged = good_with(R"("time": {"steps": 12},)", R"(
+  "walls": [{"name": "cage", "material": "glass", "mesh": {"vertices": [{"z": 1}, {"x": 0.1, "z": 1}, {"y": 0.1, "z": 1}, {"z": 1.1}],
+             "triangles": [{"i": 1, "j": 3, "k": 2}, {"i": 1, "j": 2, "k": 4}, {"i": 1, "j": 4, "k": 3}, {"i": 2, "j": 3, "k": 4}]}},
+            {"name": "lid", "material": "glass", "plate": {"c1": {"x": -1, "y": -1, "z": 0.5}, "c2": {"x": 1, "y": -1, "z": 0.5},
+             "c3": {"x": 1, "y": 1, "z": 0.5}, "c4": {"x": -1, "y": 1, "z": 0.5}}}],
+  "stages": [{"name": "caged", "steps": 6},
+             {"name": "freed", "steps": 6, "removeWalls": ["cage"],
+              "wallChanges": [{"wall": "lid", "load": {"servo": {"target": 1, "gain": 1e-3, "maxSpeed": 0.1}}}]}],)");
+  const fs::path out = dir_ / "walls";
+  const Result r =
+      dem("run " + shell_quoted(write_spec("walls.json", staged)) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(out / "Wall.dat"));  // its only mesh comes and goes
+  std::ifstream walls(out / "Wall_Animation_3D.dat");
+  const auto frames = dem::legacy::read_wall_frames(walls);
+  ASSERT_EQ(frames.frames.size(), 5u);  // steps 0, 5, 6 (the first stage's end), 10, 12
+  EXPECT_EQ(frames.frames[2].triangles.size(), 4u);
+  EXPECT_EQ(frames.frames[3].triangles.size(), 0u);
+  EXPECT_EQ(frames.frames[3].plates.size(), 1u);
+  std::ifstream force(out / "Force_Displacement.dat");
+  int rows = 0;
+  for (std::string line; std::getline(force, line);) rows += !line.empty();
+  EXPECT_EQ(rows, 2);  // steps 10 and 12: the load began at step 6
+}
+
 // A bonded 2 x 2 x 2 block dropped on a floor: the statistics files have a row per frame, and the
 // animation's part column names the block's fragment.
 TEST_F(Cli, RunOfABondedBlockWritesTheStatistics) {
