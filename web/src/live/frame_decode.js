@@ -22,6 +22,7 @@ const F_FRAGMENTS = 9;
 const F_FORCE_CHAINS = 10;
 const F_WALLS = 11;
 const F_KINETIC_ENERGY = 12;
+const F_STAGE = 15;
 // Field numbers of WallShape.
 const W_WALL = 1;
 const W_TRIANGLES = 2;
@@ -171,7 +172,7 @@ export function decodeFrameMessage(data) {
   const raw = {
     job: 0, step: 0, totalSteps: 0, time: 0, particleCount: 0,
     positions: null, velocities: null, radii: null, fragments: null, forceChains: null,
-    walls: [], kineticEnergy: 0,
+    walls: [], kineticEnergy: 0, stage: '',
     present: new Set(),
   };
   while (!r.done()) {
@@ -199,6 +200,12 @@ export function decodeFrameMessage(data) {
         else if (field === F_RADII) raw.radii = typedCopy(bytes, s, e, Float32Array);
         else if (field === F_FRAGMENTS) raw.fragments = typedCopy(bytes, s, e, Int32Array);
         else raw.forceChains = decodeForceChains(bytes, s, e);
+        break;
+      }
+      case F_STAGE: {
+        if (wt !== LEN) { known = false; break; }
+        const [s, e] = r.span();
+        raw.stage = new TextDecoder().decode(bytes.subarray(s, e));
         break;
       }
       case F_WALLS: {
@@ -282,6 +289,7 @@ export function toFrame(raw, previousRadii = null) {
     plates: new Float32Array(0),
     triangles,
     walls: raw.walls,
+    stage: raw.stage,
     forceChains: raw.forceChains,
     scalars: { time: raw.time, plateDisplacement: 0, plateForce: 0, kineticEnergy: raw.kineticEnergy },
   };

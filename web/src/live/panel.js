@@ -377,7 +377,7 @@ class LivePanel {
     if (frame) {
       const total = frame.totalSteps || job.totalSteps;
       this.statusLabel.textContent = `live: step ${frame.step}${total ? ` of ${total}` : ''}, t = ${frame.time.toPrecision(6)} s, ` +
-        `${frame.count} particles, ${this.framesReceived} frames`;
+        (frame.stage ? `stage ${frame.stage}, ` : '') + `${frame.count} particles, ${this.framesReceived} frames`;
     } else if (this.socket) {
       this.statusLabel.textContent = job.state === 'queued' ? 'queued: waiting for the job to start' : 'waiting for the first frame';
     } else {
