@@ -10,6 +10,8 @@ void load_bonds(const api::JobSpec& spec, SpecContext& ctx) {
   if (spec.has_bonds()) {
     const auto& in = spec.bonds();
     BondSettings b;
+    if (!api::Bonds::Model_IsValid(in.model()))
+      check.fail("bonds.model", "must be PARALLEL or CONTACT (got " + std::to_string(in.model()) + ")");
     b.model = api::Bonds::Model_Name(in.model());  // the enum's names are the bond models' (bonds/bond_models.hpp)
     b.radius_multiplier = in.radius_multiplier() == 0 ? defaults::kBondRadiusMultiplier : in.radius_multiplier();
     check.positive("bonds.radiusMultiplier", b.radius_multiplier, kRatio);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <map>
+#include <utility>
 #include <numbers>
 #include <random>
 
@@ -24,6 +26,17 @@ struct Region {
 std::optional<Region> load_region(const api::Mesh& in, const std::string& path, SpecContext& ctx) {
   const std::optional<MeshShape> placed = load_mesh(in, path, ctx);
   if (!placed) return std::nullopt;
+  // inside and outside mean something only for a closed surface: every edge shared by two faces
+  std::map<std::pair<int, int>, int> faces_of_edge;
+  for (const auto& t : placed->triangles)
+    for (int e = 0; e < 3; ++e) ++faces_of_edge[std::minmax(t[e], t[(e + 1) % 3])];
+  for (const auto& [edge, faces] : faces_of_edge)
+    if (faces % 2 != 0) {
+      ctx.check.fail(path, "is not a closed surface: the edge between vertices " + std::to_string(edge.first + 1) +
+                               " and " + std::to_string(edge.second + 1) + " belongs to " + std::to_string(faces) +
+                               " triangle(s) (every edge of a closed mesh belongs to two, or an even number)");
+      return std::nullopt;
+    }
   double six_v = 0;  // the enclosed volume by the divergence theorem: signed tetrahedra from the origin
   for (const auto& t : placed->triangles)
     six_v += placed->vertices[t[0]].dot(placed->vertices[t[1]].cross(placed->vertices[t[2]]));
@@ -33,6 +46,12 @@ std::optional<Region> load_region(const api::Mesh& in, const std::string& path, 
 // Diameters (the manuals' IPATTERN), checked at `sp`.
 SizeDistribution load_sizes(const api::SizeDistribution& sz, const std::string& sp, Checker& check) {
   SizeDistribution d;
+  if (!api::SizeDistribution::Kind_IsValid(sz.kind())) {  // an open enum keeps any number given
+    check.fail(sp + ".kind", "must be ONE_SIZE, TWO_SIZES, UNIFORM, NORMAL or LOGNORMAL (0 to 4; got " +
+                                 std::to_string(sz.kind()) + ")");
+    d.mean = 1;  // a valid stand-in: the problem is reported
+    return d;
+  }
   d.kind = static_cast<SizeKind>(sz.kind());
   d.mean = sz.mean();
   d.spread = sz.spread();
@@ -71,9 +90,9 @@ void add_packing(const api::Packing& in, const std::string& path, SpecContext& c
     region.emplace(std::move(placed->mesh));
     region_volume = placed->volume;
   }
-  const bool box_given = in.has_min() || in.has_max();
-  const Vec3 lo = region && !box_given ? region->min() : vec(in.min());
-  const Vec3 hi = region && !box_given ? region->max() : vec(in.max());
+  // a closed mesh's box stands for a corner left out
+  const Vec3 lo = region && !in.has_min() ? region->min() : vec(in.min());
+  const Vec3 hi = region && !in.has_max() ? region->max() : vec(in.max());
   if (!(lo.array() < hi.array()).all()) check.fail(path + ".max", "must be above min in x, y and z");
   const std::string sp = path + ".sizes";
   const SizeDistribution d = load_sizes(in.sizes(), sp, check);
@@ -131,7 +150,8 @@ void add_lattice(const api::Lattice& in, const std::string& path, SpecContext& c
   check.vector(path + ".min", in.min(), kLength);
   check.vector(path + ".max", in.max(), kLength);
   check.vector(path + ".velocity", in.velocity(), kSpeed);
-  if (in.kind() == api::Lattice::KIND_UNSPECIFIED) check.fail(path + ".kind", "must be CUBIC, FCC or HEX");
+  if (in.kind() == api::Lattice::KIND_UNSPECIFIED || !api::Lattice::Kind_IsValid(in.kind()))
+    check.fail(path + ".kind", "must be CUBIC, FCC or HEX");
   // one radius, or sizes drawn from a distribution into sites spaced for the largest
   std::optional<SizeDistribution> sizes;
   double site_radius = in.radius();
@@ -161,7 +181,6 @@ void add_lattice(const api::Lattice& in, const std::string& path, SpecContext& c
   const LatticeKind kind = in.kind() == api::Lattice::CUBIC ? LatticeKind::Cubic
                            : in.kind() == api::Lattice::FCC ? LatticeKind::Fcc
                                                             : LatticeKind::Hex;
-  const bool box_given = in.has_min() || in.has_max();
   const Vec3 lo = region && !in.has_min() ? region->min() : vec(in.min());
   std::vector<Vec3> sites;
   if (counted) {
@@ -169,7 +188,7 @@ void add_lattice(const api::Lattice& in, const std::string& path, SpecContext& c
     if (!check.room(path, scene.particles.size(), bound)) return;
     sites = lattice_sites_counted(kind, lo, site_radius, spacing, counts);
   } else {
-    const Vec3 hi = region && !box_given ? region->max() : vec(in.max());
+    const Vec3 hi = region && !in.has_max() ? region->max() : vec(in.max());
     if (!(lo.array() < hi.array()).all()) {
       check.fail(path + ".max", "must be above min in x, y and z");
       return;

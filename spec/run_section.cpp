@@ -48,6 +48,9 @@ void load_run_settings(const api::JobSpec& spec, SpecContext& ctx) {
   scene.outputs.force_chains = o.force_chains();
   scene.outputs.length_unit = length_unit(o.length_unit(), check);
   scene.outputs.length_unit_name = o.length_unit().empty() ? "m" : o.length_unit();
+  if (!api::Outputs::NumberFormat_IsValid(o.number_format()))
+    check.fail("outputs.numberFormat",
+               "must be SCIENTIFIC, LEGACY_FIXED or FULL (got " + std::to_string(o.number_format()) + ")");
   scene.outputs.number_format = o.number_format() == api::Outputs::LEGACY_FIXED ? FileNumberFormat::LegacyFixed
                                 : o.number_format() == api::Outputs::FULL       ? FileNumberFormat::Full
                                                                                 : FileNumberFormat::Scientific;

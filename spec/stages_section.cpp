@@ -1,6 +1,7 @@
 // A staged run (JobSpec.stages): the PDEM-EGD manual's fill, grow, bond and release, the BallastDEM
 // manual's settle and load, as one job. Each stage's changes are checked against the walls,
 // materials and bonds of the spec and of the stages before it.
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <set>
@@ -62,11 +63,18 @@ void check_stage_name(const std::string& name, const std::string& path, Checker&
   if (name.size() > kMaxStageName)
     check.fail(path,
                "must be at most " + std::to_string(kMaxStageName) + " bytes (got " + std::to_string(name.size()) + ")");
-  for (const char ch : name)
-    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7F) {
-      check.fail(path, "must not hold control characters (it is written into output files)");
+  for (std::size_t k = 0; k < name.size(); ++k) {
+    const auto c = static_cast<unsigned char>(name[k]);
+    const auto next = k + 1 < name.size() ? static_cast<unsigned char>(name[k + 1]) : 0;
+    const auto third = k + 2 < name.size() ? static_cast<unsigned char>(name[k + 2]) : 0;
+    // C0 and DEL; C1 (U+0080..U+009F: C2 80..C2 9F in UTF-8); U+2028 and U+2029 (E2 80 A8/A9):
+    // each of them ends a line for some reader of the one-line-a-stage file
+    if (c < 0x20 || c == 0x7F || (c == 0xC2 && next >= 0x80 && next <= 0x9F) ||
+        (c == 0xE2 && next == 0x80 && (third == 0xA8 || third == 0xA9))) {
+      check.fail(path, "must not hold control characters or line separators (it is written into output files)");
       return;
     }
+  }
 }
 
 }  // namespace
@@ -103,15 +111,9 @@ void load_stages(const api::JobSpec& spec, SpecContext& ctx) {
     s.steps = in.steps();
     check.non_negative(path + ".untilKineticEnergy", in.until_kinetic_energy(), kEnergy);
     s.until_kinetic_energy = in.until_kinetic_energy();
-    if (!in.until_wall().empty()) {
-      s.until_wall = walls.present(in.until_wall(), k, path + ".untilWall", check);
-      check.positive(path + ".untilWallForce", in.until_wall_force(), kForce);
-    } else if (in.until_wall_force() != 0) {
-      check.fail(path + ".untilWallForce", "needs untilWall, the wall whose force ends the stage");
-    }
     s.until_wall_force = in.until_wall_force();
-    const bool ends_early = s.until_kinetic_energy > 0 || s.until_wall >= 0;
-    if (in.min_duration() != 0) {
+    const bool ends_early = s.until_kinetic_energy > 0 || !in.until_wall().empty();
+    if (in.has_min_duration()) {
       check.non_negative(path + ".minDuration", in.min_duration(), kDuration);
       if (!ends_early)
         check.fail(path + ".minDuration",
@@ -137,7 +139,7 @@ void load_stages(const api::JobSpec& spec, SpecContext& ctx) {
       const std::string ip = at(path + ".interactions", j);
       const std::optional<PairInteraction> pair = load_interaction(in.interactions(j), ip, ctx);
       if (!pair) continue;
-      if (!pairs_here.insert(pair->a * nm + pair->b).second || !pairs_here.insert(pair->b * nm + pair->a).second)
+      if (!pairs_here.insert(std::min(pair->a, pair->b) * nm + std::max(pair->a, pair->b)).second)
         check.fail(ip, "a second interaction for \"" + in.interactions(j).a() + "\" and \"" + in.interactions(j).b() +
                            "\" in this stage");
       table[pair->a * nm + pair->b] = table[pair->b * nm + pair->a] = pair->value;
@@ -153,6 +155,7 @@ void load_stages(const api::JobSpec& spec, SpecContext& ctx) {
                                       "rolling model from start to end; give some pair a little from the start");
       s.interactions = table;
     }
+    std::set<int> added_here;
     for (int j = 0; j < in.add_walls_size(); ++j) {
       const std::string wp = at(path + ".addWalls", j);
       WallInit w =
@@ -162,6 +165,7 @@ void load_stages(const api::JobSpec& spec, SpecContext& ctx) {
         continue;
       }
       w.first_stage = k;
+      added_here.insert(static_cast<int>(scene.walls.size()));
       scene.walls.push_back(std::move(w));
       walls.add(static_cast<int>(scene.walls.size()) - 1);
     }
@@ -169,14 +173,30 @@ void load_stages(const api::JobSpec& spec, SpecContext& ctx) {
       throw SpecError({path + ".addWalls: at most " + std::to_string(check.limits.max_walls) +
                        " walls in all, stages' included (got " + std::to_string(scene.walls.size()) + ")"});
     for (int j = 0; j < in.remove_walls_size(); ++j) {
-      const int w = walls.present(in.remove_walls(j), k, at(path + ".removeWalls", j), check);
-      if (w >= 0) scene.walls[w].last_stage = k - 1;
+      const std::string rp = at(path + ".removeWalls", j);
+      const int w = walls.present(in.remove_walls(j), k, rp, check);
+      if (w >= 0 && added_here.count(w)) {
+        check.fail(rp, "wall \"" + in.remove_walls(j) + "\" is added by this stage: add it at the stage it is wanted");
+      } else if (w >= 0) {
+        scene.walls[w].last_stage = k - 1;
+      }
     }
+    // the end condition's wall is one there in this stage (walls just added included, just removed not)
+    if (!in.until_wall().empty()) {
+      s.until_wall = walls.present(in.until_wall(), k, path + ".untilWall", check);
+      check.positive(path + ".untilWallForce", in.until_wall_force(), kForce);
+    } else if (in.until_wall_force() != 0) {
+      check.fail(path + ".untilWallForce", "needs untilWall, the wall whose force ends the stage");
+    }
+
+    std::set<int> changed;
     for (int j = 0; j < in.wall_changes_size(); ++j) {
       const api::WallChange& change = in.wall_changes(j);
       const std::string cp = at(path + ".wallChanges", j);
       WallChange c;
       c.wall = walls.present(change.wall(), k, cp + ".wall", check);
+      if (c.wall >= 0 && !changed.insert(c.wall).second)
+        check.fail(cp + ".wall", "wall \"" + change.wall() + "\" is changed twice in this stage: give it one change");
       if (change.has_motion() && change.has_load()) check.fail(cp, "has both a motion and a load: give one");
       if (change.has_motion()) {
         c.motion = load_motion(change.motion(), cp + ".motion", check);

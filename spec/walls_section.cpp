@@ -56,6 +56,10 @@ std::optional<MeshShape> load_mesh(const api::Mesh& in, const std::string& path,
     check.fail(path, "has both a file and inline vertices/triangles: give one");
     return std::nullopt;
   }
+  if (!api::Mesh::Format_IsValid(in.format())) {
+    check.fail(path + ".format", "must be AUTO, LEGACY or STL (got " + std::to_string(in.format()) + ")");
+    return std::nullopt;
+  }
   try {
     if (!in.file().empty()) {
       source = resolve_file(in.file(), ctx.base_dir).string();
@@ -159,6 +163,7 @@ LoadControl load_control(const api::Load& in, const std::string& path, Checker& 
 WallInit load_wall(const api::Wall& in, const std::string& path, const std::string& default_name, SpecContext& ctx) {
   Checker& check = ctx.check;
   WallInit w;
+  w.path = path;
   w.name = in.name().empty() ? default_name : in.name();
   w.material = ctx.material(in.material(), path + ".material");
   if (w.material >= 0) ctx.wall_materials.insert(w.material);

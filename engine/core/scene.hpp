@@ -124,6 +124,8 @@ struct WallInit {
   // (Scene::stages); its motion's time counts from the start of first_stage.
   int first_stage = 0;
   int last_stage = std::numeric_limits<int>::max();
+  std::string path{};  // where the spec gives it ("walls[2]", "stages[1].addWalls[0]"), for messages; "": walls[index]
+  std::string where(std::size_t index) const { return path.empty() ? "walls[" + std::to_string(index) + "]" : path; }
   bool present_at(int stage) const { return stage >= first_stage && stage <= last_stage; }
 };
 

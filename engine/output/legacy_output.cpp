@@ -197,7 +197,7 @@ bool ForceDisplacementWriter::wanted(const Simulation& sim) {
 
 int ForceDisplacementWriter::loading_wall(const Simulation& sim) {
   for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k)
-    if (sim.wall_driver(k).load_controlled()) return k;
+    if (sim.wall_present(k) && sim.wall_driver(k).load_controlled()) return k;
   return -1;
 }
 

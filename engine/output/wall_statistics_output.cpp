@@ -44,9 +44,11 @@ void WallStatisticsWriter::frame(const Simulation& sim) {
   double wall_force = 0;
   for (const WallContact& c : walls) wall_force += c.fn;
   const auto wall_count = static_cast<double>(walls.size());
+  int present = 0;  // a staged run's walls there now
+  for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k) present += sim.wall_present(k);
   legacy::write_row(mean_force_.get(),
                     {t, walls.empty() ? 0.0 : wall_force / wall_count,
-                     wall_count / static_cast<double>(sim.scene().walls.size()), wall_count},
+                     present > 0 ? wall_count / static_cast<double>(present) : 0.0, wall_count},
                     format);
   mean_force_.flush();
 

@@ -23,10 +23,7 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
   try {
     guard.check(sim);
     const bool staged = !sim.scene().stages.empty();
-    int stage = sim.stage();
     if (sim.step_count() == 0) {  // a continued run's first frame is its saved state's last
-      if (staged)
-        for (Observer* o : observers) o->stage_begun(sim);
       frame();
       if (options.after_step) options.after_step(sim, true);
     }
@@ -39,10 +36,6 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
         break;
       }
       sim.update_stage();
-      if (staged && sim.stage() != stage) {
-        stage = sim.stage();
-        for (Observer* o : observers) o->stage_begun(sim);
-      }
       const std::int64_t next = sim.step_count() + 1, total = sim.total_steps();
       // every stage's last step is a frame too: the packing filled, grown, settled
       const bool frame_due =

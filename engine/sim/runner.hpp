@@ -25,9 +25,6 @@ class Observer {
   virtual ~Observer() = default;
   virtual void frame(const Simulation& sim) = 0;
   virtual void finish(const Simulation&, const RunOutcome&) {}
-  // A staged run's stage begins (before its first step; the run's first stage too, when it starts
-  // at step 0).
-  virtual void stage_begun(const Simulation&) {}
 };
 
 struct Progress {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -148,6 +149,38 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   // (a stage that glues bonds later needs a step that resolves them from the start)
   time_step_ = choose_time_step(scene_, *kernel_, !state_.bonds.empty() || bonding_stage > 0,
                                 kernel_->summarize(state_).release_speed);
+  // A stage's interactions and loads hold the step to their limits too (restitution shortens a
+  // damped contact; a light loaded wall needs a short step): the shortest of them all is taken.
+  for (std::size_t k = 0; k < scene_.stages.size(); ++k) {
+    const Stage& stage = scene_.stages[k];
+    const bool loads = std::any_of(stage.wall_changes.begin(), stage.wall_changes.end(),
+                                   [](const WallChange& change) { return change.load.has_value(); });
+    if (!stage.interactions && !loads) continue;
+    const std::vector<Interaction> own = scene_.interactions;
+    std::vector<std::pair<std::optional<PrescribedMotion>, std::optional<LoadControl>>> own_drives;
+    for (const WallInit& w : scene_.walls) own_drives.emplace_back(w.motion, w.load);
+    if (stage.interactions) scene_.interactions = *stage.interactions;
+    for (const WallChange& change : stage.wall_changes) {
+      scene_.walls[change.wall].motion = change.motion;
+      scene_.walls[change.wall].load = change.load;
+    }
+    auto restore = [&] {
+      scene_.interactions = own;
+      for (std::size_t w = 0; w < scene_.walls.size(); ++w)
+        std::tie(scene_.walls[w].motion, scene_.walls[w].load) = own_drives[w];
+    };
+    TimeStepReport staged;
+    try {
+      const std::unique_ptr<ForceKernel> kernel = select_(scene_, !scene_.walls.empty());
+      staged = choose_time_step(scene_, *kernel, !state_.bonds.empty() || bonding_stage > 0,
+                                kernel_->summarize(state_).release_speed);
+    } catch (const SceneError& e) {
+      restore();
+      throw SceneError("stages[" + std::to_string(k) + "] (" + stage.name + "): " + e.what());
+    }
+    restore();
+    if (staged.dt < time_step_.dt) time_step_ = staged;
+  }
   state_.dt = time_step_.dt;
   // A prescribed motion must not carry a wall through a particle between two force evaluations.
   const double wall_reach = 0.5 * scene_.numerics.max_overlap_fraction * smallest_given_radius_;
@@ -165,7 +198,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
         smallest_given_radius_);
     throw SceneError(buf);
   };
-  for (int k = 0; k < boundaries; ++k) check_motion(scene_.walls[k], "walls[" + std::to_string(k) + "]");
+  for (int k = 0; k < boundaries; ++k) check_motion(scene_.walls[k], scene_.walls[k].where(k));
   for (std::size_t s = 0; s < scene_.stages.size(); ++s)
     for (std::size_t c = 0; c < scene_.stages[s].wall_changes.size(); ++c) {
       WallInit changed = scene_.walls[scene_.stages[s].wall_changes[c].wall];
@@ -181,6 +214,14 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
       const double n =
           stage.steps > 0 ? static_cast<double>(stage.steps) : std::ceil(stage.duration / state_.dt - 1e-9);
       steps += std::max(1.0, n);
+      if (stage.min_duration > 0 && stage.min_duration > std::max(1.0, n) * state_.dt * (1 + 1e-12)) {
+        char buf[300];
+        std::snprintf(buf, sizeof buf,
+                      "stages[%zu].minDuration: %.6g s is longer than the stage itself (%.0f steps of %.6e s): its "
+                      "end condition could never end it",
+                      k, stage.min_duration, std::max(1.0, n), state_.dt);
+        throw SceneError(buf);
+      }
       if (!(steps <= kMaxSteps)) {
         char buf[400];
         std::snprintf(buf, sizeof buf,
@@ -914,6 +955,7 @@ void Simulation::update_stage() {
   if (step_ >= stage_end_step_ && stage_ + 1 < static_cast<int>(scene_.stages.size())) enter_stage(stage_ + 1);
   if (step_ + 1 < stage_end_step_ && stage_end_condition_holds()) {
     stage_end_step_ = step_ + 1;
+    stage_ended_early_ = true;
     recount_total_steps();
   }
 }
@@ -935,6 +977,17 @@ void Simulation::plan_stage_growth(int k) {
   double from = 1;  // the stages before grew to this (each runs its whole length: none ends early)
   for (int j = 0; j < k; ++j) from *= scene_.stages[j].growth_factor;
   growth_plan_ = GrowthPlan{from, from * stage.growth_factor, stage_start_step_, stage_end_step_ - stage_start_step_};
+}
+
+double Simulation::growth_scale_at(std::int64_t step) const {
+  double scale = 1;
+  for (int j = 0; j < stage_ && j < static_cast<int>(scene_.stages.size()); ++j)
+    scale *= scene_.stages[j].growth_factor;
+  if (!growth_plan_ || growth_plan_->steps <= 0) return scale;
+  const GrowthPlan& g = *growth_plan_;
+  if (step < g.start) return g.from;
+  const double share = std::min(1.0, static_cast<double>(step - g.start) / static_cast<double>(g.steps));
+  return g.from + (g.to - g.from) * share;
 }
 
 void Simulation::apply_stage_settings(int k, bool restore) {
@@ -979,10 +1032,11 @@ void Simulation::apply_stage_settings(int k, bool restore) {
     }
 }
 
-void Simulation::restore_stage(int k, std::int64_t start, std::int64_t end) {
+void Simulation::restore_stage(int k, std::int64_t start, std::int64_t end, bool ended_early) {
   stage_ = k;
   stage_start_step_ = start;
   stage_end_step_ = end;
+  stage_ended_early_ = ended_early;
   apply_stage_settings(k, /*restore=*/true);
   plan_stage_growth(k);
   recount_total_steps();
@@ -1016,6 +1070,7 @@ void Simulation::enter_stage(int k) {
   stage_ = k;
   stage_start_step_ = step_;
   stage_end_step_ = step_ + stage_steps(k);
+  stage_ended_early_ = false;
   apply_stage_settings(k, /*restore=*/false);
   plan_stage_growth(k);
   drop_slots_of_absent_meshes();
@@ -1027,11 +1082,11 @@ void Simulation::enter_stage(int k) {
   // end must not add them again (and a saved state does not hold the spin's).
   std::fill(state_.half_kick.begin(), state_.half_kick.end(), Vec3::Zero());
   std::fill(state_.spin_kick.begin(), state_.spin_kick.end(), Vec3::Zero());
-  const double dt = state_.dt;
+  const double dt = state_.dt, now = time();  // time() is step * dt: taken before dt is set to 0
   state_.dt = 0;
   kernel_->compute_and_kick(state_);
   if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
-  settle_walls(time(), 0);
+  settle_walls(now, 0);
   state_.dt = dt;
   add_work(ledger_.stages, mechanical_energy() - before);
   recount_total_steps();

@@ -192,7 +192,8 @@ class Simulation {
   bool stage_end_condition_holds() const;
   void recount_total_steps();
   void plan_stage_growth(int k);
-  void restore_stage(int k, std::int64_t start, std::int64_t end);  // StateIO: a saved state's stage
+  double growth_scale_at(std::int64_t step) const;  // the radii's scale the spec gives after `step` steps
+  void restore_stage(int k, std::int64_t start, std::int64_t end, bool ended_early);  // StateIO
   void glue_bonds();
   void drop_slots_of_absent_meshes();
 
@@ -228,6 +229,7 @@ class Simulation {
   int stage_ = 0;
   std::int64_t stage_start_step_ = 0;
   std::int64_t stage_end_step_ = 0;
+  bool stage_ended_early_ = false;          // its end condition ended it (at stage_end_step_)
   std::vector<std::uint8_t> wall_present_;  // per scene wall, in this stage
   std::vector<std::uint8_t> wall_varies_;   // per scene wall
   std::optional<NonFinite> first_non_finite_;

@@ -145,6 +145,7 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   w.put(sim.stage_);
   w.put(sim.stage_start_step_);
   w.put(sim.stage_end_step_);
+  w.put(static_cast<std::uint8_t>(sim.stage_ended_early_));
   const Particles& p = s.particles;
   w.put(p.x);
   w.put(p.v);
@@ -281,6 +282,9 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(stage, "the stage");
   r.get(stage_start, "the stage");
   r.get(stage_end, "the stage");
+  std::uint8_t ended_early = 0;
+  r.get(ended_early, "the stage");
+  if (ended_early > 1) inconsistent("its stage's end flag is " + std::to_string(ended_early));
   const int stages = std::max<int>(1, static_cast<int>(sim.scene_.stages.size()));
   // (a run without stages may be stepped past its end by a caller of step(): its one stage's end is its length)
   if (stage < 0 || stage >= stages || stage_start < 0 || stage_start > sim.step_ ||
@@ -289,17 +293,18 @@ void StateIO::read(Simulation& sim, std::istream& in) {
                  std::to_string(stage_end) + ") does not hold step " + std::to_string(sim.step_) + " of a run of " +
                  std::to_string(stages) + " stages");
   if (!sim.scene_.stages.empty()) {
-    // A stage its end condition ended is saved ending at the step it reached; any other ends where
-    // this spec says (a continued run may lengthen it).
+    // A stage its end condition ended keeps the end it reached; any other ends where this spec says
+    // (a continued run may lengthen it).
     const std::int64_t full_end = stage_start + sim.stage_steps(stage);
-    const std::int64_t end = stage_end == sim.step_ && stage_end < full_end ? stage_end : full_end;
+    const std::int64_t end = ended_early ? stage_end : full_end;
     if (end < sim.step_)
       throw std::runtime_error("the saved state is at step " + std::to_string(sim.step_) + ", past the end of stage " +
                                std::to_string(stage + 1) + " (\"" + sim.scene_.stages[stage].name + "\") at step " +
                                std::to_string(end) + " in this spec");
-    sim.restore_stage(stage, stage_start, end);
+    sim.restore_stage(stage, stage_start, end, ended_early != 0);
   } else if (stage != 0 || stage_start != 0) {
-    inconsistent("it is in stage " + std::to_string(stage + 1) + " of a run without stages");
+    throw std::runtime_error("the saved state is of a staged run (in stage " + std::to_string(stage + 1) +
+                             "), and this spec has no stages");
   }
   // bonds glued at a stage's start are in the state from that stage on, and only then
   bool glued_since_start = false;
@@ -454,7 +459,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     try {
       saved_drivers.push_back(WallDriver::from_record(record));
     } catch (const std::runtime_error& e) {
-      inconsistent("walls[" + std::to_string(k) + "]: " + e.what());
+      inconsistent(sim.scene_.walls[k].where(k) + ": " + e.what());
     }
   }
   for (std::size_t m = 0; m < s.meshes.size();
@@ -469,7 +474,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     try {
       if (sim.drivers_[k].continue_from(saved_drivers[k], sim.time())) loads_starting.push_back(static_cast<int>(k));
     } catch (const std::runtime_error& e) {
-      throw std::runtime_error("walls[" + std::to_string(k) + "] (" + sim.scene_.walls[k].name + "): " + e.what());
+      throw std::runtime_error(sim.scene_.walls[k].where(k) + " (" + sim.scene_.walls[k].name + "): " + e.what());
     }
   }
   r.get(sim.pose_at_build_, "the walls");
@@ -489,6 +494,17 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   if (!(sim.growth_scale_ > 0) || !std::isfinite(sim.growth_scale_) || !(sim.growth_at_build_ > 0) ||
       !std::isfinite(sim.growth_at_build_))
     inconsistent("the growth of the radii is not a positive number");
+  // a continued run may not change a growth under way or done: the radii would jump to the new schedule
+  const double expected_scale = sim.growth_scale_at(sim.step_);
+  if (std::abs(sim.growth_scale_ - expected_scale) > 1e-12 * expected_scale) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "the saved state's particles have grown to %.12g times their given size by step %lld, and this "
+                  "spec grows them to %.12g by then: a continued run may not change a growth under way or done "
+                  "(its factor or its length)",
+                  sim.growth_scale_, static_cast<long long>(sim.step_), expected_scale);
+    throw std::runtime_error(buf);
+  }
 
   std::vector<Bond> saved_bonds;
   r.get(saved_bonds, "the bonds");

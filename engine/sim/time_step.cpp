@@ -168,10 +168,11 @@ void refuse_light_loaded_walls(const Scene& scene, const ForceKernel& kernel, co
       }
       char buf[520];
       std::snprintf(buf, sizeof buf,
-                    "walls[%zu].load.mass: %.6g kg is too light for the time step: on a contact with a %.3g kg "
+                    "%s.load.mass: %.6g kg is too light for the time step: on a contact with a %.3g kg "
                     "particle it moves %.3g kg, a contact of %.3e s, which the step of %.6e s does not resolve (10 "
                     "steps at least); give the wall a mass of at least %.3g kg, or a smaller time.dtFraction",
-                    k, w.load->mass, m, m * w.load->mass / (m + w.load->mass), time_with(w.load->mass), r.dt, hi);
+                    w.where(k).c_str(), w.load->mass, m, m * w.load->mass / (m + w.load->mass), time_with(w.load->mass),
+                    r.dt, hi);
       throw SceneError(buf);
     }
   }

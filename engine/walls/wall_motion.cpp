@@ -220,6 +220,7 @@ bool WallDriver::change(const std::optional<PrescribedMotion>& motion, const std
 
 void WallDriver::start_clock(double now) {
   motion_start_ = now;
+  load_start_ = now;  // a wall that comes with a load starts its cyclic clock when it comes
   origin_displacement_ = pose_.displacement;
   origin_rotation_ = pose_.rotation;
 }

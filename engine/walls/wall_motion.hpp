@@ -84,7 +84,7 @@ class WallDriver {
   // end_step(now, 0, ...), as continue_from's caller does).
   bool change(const std::optional<PrescribedMotion>& motion, const std::optional<LoadControl>& load, double now,
               const Vec3& gravity);
-  // A wall that appears at a stage's start: its motion's time counts from `now`.
+  // A wall that appears at a stage's start: its motion's time and its load's cyclic clock count from `now`.
   void start_clock(double now);
   // A stage changes gravity: a loaded wall's weight follows.
   void set_gravity(const Vec3& gravity);

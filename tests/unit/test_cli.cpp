@@ -321,6 +321,44 @@ TEST_F(Cli, RunOfAStagedJobDrawsAWallWhileItIsThereAndLogsALoadFromItsStage) {
   EXPECT_EQ(rows, 2);  // steps 10 and 12: the load began at step 6
 }
 
+// A staged run continued from the state saved at a stage's end (before the next stage's first
+// frame) writes the same files as the whole run: Stages.dat gets no line twice.
+TEST_F(Cli, RunOfAStagedJobContinuedAtAStageBoundaryWritesTheSameFiles) {
+  const std::string staged = good_with(R"("time": {"steps": 12},)", R"("stages": [{"name": "close", "steps": 7},
+    {"name": "on", "steps": 5}],)");
+  const fs::path whole = dir_ / "whole", part = dir_ / "part";
+  ASSERT_EQ(dem("run " + shell_quoted(write_spec("whole.json", staged)) + " --out " + shell_quoted(whole) + " --quiet")
+                .exit_code,
+            0);
+  // the first stage alone, then the whole spec continued from its saved state (step 7)
+  const std::string first = good_with(R"("time": {"steps": 12},)", R"("stages": [{"name": "close", "steps": 7}],)");
+  ASSERT_EQ(dem("run " + shell_quoted(write_spec("first.json", first)) + " --out " + shell_quoted(part) + " --quiet")
+                .exit_code,
+            0);
+  const Result r = dem("run " + shell_quoted(dir_ / "whole.json") + " --out " + shell_quoted(part) + " --restart " +
+                       shell_quoted(part / "restart.dat") + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* name : {"Stages.dat", "ANIMATION_3D.dat", "Energy.dat"})
+    EXPECT_EQ(bytes(whole / name), bytes(part / name)) << name;
+}
+
+// Bonds glued by a stage: the bond statistics files are written from the start of the run.
+TEST_F(Cli, RunOfAJobWhoseStageGluesBondsWritesTheBondStatistics) {
+  const std::string staged = good_with(R"("time": {"steps": 12},)", R"(
+  "bonds": {"youngsModulus": 1e7, "tensileStrength": 1e5, "shearStrength": 1e5, "gapTolerance": 0.05},
+  "stages": [{"name": "close", "steps": 6}, {"name": "glue", "steps": 6, "bond": true}],)");
+  const fs::path out = dir_ / "glued";
+  const Result r =
+      dem("run " + shell_quoted(write_spec("glued.json", staged)) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* name : {"Fragments.dat", "Fragment_Sizes.dat", "Bond_Breaks.dat"})
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+}
+
 // A bonded 2 x 2 x 2 block dropped on a floor: the statistics files have a row per frame, and the
 // animation's part column names the block's fragment.
 TEST_F(Cli, RunOfABondedBlockWritesTheStatistics) {

@@ -269,6 +269,27 @@ TEST(LatticeSpec, SizesAreDrawnIntoSitesSpacedForTheLargest) {
                 s.particles[a].radius + s.particles[b].radius);
 }
 
+TEST(LatticeSpec, AKindOutsideTheEnumIsRefused) {
+  try {
+    to_scene(parse_json(R"({"materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}],
+      "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}],
+      "lattices": [{"kind": 9, "material": "rock", "radius": 0.01, "max": {"x": 1, "y": 1, "z": 1}}],
+      "outputs": {"numberFormat": 7}, "time": {"steps": 1}})"));
+    FAIL() << "accepted";
+  } catch (const SpecError& e) {
+    EXPECT_NE(std::string(e.what()).find("lattices[0].kind: must be CUBIC, FCC or HEX"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("outputs.numberFormat: must be SCIENTIFIC, LEGACY_FIXED or FULL (got 7)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(LatticeSpec, AMeshsBoxStandsForTheCornerLeftOut) {
+  const Scene s = to_scene(parse_json(lattice_in_tetrahedron("HEX", R"("radius": 0.01, "min": {"x": 0.1},)")));
+  ASSERT_FALSE(s.particles.empty());
+  for (const ParticleInit& p : s.particles) ASSERT_GE(p.position.x(), 0.1 + 0.01 * (1 - 1e-9));
+}
+
 TEST(LatticeSpec, CountsGiveThatManySitesFromMin) {
   const char* spec = R"({
   "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}],
@@ -286,7 +307,7 @@ TEST(LatticeSpec, BadLatticesAreNamed) {
   const std::string base = R"({
   "materials": [{"name": "rock", "density": 2600, "normalStiffness": 1e5}],
   "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5}],
-  "lattices": [{"kind": "HEX", "material": "rock", LATTICE}],
+  "lattices": [{"material": "rock", LATTICE, "kind": "HEX"}],
   "time": {"steps": 1}
 })";
   auto with = [&](const std::string& lattice) {
@@ -304,6 +325,10 @@ TEST(LatticeSpec, BadLatticesAreNamed) {
        "lattices[0].sizes.dMax: must be >= dMin"},
       {R"("radius": 0.01, "inside": {"vertices": [{}, {"x": 0.001}, {"y": 0.001}, {"z": 0.001}], "triangles": [{"i": 1, "j": 3, "k": 2}, {"i": 1, "j": 2, "k": 4}, {"i": 1, "j": 4, "k": 3}, {"i": 2, "j": 3, "k": 4}]})",
        "lattices[0]: the mesh is too small to hold one particle of radius 0.01"},
+      {R"("radius": 0.01, "inside": {"vertices": [{}, {"x": 0.3}, {"y": 0.3}, {"z": 0.3}], "triangles": [{"i": 1, "j": 3, "k": 2}, {"i": 1, "j": 2, "k": 4}, {"i": 1, "j": 4, "k": 3}]})",
+       "lattices[0].inside: is not a closed surface: the edge between vertices 2 and 3 belongs to 1 triangle(s)"},
+      {R"("sizes": {"kind": 7, "mean": 0.01}, "max": {"x": 1, "y": 1, "z": 1})",
+       "lattices[0].sizes.kind: must be ONE_SIZE, TWO_SIZES, UNIFORM, NORMAL or LOGNORMAL (0 to 4; got 7)"},
   };
   for (const auto& [lattice, expected] : cases) {
     std::string problems;

@@ -70,6 +70,10 @@ TEST(StageSpec, AKeyBlocksFourStagesLoadAsWritten) {
   EXPECT_EQ(scene.stages[3].gravity, Vec3(1, 0, -9.81));
   EXPECT_EQ(scene.stages[0].name, "fill");
   EXPECT_EQ(spec::to_scene(spec::parse_json(staged(R"({"steps": 5})"))).stages[0].name, "stage 1");
+  // a stage may change a material's interaction with itself (the particles' friction)
+  const Scene rough = spec::to_scene(spec::parse_json(
+      staged(R"({"steps": 5, "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5, "friction": 0.9}]})")));
+  EXPECT_EQ(rough.stages[0].interactions->at(0).friction, 0.9);
 }
 
 TEST(StageSpec, EachMistakeIsNamedWithItsPath) {
@@ -100,10 +104,25 @@ TEST(StageSpec, EachMistakeIsNamedWithItsPath) {
        "stages[0].interactions[0].b: unknown material \"clay\""},
       {R"({"steps": 5, "name": "a\nb"})", "stages[0].name: must not hold control characters"},
       {R"({"steps": 5, "localDamping": 1})", "stages[0].localDamping: must be in [0, 1)"},
+      {R"({"steps": 5, "addWalls": [{"name": "lid", "material": "steel", "plane": {"normal": {"z": -1}}}],
+          "removeWalls": ["lid"]})",
+       "stages[0].removeWalls[0]: wall \"lid\" is added by this stage"},
+      {R"({"steps": 5, "wallChanges": [{"wall": "floor"}, {"wall": "floor", "motion": {"velocity": {"z": 1}}}]})",
+       "stages[0].wallChanges[1].wall: wall \"floor\" is changed twice in this stage"},
+      {R"({"steps": 5, "removeWalls": ["floor"], "untilWall": "floor", "untilWallForce": 1})",
+       "stages[0].untilWall: wall \"floor\" is not there at this stage"},
+      {R"({"steps": 5, "name": "a\u2028b"})", "stages[0].name: must not hold control characters or line separators"},
+      {R"({"steps": 5, "name": "a\u0085b"})", "stages[0].name: must not hold control characters or line separators"},
   };
   for (const auto& [stages, expected] : cases)
     EXPECT_NE(spec_problems(staged(stages)).find(expected), std::string::npos) << stages << "\ngave:\n"
                                                                                << spec_problems(staged(stages));
+}
+
+TEST(StageSpec, AStageMayEndOnTheForceOfAWallItAdds) {
+  EXPECT_EQ(spec_problems(staged(R"({"steps": 5, "untilWall": "lid", "untilWallForce": 1,
+    "addWalls": [{"name": "lid", "material": "steel", "plane": {"normal": {"z": -1}}}]})")),
+            "");
 }
 
 TEST(StageSpec, AStagedRunsLengthIsItsStagesAndItGrowsInAStage) {

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/errors.hpp"
 #include "sim/runner.hpp"
 #include "sim/state_io.hpp"
 #include "support/scenes.hpp"
@@ -325,6 +326,108 @@ TEST(Stages, TheEnergyGuardCountsAStagesChangesAsInput) {
   EXPECT_NEAR(sim.energy_input().stages, jump, 1e-9 * jump);
   const double balance = sim.mechanical_energy() - sim.energy_input().total() - sim.energy_input().initial_energy;
   EXPECT_LE(balance, 1e-6 * jump);  // only damping took energy out
+}
+
+// BallastDEM's sleeper load (1.5 to 51.84 kN at 3 Hz on a 1 kg plate) given at a stage that starts
+// at the load's peak time of the run (t = 1/6 s): its cycle starts with the stage, at F_min.
+TEST(Stages, ACyclicLoadGivenAtAStageStartsItsCycleThere) {
+  for (const bool added : {false, true}) {
+    Scene s = lone_sphere({0, 0, 1});
+    s.particles[0].fixed = true;
+    s.time.dt = 1e-5;
+    s.gravity = {0, 0, -kG};
+    WallInit sleeper{"sleeper",
+                     1,
+                     PlateShape{{Vec3(-0.1, -0.05, 0), Vec3(0.1, -0.05, 0), Vec3(0.1, 0.05, 0), Vec3(-0.1, 0.05, 0)}},
+                     {},
+                     {}};
+    LoadControl load;
+    load.mass = 1;
+    load.f_min = 1500;
+    load.f_max = 51840;
+    load.frequency = 3;
+    load.cycles = 15;
+    s.stages.push_back(stage_of("settle", 16667));
+    Stage loaded = stage_of("load", 100);
+    if (added) {
+      sleeper.first_stage = 1;
+      sleeper.load = load;
+    } else {
+      loaded.wall_changes.push_back({0, {}, load});
+    }
+    s.walls.push_back(sleeper);
+    s.stages.push_back(loaded);
+    Simulation sim(std::move(s));
+    while (sim.step_count() < sim.total_steps()) sim.step();
+    // 100 steps of 1e-5 s under F(t) ~ F_min (it rises by 1.5 N in a millisecond) and the weight
+    const double t = 1e-3, expected = 0.5 * (1500 + kG) * t * t;
+    EXPECT_NEAR(sim.wall_driver(0).load_displacement(), expected, 1e-3 * expected) << (added ? "added" : "changed");
+  }
+}
+
+TEST(Stages, AFinishedStagedRunContinuedWithItsLastStageLengthenedRunsOn) {
+  auto scene = [](std::int64_t last) {
+    Scene s = lone_sphere({0, 0, 1});
+    s.gravity = {0, 0, -kG};
+    s.stages.push_back(stage_of("a", 100));
+    s.stages.push_back(stage_of("b", last));
+    return s;
+  };
+  Simulation first(scene(200));
+  while (first.step_count() < first.total_steps()) first.step();
+  std::stringstream saved;
+  StateIO::write(first, saved);
+  Simulation longer(scene(500));
+  StateIO::read(longer, saved);
+  EXPECT_EQ(longer.stage_end_step(), 600);  // not the saved run's 300: it did not end early
+  EXPECT_EQ(longer.total_steps(), 600);
+}
+
+TEST(Stages, AContinuedRunMayNotChangeAGrowthUnderWay) {
+  auto scene = [](double factor) {
+    Scene s = pile(2);
+    s.bonds.reset();
+    Stage grow = stage_of("grow", 400);
+    grow.growth_factor = factor;
+    s.stages.push_back(grow);
+    s.stages.push_back(stage_of("after", 100));
+    return s;
+  };
+  Simulation first(scene(1.1));
+  for (int k = 0; k < 200; ++k) first.step();
+  std::stringstream saved;
+  StateIO::write(first, saved);
+  Simulation other(scene(1.2));
+  try {
+    StateIO::read(other, saved);
+    FAIL() << "a changed growth was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("a continued run may not change a growth under way or done"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Stages, AStagesRestitutionHoldsTheStepToItsLimit) {
+  Scene s = sphere_on_floor();
+  s.interactions.assign(4, Interaction{0.99, 0.3, 0});
+  s.stages.push_back(stage_of("elastic", 10));
+  Stage damped = stage_of("damped", 10);
+  damped.interactions = std::vector<Interaction>(4, Interaction{0.001, 0.3, 0});
+  s.stages.push_back(damped);
+  Scene alone = s;
+  alone.stages.clear();
+  alone.time.steps = 20;
+  alone.interactions = *damped.interactions;
+  const double dt_alone = Simulation(alone).dt();
+  EXPECT_EQ(Simulation(s).dt(), dt_alone);  // the damped contact's shorter time sets it
+  s.time.dt = 6 * dt_alone;                 // above the damped stage's limit (t_c / 10), below the elastic one's
+  try {
+    Simulation refused(s);
+    FAIL() << "a step above a stage's limit was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("stages[1] (damped): time.dt"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
