@@ -389,7 +389,10 @@ void StateIO::read(Simulation& sim, std::istream& in) {
 
   BlockPlan& b = s.blocks;
   r.get(b.block_size, "the block plan");
-  if (b.block_size < 1) inconsistent("the block size is " + std::to_string(b.block_size));
+  // the engine's one size (BlockPlan): any other would sum in another order, or overflow n + size
+  if (b.block_size != BlockPlan{}.block_size)
+    inconsistent("the block size is " + std::to_string(b.block_size) + ", not the engine's " +
+                 std::to_string(BlockPlan{}.block_size));
   sim.plan_blocks();
 
   WallContacts& wc = s.wall_contacts;
