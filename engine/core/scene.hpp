@@ -245,6 +245,13 @@ struct Scene {
   // A staged run: the stages one after another (none: one run of `time`'s length).
   std::vector<Stage> stages;
 
+  // The stage that glues the bonds (Stage::glue_bonds; at most one), or -1: none does.
+  int bonding_stage() const {
+    for (std::size_t k = 0; k < stages.size(); ++k)
+      if (stages[k].glue_bonds) return static_cast<int>(k);
+    return -1;
+  }
+
   const Interaction& interaction(int a, int b) const {
     return interactions[static_cast<size_t>(a) * materials.size() + b];
   }

@@ -28,7 +28,7 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
     writers.push_back(std::make_unique<WallStatisticsWriter>(dir.string(), append));
   writers.push_back(std::make_unique<EnergyWriter>((dir / "Energy.dat").string(), append));
   if (StageLogWriter::wanted(sim))
-    writers.push_back(std::make_unique<StageLogWriter>((dir / "Stages.dat").string(), sim, append));
+    writers.push_back(std::make_unique<StageLogWriter>((dir / "Stages.dat").string(), append));
   return writers;
 }
 

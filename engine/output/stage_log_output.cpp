@@ -24,8 +24,7 @@ int last_logged(const std::string& path) {
 
 }  // namespace
 
-StageLogWriter::StageLogWriter(const std::string& path, const Simulation&, bool append)
-    : logged_(append ? last_logged(path) : -1) {
+StageLogWriter::StageLogWriter(const std::string& path, bool append) : logged_(append ? last_logged(path) : -1) {
   const bool fresh = !append || !std::filesystem::exists(path) || std::filesystem::file_size(path) == 0;
   file_ = OutputFile(path, append);
   if (fresh) std::fprintf(file_.get(), "stage start_step start_time name\n");

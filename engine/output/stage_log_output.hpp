@@ -13,7 +13,7 @@ namespace dem {
 class StageLogWriter final : public Observer {
  public:
   static bool wanted(const Simulation& sim) { return !sim.scene().stages.empty(); }
-  StageLogWriter(const std::string& path, const Simulation& sim, bool append = false);
+  explicit StageLogWriter(const std::string& path, bool append = false);
   void frame(const Simulation& sim) override;
 
  private:

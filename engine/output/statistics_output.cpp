@@ -11,9 +11,7 @@ StatisticsWriter::StatisticsWriter(const std::string& folder, const Simulation& 
       max_displacement_(folder + "/Disp_Max.dat", append),
       coordination_(folder + "/Coord_OL.dat", append) {
   // bonds now, or from the stage that glues them (the rows before count every sphere as a fragment)
-  const auto& stages = sim.scene().stages;
-  const bool glued_later =
-      sim.scene().bonds && std::any_of(stages.begin(), stages.end(), [](const Stage& s) { return s.glue_bonds; });
+  const bool glued_later = sim.scene().bonds && sim.scene().bonding_stage() >= 0;
   if (!sim.bonds().empty() || glued_later) {
     fragments_ = OutputFile(folder + "/Fragments.dat", append);
     fragment_sizes_ = OutputFile(folder + "/Fragment_Sizes.dat", append);

@@ -132,9 +132,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   build_neighbors();
   refuse_coincident_particles();
   // bonds are glued now, or at the start of the stage that glues them (then from the stage's contacts)
-  int bonding_stage = 0;
-  for (std::size_t k = 0; k < scene_.stages.size(); ++k)
-    if (scene_.stages[k].glue_bonds) bonding_stage = static_cast<int>(k);
+  const int bonding_stage = std::max(0, scene_.bonding_stage());  // 0: at t = 0
   if (scene_.bonds) {
     state_.particles.q.assign(state_.particles.size(), Quat::Identity());  // the bonds measure turns from here
     if (bonding_stage == 0) glue_bonds();

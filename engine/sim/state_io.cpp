@@ -307,9 +307,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
                              "), and this spec has no stages");
   }
   // bonds glued at a stage's start are in the state from that stage on, and only then
-  bool glued_since_start = false;
-  for (int k = 1; k <= stage && k < static_cast<int>(sim.scene_.stages.size()); ++k)
-    glued_since_start = glued_since_start || sim.scene_.stages[k].glue_bonds;
+  const int bonding_stage = sim.scene_.bonding_stage();
+  const bool glued_since_start = bonding_stage > 0 && bonding_stage <= stage;
   if (!glued_since_start && bonds != s.bonds.bonds().size())
     mismatch("bonds", static_cast<double>(bonds), static_cast<double>(s.bonds.bonds().size()));
 
