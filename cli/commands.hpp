@@ -7,6 +7,7 @@ namespace dem::cli {
 
 int run_command(const std::vector<std::string>& args);
 int validate_command(const std::vector<std::string>& args);
+int import_command(const std::vector<std::string>& args);  // cli/import_command.cpp
 
 // Client verbs of a dem-server (cli/client_commands.cpp)
 int submit_command(const std::vector<std::string>& args);

@@ -14,6 +14,10 @@ const char* kUsage =
     "                                   --restart FILE continues from a saved state (e.g. DIR/restart.dat),\n"
     "                                   appending to DIR's files\n"
     "  dem validate SPEC.json                                 check a job spec and report every problem\n"
+    "  dem import INPT.inp [MESH ...] [--out SPEC.json] [--unit METRES] [--program pdem-egd|ballastdem]\n"
+    "                                   a legacy INPT.inp (PDEM-EGD's: MESH the terrain, then the funnel) as\n"
+    "                                   a job spec, with every line's fate; --unit: metres per INPT length\n"
+    "                                   unit (default 1; 0.001 for mm)\n"
     "\n"
     "  dem submit SPEC.json [--wait] [--idempotency-key K] [--quiet]\n"
     "                                   send a job spec to dem-server (mesh files go inline) and print the\n"
@@ -44,6 +48,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   if (verb == "run") return dem::cli::run_command(args);
   if (verb == "validate") return dem::cli::validate_command(args);
+  if (verb == "import") return dem::cli::import_command(args);
   if (verb == "submit") return dem::cli::submit_command(args);
   if (verb == "status") return dem::cli::status_command(args);
   if (verb == "list") return dem::cli::list_command(args);

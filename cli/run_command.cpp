@@ -89,8 +89,10 @@ int validate_command(const std::vector<std::string>& args) {
   try {
     const Scene scene = load(args[0]);
     Simulation sim(scene);  // also checks what needs the scene assembled (the time step)
-    std::printf("%s: valid; %zu particles, %zu walls; %s; %lld steps\n", args[0].c_str(), scene.particles.size(),
-                scene.walls.size(), sim.time_step().describe().c_str(), static_cast<long long>(sim.total_steps()));
+    std::printf("%s: valid; %zu particles, %zu walls%s; %s; %lld steps\n", args[0].c_str(), scene.particles.size(),
+                scene.walls.size(),
+                scene.sources.empty() ? "" : (", " + std::to_string(scene.sources.size()) + " sources").c_str(),
+                sim.time_step().describe().c_str(), static_cast<long long>(sim.total_steps()));
     return 0;
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "%s: invalid spec:\n", args[0].c_str());
@@ -140,6 +142,12 @@ int run_command(const std::vector<std::string>& args) {
     std::printf("done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d\n",
                 static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate,
                 sim.neighbor_builds());
+    for (std::size_t k = 0; k < sim.scene().sources.size(); ++k) {
+      const SourceProgress& progress = sim.source_progress()[k];
+      std::printf("source \"%s\": inserted %lld particles, %.6g kg; %lld batches found no room for a particle due\n",
+                  sim.scene().sources[k].name.c_str(), static_cast<long long>(progress.inserted), progress.mass,
+                  static_cast<long long>(progress.crowded_batches));
+    }
     return 0;
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "%s: invalid spec:\n", a.spec.c_str());

@@ -43,6 +43,8 @@ std::optional<Region> load_region(const api::Mesh& in, const std::string& path, 
   return Region{ClosedMesh(*placed), std::abs(six_v) / 6};
 }
 
+}  // namespace
+
 // Diameters (the manuals' IPATTERN), checked at `sp`.
 SizeDistribution load_sizes(const api::SizeDistribution& sz, const std::string& sp, Checker& check) {
   SizeDistribution d;
@@ -72,8 +74,7 @@ SizeDistribution load_sizes(const api::SizeDistribution& sz, const std::string& 
   return d;
 }
 
-// The largest diameter a distribution draws (a lattice is spaced for it).
-double largest_diameter(const SizeDistribution& d) { return d.kind == SizeKind::One ? d.mean : d.d_max; }
+namespace {
 
 void add_packing(const api::Packing& in, const std::string& path, SpecContext& ctx, int material) {
   Checker& check = ctx.check;
@@ -259,8 +260,8 @@ void load_particles(const api::JobSpec& spec, SpecContext& ctx) {
   if (!scene.clumps.empty() && spec.has_growth() && spec.growth().factor() != 1)
     check.fail("growth", "radius growth and rigid clumps cannot be combined (a clump's shape is fixed)");
   if (spec.particles().empty() && spec.lattices().empty() && spec.packings().empty() && spec.clumps().empty() &&
-      spec.ballast_stones().empty())
-    check.fail("particles", "the scene has no particles");
+      spec.ballast_stones().empty() && spec.sources().empty())
+    check.fail("particles", "the scene has no particles (and no sources that insert some)");
   check.room("particles", 0, static_cast<double>(scene.particles.size()));  // clumps' and stones' included
 }
 

@@ -56,6 +56,9 @@ void load_run_settings(const api::JobSpec& spec, SpecContext& ctx) {
                                                                                 : FileNumberFormat::Scientific;
   scene.outputs.every_steps = o.every_steps();
   scene.outputs.interval_seconds = o.interval();
+  if (o.last_frames() < 0 || o.last_frames() > (std::int64_t{1} << 53))
+    check.fail("outputs.lastFrames", "must be in [0, 2^53] (got " + std::to_string(o.last_frames()) + ")");
+  scene.outputs.last_frames = o.last_frames();
 
   if (spec.has_domain()) {
     // Written into every animation frame header, where a non-finite number cannot be read back.

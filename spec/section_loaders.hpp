@@ -49,6 +49,8 @@ void check_interactions_complete(SpecContext& ctx);
 void load_particles(const api::JobSpec& spec, SpecContext& ctx);
 void load_clumps(const api::JobSpec& spec, SpecContext& ctx);
 void load_stones(const api::JobSpec& spec, SpecContext& ctx);
+// Diameters (the manuals' IPATTERN), checked at `path`.
+SizeDistribution load_sizes(const api::SizeDistribution& in, const std::string& path, Checker& check);
 
 // walls_section.cpp: planes, plates and meshes, with their motions and loads.
 void load_walls(const api::JobSpec& spec, SpecContext& ctx);
@@ -68,5 +70,8 @@ void load_run_settings(const api::JobSpec& spec, SpecContext& ctx);
 
 // stages_section.cpp: a staged run's stages (after everything above: they name walls and materials).
 void load_stages(const api::JobSpec& spec, SpecContext& ctx);
+
+// sources_section.cpp: particles entering during the run (after the stages and walls they name).
+void load_sources(const api::JobSpec& spec, SpecContext& ctx);
 
 }  // namespace dem::spec

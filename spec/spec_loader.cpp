@@ -132,6 +132,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
   load_growth(spec, ctx);
   load_bonds(spec, ctx);
   load_stages(spec, ctx);
+  load_sources(spec, ctx);
   check_interactions_complete(ctx);
   check_triangle_count(scene, check);
   load_run_settings(spec, ctx);

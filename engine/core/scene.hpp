@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/model_parameters.hpp"
+#include "core/size_distribution.hpp"
 #include "core/vec.hpp"
 
 namespace dem {
@@ -50,6 +51,7 @@ struct ParticleInit {
   Vec3 force = Vec3::Zero();  // constant external force, N
   int clump = -1;             // index in Scene::clumps of the rigid clump it belongs to, -1: free
   int stone = -1;             // the breakable stone it belongs to: bonds glue only spheres of one stone (-1: none)
+  int source = -1;            // the source (Scene::sources) that inserted it during the run (-1: given)
 };
 
 // A rigid clump: overlapping member spheres (Scene::particles first .. first + count - 1) moving as
@@ -156,6 +158,34 @@ struct BondSettings {
   std::vector<Zone> zones;
 };
 
+// A source of particles during the run (the BallastDEM manual's wind-blown sand entering the ballast):
+// spheres of `sizes` enter at `mass_rate` or `count_rate`, each at a random place in the region where it
+// touches no particle and no wall (a crowded region holds the rest back until there is room), moving at
+// `velocity`. Its k-th particle's size depends only on the seed and k, so a continued run inserts the same.
+struct ParticleSource {
+  std::string name;
+  enum class Region { Box, Face };
+  Region region = Region::Box;
+  Box box;             // Box: each particle wholly inside it
+  int face_wall = -1;  // Face: the faces of this plate or mesh (Scene::walls index), and the layer over them
+  double depth = 0;    // this deep (m) on the side `velocity` points to (a face's normal side when along it)
+  int material = 0;
+  SizeDistribution sizes;
+  std::uint64_t seed = 1;
+  double mass_rate = 0;   // kg/s; or
+  double count_rate = 0;  // particles/s
+  Vec3 velocity = Vec3::Zero();
+  // Active from `start` to `end` (s), counted from the run's start, or from its stage's when `stage` >= 0
+  // (then only during that stage).
+  double start = 0;
+  double end = std::numeric_limits<double>::infinity();
+  int stage = -1;
+  // inserts what has come due at most every this many steps (0 or 1: at every step; a step with
+  // nothing due costs one comparison, one with something due a pass over the particles)
+  std::int64_t every_steps = 0;
+  std::string path{};  // where the spec gives it ("sources[0]"), for messages
+};
+
 enum class FileNumberFormat { Scientific, LegacyFixed, Full };
 
 struct OutputSettings {
@@ -166,6 +196,9 @@ struct OutputSettings {
   double length_unit = 1.0;  // metres per file length unit (1e-3 for mm)
   std::string length_unit_name = "m";
   FileNumberFormat number_format = FileNumberFormat::Scientific;
+  // The PDEM-EGD manual's NLast: the particles' frame files (animation, force chains) keep only the
+  // last this many frames; the time series (energy, statistics, walls) keep every frame. 0: all.
+  std::int64_t last_frames = 0;
 };
 
 struct NumericsSettings {
@@ -244,6 +277,8 @@ struct Scene {
   std::optional<Growth> growth;
   // A staged run: the stages one after another (none: one run of `time`'s length).
   std::vector<Stage> stages;
+  // Particles entering during the run (none: the particles are those given, from start to end).
+  std::vector<ParticleSource> sources;
 
   // The stage that glues the bonds (Stage::glue_bonds; at most one), or -1: none does.
   int bonding_stage() const {

@@ -59,10 +59,17 @@ std::array<double, 6> frame_domain(const Simulation& sim) {
       lo = lo.cwiseMin(x);
       hi = hi.cwiseMax(x);
     };
-    for (const ParticleInit& p : sim.scene().particles) {
+    // the particles given, and where the sources put theirs
+    for (std::size_t k = 0; k < sim.given_particles(); ++k) {
+      const ParticleInit& p = sim.scene().particles[k];
       include(p.position - Vec3::Constant(p.radius));
       include(p.position + Vec3::Constant(p.radius));
     }
+    for (const ParticleSource& source : sim.scene().sources)
+      for (const ParticleInit& p : source_extremes(sim.scene(), source)) {
+        include(p.position - Vec3::Constant(p.radius));
+        include(p.position + Vec3::Constant(p.radius));
+      }
     for (const WallInit& w : sim.scene().walls) {
       if (const auto* plate = std::get_if<PlateShape>(&w.shape))
         for (const Vec3& c : plate->corners) include(c);

@@ -80,6 +80,13 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   state_.gravity = scene_.gravity;
   state_.overlap_limit = scene_.numerics.max_overlap_fraction;
   state_.local_damping = scene_.numerics.local_damping;
+  given_particles_ = scene_.particles.size();
+  // A source's particles count as given for the step, the skin and the walls' reach before they
+  // exist: its smallest and largest, at its region's corners, stand in for them until the step is chosen.
+  std::vector<ParticleInit> source_extremes_all;
+  for (const ParticleSource& source : scene_.sources)
+    for (const ParticleInit& p : source_extremes(scene_, source)) source_extremes_all.push_back(p);
+  scene_.particles.insert(scene_.particles.end(), source_extremes_all.begin(), source_extremes_all.end());
   for (const ParticleInit& init : scene_.particles)
     largest_given_radius_ = std::max(largest_given_radius_, init.radius);
   smallest_given_radius_ = largest_given_radius_;
@@ -127,7 +134,11 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   boundary_of_plane_.assign(state_.walls.size(), 0);
   for (int k = 0; k < boundaries; ++k)
     if (plane_index_[k] >= 0) boundary_of_plane_[plane_index_[k]] = k;
-  skin_ = scene_.numerics.skin_fraction * mean_diameter(state_.particles.radius);
+  // of the sources' extremes when the run starts empty
+  std::vector<double> radii_for_skin = state_.particles.radius;
+  if (radii_for_skin.empty())
+    for (const ParticleInit& p : source_extremes_all) radii_for_skin.push_back(p.radius);
+  skin_ = scene_.numerics.skin_fraction * mean_diameter(radii_for_skin);
   move_walls(0, 0);
   build_neighbors();
   refuse_coincident_particles();
@@ -203,6 +214,8 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
       changed.motion = scene_.stages[s].wall_changes[c].motion;
       check_motion(changed, "stages[" + std::to_string(s) + "].wallChanges[" + std::to_string(c) + "]");
     }
+  scene_.particles.resize(given_particles_);  // the sources' stand-ins are gone
+  source_progress_.assign(scene_.sources.size(), SourceProgress{});
   // Step counts are int64 and times step * dt: past 2^53 steps neither is exact any more.
   constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
   if (!scene_.stages.empty()) {
@@ -481,10 +494,11 @@ void Simulation::step() {
     moved2 = std::max(moved2, drift_bodies(state_.bodies, state_.particles, x_at_build_, state_.dt, state_.half_kick,
                                            state_.spin_kick));
   const double grown = grow(growth_at_start);
+  const bool inserted = !scene_.sources.empty() && feed_sources();
   const double half_skin = 0.5 * skin_;
   const int interval = scene_.numerics.search_interval;
   // a pair closes by at most twice (the largest move + the largest growth) since the build
-  if (std::sqrt(moved2) + grown > half_skin || wall_shift_since_build() > half_skin ||
+  if (inserted || std::sqrt(moved2) + grown > half_skin || wall_shift_since_build() > half_skin ||
       (interval > 0 && step_ + 1 - last_build_step_ >= interval))
     build_neighbors();
   kernel_->compute_and_kick(state_);
@@ -783,7 +797,9 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
   mc.slots.resize(static_cast<std::size_t>(n) * kSlots);  // new slots are empty (mesh = -1)
   mc.constants.resize(n);
   for (int i = 0; i < n; ++i) mc.constants[i] = wall_constants(p, i);
-  const double r_max = n > 0 ? *std::max_element(p.radius.begin(), p.radius.end()) : 0.0;
+  // (a run that starts empty bins its meshes for the particles its sources will insert)
+  const double r_max =
+      std::max(largest_given_radius_, n > 0 ? *std::max_element(p.radius.begin(), p.radius.end()) : 0.0);
   for (MeshWall& mesh : state_.meshes) {
     if (!mesh.grid_stale || !wall_present_[mesh.boundary]) continue;
     mesh.grid.build(mesh.vertices, mesh.triangles, 2 * r_max + skin_);
@@ -1088,6 +1104,119 @@ void Simulation::enter_stage(int k) {
   state_.dt = dt;
   add_work(ledger_.stages, mechanical_energy() - before);
   recount_total_steps();
+}
+
+double Simulation::source_active_time(int k) const {
+  const ParticleSource& source = scene_.sources[k];
+  const std::int64_t from = source.stage >= 0 ? stage_start_step_ : 0;
+  return static_cast<double>(step_ + 1 - from) * state_.dt - source.start;
+}
+
+bool Simulation::feed_sources() {
+  bool any = false;
+  for (int k = 0; k < static_cast<int>(scene_.sources.size()); ++k) {
+    const ParticleSource& source = scene_.sources[k];
+    if (source.stage >= 0 && source.stage != stage_) continue;
+    const double since = source_active_time(k);
+    SourceProgress& progress = source_progress_[k];
+    const std::int64_t every = std::max<std::int64_t>(1, source.every_steps);
+    if (since <= 0 || (progress.last_attempt >= 0 && step_ + 1 - progress.last_attempt < every)) continue;
+    progress.last_attempt = step_ + 1;
+    const std::vector<Face> faces =
+        source.region == ParticleSource::Region::Face ? faces_of(source.face_wall) : std::vector<Face>{};
+    const std::vector<ParticleInit> due =
+        due_particles(scene_, source, progress, std::min(since, source.end - source.start), state_.particles, faces,
+                      [this](const Vec3& x, double r) { return touches_wall(x, r); });
+    double energy = 0;  // what the new particles bring: their kinetic and gravitational energy
+    for (ParticleInit init : due) {
+      init.source = k;
+      append_particle(init);
+      const double m = state_.particles.mass.back();
+      energy += 0.5 * m * init.velocity.squaredNorm() - m * state_.gravity.dot(init.position);
+    }
+    if (!due.empty()) add_work(ledger_.sources, energy);
+    any = any || !due.empty();
+  }
+  return any;
+}
+
+std::vector<Face> Simulation::faces_of(int wall) const {
+  std::vector<Face> faces;
+  if (!wall_present_[wall]) return faces;
+  if (plane_index_[wall] >= 0) {
+    const std::array<Vec3, 4>& c = state_.walls[plane_index_[wall]].corners;
+    faces.push_back({c[0], c[1], c[2]});
+    faces.push_back({c[0], c[2], c[3]});
+    return faces;
+  }
+  const MeshWall& mesh = state_.meshes[mesh_index_[wall]];
+  for (const auto& t : mesh.triangles) faces.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
+  return faces;
+}
+
+bool Simulation::touches_wall(const Vec3& x, double r) const {
+  for (std::size_t w = 0; w < state_.walls.size(); ++w)
+    if (wall_present_[boundary_of_plane_[w]] && state_.walls[w].distance(x) < r) return true;
+  const Vec3 lo = x - Vec3::Constant(r), hi = x + Vec3::Constant(r);
+  for (const MeshWall& mesh : state_.meshes) {
+    if (!wall_present_[mesh.boundary]) continue;
+    bool touching = false;
+    auto test = [&](int t) {
+      const auto& tri = mesh.triangles[t];
+      const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
+      if ((a.cwiseMin(b).cwiseMin(c).array() > hi.array()).any() ||
+          (a.cwiseMax(b).cwiseMax(c).array() < lo.array()).any())
+        return;
+      touching = touching || (closest_on_triangle(x, a, b, c).point - x).squaredNorm() < r * r;
+    };
+    if (!mesh.grid_stale)  // binned where the mesh is now
+      mesh.grid.for_each_in_box(lo, hi, test);
+    else
+      for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) test(t);
+    if (touching) return true;
+  }
+  return false;
+}
+
+void Simulation::append_particle(const ParticleInit& init) {
+  Particles& p = state_.particles;
+  const double r = init.radius;
+  const double m = sphere_mass(scene_.materials[init.material].density, r);
+  ParticleInit given = init;
+  given.radius = r / growth_scale_;  // a growth scales the given sizes: this one is r now
+  scene_.particles.push_back(given);
+  p.x.push_back(init.position);
+  p.v.push_back(init.velocity);
+  p.w.push_back(init.angular_velocity);
+  p.f.push_back(Vec3::Zero());
+  p.t.push_back(Vec3::Zero());
+  p.radius.push_back(r);
+  p.mass.push_back(m);
+  p.inv_mass.push_back(1 / m);
+  p.inv_inertia.push_back(1 / sphere_inertia(m, r));
+  p.material.push_back(init.material);
+  p.id.push_back(static_cast<int>(scene_.particles.size()) - 1);
+  if (!p.external.empty()) p.external.push_back(Vec3::Zero());
+  if (!p.body.empty()) {
+    p.body.push_back(-1);
+    p.body_offset.push_back(Vec3::Zero());
+  }
+  if (!p.q.empty()) p.q.push_back(Quat::Identity());
+  state_.f_next.push_back(Vec3::Zero());
+  state_.half_kick.push_back(Vec3::Zero());
+  state_.spin_kick.push_back(Vec3::Zero());
+  x_at_build_.push_back(init.position);
+  // no history: the rows of the lists and slots end where they did (the next build fills them)
+  NeighborList& nl = state_.neighbors;
+  if (!nl.row_start.empty()) nl.row_start.push_back(nl.row_start.back());
+  WallContacts& wc = state_.wall_contacts;
+  if (!wc.row_start.empty()) wc.row_start.push_back(wc.row_start.back());
+  MeshContacts& mc = state_.mesh_contacts;
+  if (!state_.meshes.empty()) {
+    mc.used.resize(p.size(), 0);
+    mc.slots.resize(p.size() * MeshContacts::kSlots);
+    if (!mc.row_start.empty()) mc.row_start.push_back(mc.row_start.back());
+  }
 }
 
 }  // namespace dem

@@ -10,6 +10,7 @@
 #include "core/scene.hpp"
 #include "sim/force_kernel.hpp"
 #include "sim/kernel_select.hpp"
+#include "sim/particle_sources.hpp"
 #include "sim/state.hpp"
 #include "sim/time_step.hpp"
 
@@ -68,8 +69,9 @@ struct EnergyLedger {
   double walls = 0;
   double external = 0;
   double growth = 0;
-  double stages = 0;  // what a stage's changes (gravity, friction, walls gone) did to the mechanical energy
-  double total() const { return walls + external + growth + stages; }
+  double stages = 0;   // what a stage's changes (gravity, friction, walls gone) did to the mechanical energy
+  double sources = 0;  // the kinetic and gravitational energy of the particles the sources inserted
+  double total() const { return walls + external + growth + stages + sources; }
   double magnitude = 0;       // sum of the sizes of every step's contributions (for the guard's slack)
   double initial_energy = 0;  // the mechanical energy at t = 0 (kinetic, elastic, gravitational)
 };
@@ -135,6 +137,10 @@ class Simulation {
   // by lowest id; all 0 in a scene without bonds.
   std::vector<int> fragments() const;
   const BondSet& bonds() const { return state_.bonds; }
+  // Particles entering during the run (Scene::sources): the scene's own come first (ids below
+  // given_particles()), each inserted one gets the next id.
+  std::size_t given_particles() const { return given_particles_; }
+  const std::vector<SourceProgress>& source_progress() const { return source_progress_; }
 
   // Per wall of the scene, updated every step.
   const std::vector<BoundaryLoad>& boundary_loads() const { return boundary_loads_; }
@@ -196,6 +202,14 @@ class Simulation {
   void restore_stage(int k, std::int64_t start, std::int64_t end, bool ended_early);  // StateIO
   void glue_bonds();
   void drop_slots_of_absent_meshes();
+  // Sources (Scene::sources): inserts this step's due particles; true when it inserted any.
+  bool feed_sources();
+  bool source_active(int k) const;
+  double source_active_time(int k) const;  // since the source's start, after this step
+  std::vector<Face> faces_of(int wall) const;
+  bool touches_wall(const Vec3& x, double r) const;
+  // Adds one particle to the run (a source's, or one a saved state holds) with an empty history.
+  void append_particle(const ParticleInit& init);
 
   Scene scene_;
   KernelSelector select_;
@@ -236,6 +250,8 @@ class Simulation {
   std::optional<TooFast> first_too_fast_;
   bool moved_too_far_ = false;  // set by the last drift
   EnergyLedger ledger_;
+  std::size_t given_particles_ = 0;
+  std::vector<SourceProgress> source_progress_;  // per source
 };
 
 }  // namespace dem

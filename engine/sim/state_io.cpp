@@ -16,10 +16,10 @@
 namespace dem {
 namespace {
 
-// 10: the stage (Scene::stages) and the walls' motion clocks; 9: the walls' contact response (a
-// servo's gain cap); 5: a CRC-32 of everything before it as the last four bytes; 4: orientations,
-// bonds' bonded states
-constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', '1', '0'};
+// 11: the sources' progress and the particles they inserted; 10: the stage (Scene::stages) and the walls' motion
+// clocks; 9: the walls' contact response (a servo's gain cap); 5: a CRC-32 of everything before it as the last four
+// bytes; 4: orientations, bonds' bonded states
+constexpr char kMagic[8] = {'D', 'E', 'M', 'S', 'T', 'A', '1', '1'};
 
 // The state is made of fixed-size values without pointers (doubles, ints, Eigen fixed-size vectors
 // and matrices, plain structs of them) and std::vectors of such: their bytes are their value for
@@ -87,6 +87,15 @@ class Reader {
 
 // A state that passed its checksum but does not fit the job (written by hand, or by a bug): refused
 // before any index in it is followed.
+// A particle a source inserted, as it entered (the scene's entry for it: statistics measure from there).
+struct InsertedParticle {
+  Vec3 position;
+  Vec3 velocity;
+  double radius;  // its given size (Scene::particles)
+  int source;     // index in Scene::sources
+  int material;
+};
+
 [[noreturn]] void inconsistent(const std::string& what) {
   throw std::runtime_error("the saved state does not hold together: " + what);
 }
@@ -146,6 +155,13 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   w.put(sim.stage_start_step_);
   w.put(sim.stage_end_step_);
   w.put(static_cast<std::uint8_t>(sim.stage_ended_early_));
+  w.put(sim.source_progress_);
+  std::vector<InsertedParticle> inserted;
+  for (std::size_t id = sim.given_particles_; id < sim.scene_.particles.size(); ++id) {
+    const ParticleInit& init = sim.scene_.particles[id];
+    inserted.push_back({init.position, init.velocity, init.radius, init.source, init.material});
+  }
+  w.put(inserted);
   const Particles& p = s.particles;
   w.put(p.x);
   w.put(p.v);
@@ -237,7 +253,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
 
   SimState& s = sim.state_;
   // What the job itself fixes, to hold the saved state against.
-  const std::size_t n = s.particles.size();
+  std::size_t n = s.particles.size();  // the given particles, and then those the sources inserted
   const std::size_t bodies = s.bodies.size();
   const std::vector<Wall> spec_walls = s.walls;
   // per particle id: its material and clump (-1: free), which the state must keep; and the sizes of
@@ -247,8 +263,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     material_of_id[s.particles.id[i]] = s.particles.material[i];
     if (!s.particles.body.empty()) body_of_id[s.particles.id[i]] = s.particles.body[i];
   }
-  const std::size_t externals = s.particles.external.size(), members = s.particles.body.size(),
-                    offsets = s.particles.body_offset.size(), orientations = s.particles.q.size();
+  std::size_t externals = s.particles.external.size(), members = s.particles.body.size(),
+              offsets = s.particles.body_offset.size(), orientations = s.particles.q.size();
   const bool rolling_spring = sim.kernel_->has_rolling_spring();
 
   Reader r(data.data() + sizeof kMagic, body - sizeof kMagic);
@@ -263,7 +279,6 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     std::snprintf(buf, sizeof buf, "%s %.17g there, %.17g in this spec", what.c_str(), saved, now);
     throw std::runtime_error(std::string("the saved state was written for another job: ") + buf);
   };
-  if (particles != n) mismatch("particles", static_cast<double>(particles), static_cast<double>(n));
   if (walls != sim.drivers_.size())
     mismatch("walls", static_cast<double>(walls), static_cast<double>(sim.drivers_.size()));
   if (dt != s.dt) mismatch("time step", dt, s.dt);
@@ -306,6 +321,47 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     throw std::runtime_error("the saved state is of a staged run (in stage " + std::to_string(stage + 1) +
                              "), and this spec has no stages");
   }
+  // The particles the sources inserted join the run first, as they entered: the arrays below hold them.
+  std::vector<SourceProgress> progress;
+  std::vector<InsertedParticle> inserted;
+  r.get(progress, "the sources");
+  r.get(inserted, "the sources");
+  expect_size(progress, sim.scene_.sources.size(), "the sources' progress");
+  if (particles != n + inserted.size())
+    mismatch("particles", static_cast<double>(particles), static_cast<double>(n + inserted.size()));
+  std::vector<std::int64_t> inserted_by(progress.size(), 0);
+  for (std::size_t k = 0; k < inserted.size(); ++k) {
+    const InsertedParticle& in = inserted[k];
+    const std::string which = "inserted particle " + std::to_string(k);
+    if (in.source < 0 || in.source >= static_cast<int>(progress.size()))
+      inconsistent(which + " is of source " + std::to_string(in.source));
+    if (in.material != sim.scene_.sources[in.source].material) inconsistent(which + " has another material");
+    if (!in.position.allFinite() || !in.velocity.allFinite() || !(in.radius > 0) || !std::isfinite(in.radius))
+      inconsistent(which + " has a position, velocity or radius that is not a number");
+    ++inserted_by[in.source];
+  }
+  for (std::size_t k = 0; k < progress.size(); ++k)
+    if (progress[k].inserted != inserted_by[k] || !std::isfinite(progress[k].mass) || progress[k].mass < 0)
+      inconsistent("source " + std::to_string(k) + " counts " + std::to_string(progress[k].inserted) +
+                   " particles inserted, and the state holds " + std::to_string(inserted_by[k]));
+  sim.source_progress_ = progress;
+  for (const InsertedParticle& in : inserted) {
+    ParticleInit init;
+    init.position = in.position;
+    init.velocity = in.velocity;
+    init.radius = in.radius;  // its size now is in the arrays read below
+    init.material = in.material;
+    init.source = in.source;
+    sim.append_particle(init);
+    material_of_id.push_back(in.material);
+    body_of_id.push_back(-1);
+  }
+  n = s.particles.size();
+  externals = s.particles.external.size();
+  members = s.particles.body.size();
+  offsets = s.particles.body_offset.size();
+  orientations = s.particles.q.size();
+
   // bonds glued at a stage's start are in the state from that stage on, and only then
   const int bonding_stage = sim.scene_.bonding_stage();
   const bool glued_since_start = bonding_stage > 0 && bonding_stage <= stage;

@@ -1,0 +1,54 @@
+#include "import/inpt_import.hpp"
+
+#include <cctype>
+
+#include "import/program_imports.hpp"
+#include "legacy/inpt_file.hpp"
+
+namespace dem::import {
+namespace {
+
+// PDEM-EGD's third line is BOND_MODEL (P or C), BallastDEM's nstep (a number).
+Program detect(const std::vector<legacy::InptLine>& lines) {
+  if (lines.size() < 3)
+    throw legacy::InptError("INPT.inp has " + std::to_string(lines.size()) +
+                            " lines: too few for PDEM-EGD's (32) or BallastDEM's (36)");
+  const std::string& third = lines[2].values[0];
+  if (third.size() == 1 && std::isalpha(static_cast<unsigned char>(third[0]))) return Program::PdemEgd;
+  if (std::isdigit(static_cast<unsigned char>(third[0])) || third[0] == '+') return Program::BallastDem;
+  throw legacy::InptError("INPT.inp line 3: \"" + third +
+                          "\" is neither PDEM-EGD's BOND_MODEL (P or C) nor BallastDEM's nstep (a number)");
+}
+
+}  // namespace
+
+std::string program_name(Program p) {
+  switch (p) {
+    case Program::PdemEgd:
+      return "PDEM-EGD";
+    case Program::BallastDem:
+      return "BallastDEM";
+    case Program::Auto:
+      break;
+  }
+  return "either program";
+}
+
+Imported import_inpt(std::string_view text, const ImportOptions& options) {
+  const std::vector<legacy::InptLine> lines = legacy::read_inpt(text);
+  Imported out;
+  out.program = options.program == Program::Auto ? detect(lines) : options.program;
+  if (!(options.length_unit > 0) || options.length_unit > 1e3)
+    throw legacy::InptError("the length unit must be a positive number of metres (got " +
+                            std::to_string(options.length_unit) + ")");
+  if (out.program == Program::PdemEgd)
+    import_pdem_egd(lines, options, out);
+  else
+    import_ballastdem(lines, options, out);
+  // the files in the INPT file's unit, as the legacy programs wrote them
+  if (options.length_unit == 1e-3) out.spec["outputs"]["lengthUnit"] = "mm";
+  if (options.length_unit == 1e-2) out.spec["outputs"]["lengthUnit"] = "cm";
+  return out;
+}
+
+}  // namespace dem::import
