@@ -47,7 +47,7 @@ bool parse(const std::vector<std::string>& args, ImportArgs& a) {
         a.options.length_unit = std::stod(*v, &used);
         if (used != v->size()) throw std::invalid_argument(*v);
       } catch (const std::exception&) {
-        std::fprintf(stderr, "dem import: --unit must be a number of metres (got \"%s\")\n", v->c_str());
+        std::fprintf(stderr, "dem import: --unit must be a number of metres (got \"%.40s\")\n", v->c_str());
         return false;
       }
     } else if (s == "--program") {
@@ -108,6 +108,31 @@ int import_command(const std::vector<std::string>& args) {
   }
   const std::string json = imported.spec.dump(2) + "\n";
   FILE* notes = a.out.empty() ? stderr : stdout;
+  std::fprintf(notes, "%s: %s's INPT.inp, line by line:\n", a.inpt.c_str(),
+               import::program_name(imported.program).c_str());
+  for (const import::LineFate& line : imported.lines)
+    std::fprintf(notes, "  %2d  %-28s %-22s -> %s\n", line.number, line.name.c_str(), line.text.c_str(),
+                 line.fate.c_str());
+  // The spec must stand on its own, checked as `dem validate` would, before it is written: a problem
+  // is named by the INPT line its field came from.
+  std::string summary;
+  try {
+    const Scene scene = spec::to_scene(spec::parse_json(json), spec_dir.string());
+    Simulation sim(scene);
+    char buf[600];
+    std::snprintf(buf, sizeof buf, "%s: valid; %zu particles, %zu walls; %s; %lld steps\n",
+                  a.out.empty() ? "the spec" : a.out.c_str(), sim.particles().size(), scene.walls.size(),
+                  sim.time_step().describe().c_str(), static_cast<long long>(sim.total_steps()));
+    summary = buf;
+  } catch (const spec::SpecError& e) {
+    std::fprintf(stderr, "dem import: %s: the spec it makes does not validate (nothing written):\n", a.inpt.c_str());
+    for (const std::string& p : import::locate(imported, e.problems())) std::fprintf(stderr, "  %s\n", p.c_str());
+    return 1;
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "dem import: %s: the spec it makes does not validate (nothing written):\n  %s\n",
+                 a.inpt.c_str(), e.what());
+    return 1;
+  }
   if (a.out.empty()) {
     std::fputs(json.c_str(), stdout);
   } else {
@@ -119,26 +144,7 @@ int import_command(const std::vector<std::string>& args) {
       return 1;
     }
   }
-  std::fprintf(notes, "%s: %s's INPT.inp, line by line:\n", a.inpt.c_str(),
-               import::program_name(imported.program).c_str());
-  for (const import::LineFate& line : imported.lines)
-    std::fprintf(notes, "  %2d  %-28s %-22s -> %s\n", line.number, line.name.c_str(), line.text.c_str(),
-                 line.fate.c_str());
-  // the spec must stand on its own: checked as `dem validate` would
-  try {
-    const Scene scene = spec::to_scene(spec::parse_json(json), spec_dir.string());
-    Simulation sim(scene);
-    std::fprintf(notes, "%s: valid; %zu particles, %zu walls; %s; %lld steps\n",
-                 a.out.empty() ? "the spec" : a.out.c_str(), sim.particles().size(), scene.walls.size(),
-                 sim.time_step().describe().c_str(), static_cast<long long>(sim.total_steps()));
-  } catch (const spec::SpecError& e) {
-    std::fprintf(stderr, "dem import: the spec written does not validate:\n");
-    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
-    return 1;
-  } catch (const SceneError& e) {
-    std::fprintf(stderr, "dem import: the spec written does not validate:\n  %s\n", e.what());
-    return 1;
-  }
+  std::fputs(summary.c_str(), notes);
   return 0;
 }
 

@@ -12,42 +12,42 @@
 namespace dem::import {
 namespace {
 
-const std::vector<std::string> kLines = {"restart",
-                                         "pattern",
-                                         "nstep",
-                                         "Tgrowth, T_stable, iseeds",
-                                         "Tstrain",
-                                         "CTime",
-                                         "Nprint",
-                                         "Nlast",
-                                         "isearch",
-                                         "icont",
-                                         "itime",
-                                         "IPATTERN",
-                                         "Nparticle",
-                                         "N overlap particle",
-                                         "PMass",
-                                         "MLOGMEAN, MLOGSIGMA",
-                                         "MassMax/PMass",
-                                         "MassMin/PMass",
-                                         "dens_1, dens_2",
-                                         "YoungM_1, YoungM_2, PoissonR",
-                                         "rns",
-                                         "eps",
-                                         "rzs",
-                                         "amu0, amu1, amu_last",
-                                         "mxnb, maxnb_w",
-                                         "skin",
-                                         "temperature",
-                                         "NWall, NPoint",
-                                         "Length, Width, Height",
-                                         "L1, L2",
-                                         "Freq",
-                                         "gx, gy, gz",
-                                         "growth, NDrop",
-                                         "MassTop",
-                                         "F_MAX, F_MIN",
-                                         "NCir"};
+const std::vector<LineFates::Expected> kLines = {{"restart", 1},
+                                                 {"pattern", 1},
+                                                 {"nstep", 1},
+                                                 {"Tgrowth, T_stable, iseeds", 3},
+                                                 {"Tstrain", 1},
+                                                 {"CTime", 1},
+                                                 {"Nprint", 1},
+                                                 {"Nlast", 1},
+                                                 {"isearch", 1},
+                                                 {"icont", 1},
+                                                 {"itime", 1},
+                                                 {"IPATTERN", 2},
+                                                 {"Nparticle", 2},
+                                                 {"N overlap particle", 1},
+                                                 {"PMass", 2},
+                                                 {"MLOGMEAN, MLOGSIGMA", 2},
+                                                 {"MassMax/PMass", 2},
+                                                 {"MassMin/PMass", 2},
+                                                 {"dens_1, dens_2", 2},
+                                                 {"YoungM_1, YoungM_2, PoissonR", 3},
+                                                 {"rns", 1},
+                                                 {"eps", 2},
+                                                 {"rzs", 1},
+                                                 {"amu0, amu1, amu_last", 3},
+                                                 {"mxnb, maxnb_w", 2},
+                                                 {"skin", 1},
+                                                 {"temperature", 1},
+                                                 {"NWall, NPoint", 2},
+                                                 {"Length, Width, Height", 3},
+                                                 {"L1, L2", 2},
+                                                 {"Freq", 1},
+                                                 {"gx, gy, gz", 3},
+                                                 {"growth, NDrop", 2},
+                                                 {"MassTop", 1},
+                                                 {"F_MAX, F_MIN", 2},
+                                                 {"NCir", 1}};
 
 constexpr int kMaxSpheres = 20;  // a stone's spheres at most (ballastStones.maxSpheres)
 // Stones placed at random (their bounding spheres apart) fill about a twentieth of a box with stone
@@ -173,8 +173,8 @@ void import_ballastdem(const std::vector<legacy::InptLine>& lines, const ImportO
             "the box: walls floor, x0, x1, y0, y1 (planes) from the origin to Length, Width, and the sleeper's "
             "start at Height");
 
-  const double nparticle = in.real(13, 0);
-  long long count = std::llround(nparticle);
+  long long count = in.integer(13, 0);
+  const long long nparticle = count;
   const double stone_volume = mean_mass / dens;
   if (count <= 0)
     count = std::max(1LL, std::llround(kPlacedStoneFraction * length * width * kDropHeights * height / stone_volume));
@@ -193,6 +193,7 @@ void import_ballastdem(const std::vector<legacy::InptLine>& lines, const ImportO
                             {"material", "ballast"}}};
 
   const double gx = in.real(32, 0), gy = in.real(32, 1), gz = in.real(32, 2);
+  if (!(gz >= 0)) in.refuse(32, "gz is the size of gravity's pull down: must be >= 0 (got " + show(gz) + ")");
   spec["gravity"] = v3(gx, gy, -gz);
   in.became(32, "gravity = (gx, gy, -gz): the sample's gz = 9.8 pulls down");
   const double growth = in.real(33, 0);
@@ -252,7 +253,35 @@ void import_ballastdem(const std::vector<legacy::InptLine>& lines, const ImportO
   } else {
     in.became(8, "0: every frame holds the particles");
   }
+  // where each spec field came from, for the spec loader's problems
+  in.feeds(19, "materials[0].density");
+  for (const char* f : {"materials[0].youngsModulus", "materials[0].poissonRatio", "materials[0].normalStiffness"})
+    in.feeds(20, f);
+  in.feeds(21, "contact.tangentialStiffnessRatio");
+  in.feeds(23, "contact.tangentialDampingRatio");
+  in.feeds(22, "interactions[0].restitution");
+  in.feeds(22, "interactions[1].restitution");
+  in.feeds(24, "interactions[0].friction");
+  in.feeds(24, "interactions[1].friction");
+  in.feeds(13, "ballastStones[0]");
+  in.feeds(13, "ballastStones[0].count");
+  in.feeds(14, "ballastStones[0].maxSpheres");
+  in.feeds(16, "ballastStones[0].massLogMean");
+  in.feeds(16, "ballastStones[0].massLogSigma");
+  in.feeds(17, "ballastStones[0].massMax");
+  in.feeds(18, "ballastStones[0].massMin");
+  in.feeds(29, "walls");
+  in.feeds(30, "stages[1]");
+  in.feeds(4, "stages[0]");
+  in.feeds(31, "stages[2].wallChanges[0].load.cyclic.frequency");
+  in.feeds(34, "stages[2].wallChanges[0].load.mass");
+  in.feeds(35, "stages[2].wallChanges[0].load.cyclic");
+  in.feeds(36, "stages[2].wallChanges[0].load.cyclic.cycles");
+  in.feeds(32, "gravity");
+  in.feeds(7, "outputs.interval");
+  in.feeds(8, "outputs.lastFrames");
   out.lines = in.fates();
+  out.fields = in.fields();
 }
 
 }  // namespace dem::import

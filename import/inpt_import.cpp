@@ -2,6 +2,7 @@
 
 #include <cctype>
 
+#include "import/line_fates.hpp"
 #include "import/program_imports.hpp"
 #include "legacy/inpt_file.hpp"
 
@@ -34,13 +35,35 @@ std::string program_name(Program p) {
   return "either program";
 }
 
+std::vector<std::string> locate(const Imported& imported, const std::vector<std::string>& problems) {
+  std::vector<std::string> out;
+  for (const std::string& problem : problems) {
+    int line = 0;
+    std::size_t longest = 0;
+    for (const auto& [path, number] : imported.fields) {
+      // the field itself, or one under it ("interactions[0]" covers "interactions[0].friction")
+      if (path.size() <= longest || problem.compare(0, path.size(), path) != 0) continue;
+      const char next = problem.size() > path.size() ? problem[path.size()] : ':';
+      if (next != ':' && next != '.' && next != '[') continue;
+      line = number;
+      longest = path.size();
+    }
+    if (line == 0) {
+      out.push_back(problem);
+      continue;
+    }
+    out.push_back("INPT.inp line " + std::to_string(line) + " (" + imported.lines[line - 1].name + "): " + problem);
+  }
+  return out;
+}
+
 Imported import_inpt(std::string_view text, const ImportOptions& options) {
   const std::vector<legacy::InptLine> lines = legacy::read_inpt(text);
   Imported out;
   out.program = options.program == Program::Auto ? detect(lines) : options.program;
   if (!(options.length_unit > 0) || options.length_unit > 1e3)
-    throw legacy::InptError("the length unit must be a positive number of metres (got " +
-                            std::to_string(options.length_unit) + ")");
+    throw legacy::InptError("the length unit must be a positive number of metres, at most 1000 (got " +
+                            show(options.length_unit) + ")");
   if (out.program == Program::PdemEgd)
     import_pdem_egd(lines, options, out);
   else

@@ -33,6 +33,7 @@ struct Imported {
   Program program = Program::Auto;
   nlohmann::ordered_json spec;
   std::vector<LineFate> lines;
+  std::vector<std::pair<std::string, int>> fields;  // spec field path -> the INPT line it came from
 };
 
 // Throws legacy::InptError naming the line for a file that is not one of the two programs' INPT.inp
@@ -40,5 +41,9 @@ struct Imported {
 Imported import_inpt(std::string_view text, const ImportOptions& options);
 
 std::string program_name(Program p);
+
+// The spec loader's problems with the imported spec ("materials[0].density: must be ..."), each led by
+// the INPT line its field came from ("INPT.inp line 15 (dens): materials[0].density: ...") where known.
+std::vector<std::string> locate(const Imported& imported, const std::vector<std::string>& problems);
 
 }  // namespace dem::import

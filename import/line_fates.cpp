@@ -7,9 +7,10 @@
 
 namespace dem::import {
 
-LineFates::LineFates(const std::vector<legacy::InptLine>& lines, std::vector<std::string> names,
+LineFates::LineFates(const std::vector<legacy::InptLine>& lines, const std::vector<Expected>& expected,
                      const std::string& program)
-    : lines_(lines), names_(std::move(names)), fates_(names_.size()) {
+    : lines_(lines), fates_(expected.size()) {
+  for (const Expected& e : expected) names_.push_back(e.name);
   if (lines.size() < names_.size()) {
     const std::size_t missing = lines.size();
     throw legacy::InptError("INPT.inp has " + std::to_string(lines.size()) + " lines, and " + program + "'s has " +
@@ -19,6 +20,14 @@ LineFates::LineFates(const std::vector<legacy::InptLine>& lines, std::vector<std
   if (lines.size() > names_.size())
     throw legacy::InptError("INPT.inp line " + std::to_string(names_.size() + 1) + ": " + program + "'s INPT.inp has " +
                             std::to_string(names_.size()) + " lines, and this one has " + std::to_string(lines.size()));
+  for (std::size_t k = 0; k < expected.size(); ++k)
+    if (lines[k].values.size() != expected[k].values) {
+      std::string all;
+      for (const std::string& v : lines[k].values) all += (all.empty() ? "" : ", ") + v;
+      refuse(static_cast<int>(k) + 1, "has " + std::to_string(lines[k].values.size()) + " value" +
+                                          (lines[k].values.size() == 1 ? "" : "s") + " where it holds " +
+                                          std::to_string(expected[k].values) + ": \"" + all + "\"");
+    }
 }
 
 void LineFates::refuse(int number, const std::string& what) const {

@@ -12,38 +12,38 @@
 namespace dem::import {
 namespace {
 
-const std::vector<std::string> kLines = {"restart",
-                                         "pattern",
-                                         "BOND_MODEL",
-                                         "nstep",
-                                         "NFILL, NGROWTH",
-                                         "CTime",
-                                         "MPrint",
-                                         "NLast",
-                                         "isearch",
-                                         "icont",
-                                         "IPATTERN",
-                                         "Dmax/D, Dmin/D",
-                                         "cc",
-                                         "D",
-                                         "dens",
-                                         "YoungM, PoissonR",
-                                         "rns",
-                                         "rzs",
-                                         "amu, eps",
-                                         "X0, Y0, Z0",
-                                         "mxnb, MAXNB_W",
-                                         "GROWTH",
-                                         "skin",
-                                         "temperature",
-                                         "nu_Wall, eps_Wall",
-                                         "gz",
-                                         "ARF",
-                                         "RPBN, RPBS",
-                                         "BSTRENGTH",
-                                         "BRATIO",
-                                         "NICEX, NICEY, NICEZ",
-                                         "TContact"};
+const std::vector<LineFates::Expected> kLines = {{"restart", 1},
+                                                 {"pattern", 1},
+                                                 {"BOND_MODEL", 1},
+                                                 {"nstep", 1},
+                                                 {"NFILL, NGROWTH", 2},
+                                                 {"CTime", 1},
+                                                 {"MPrint", 1},
+                                                 {"NLast", 1},
+                                                 {"isearch", 1},
+                                                 {"icont", 1},
+                                                 {"IPATTERN", 1},
+                                                 {"Dmax/D, Dmin/D", 2},
+                                                 {"cc", 1},
+                                                 {"D", 1},
+                                                 {"dens", 1},
+                                                 {"YoungM, PoissonR", 2},
+                                                 {"rns", 1},
+                                                 {"rzs", 1},
+                                                 {"amu, eps", 2},
+                                                 {"X0, Y0, Z0", 3},
+                                                 {"mxnb, MAXNB_W", 2},
+                                                 {"GROWTH", 1},
+                                                 {"skin", 1},
+                                                 {"temperature", 1},
+                                                 {"nu_Wall, eps_Wall", 2},
+                                                 {"gz", 1},
+                                                 {"ARF", 1},
+                                                 {"RPBN, RPBS", 2},
+                                                 {"BSTRENGTH", 1},
+                                                 {"BRATIO", 1},
+                                                 {"NICEX, NICEY, NICEZ", 3},
+                                                 {"TContact", 1}};
 
 // Random sequential placement stalls near a solid fraction of 0.35: a loose packing asked for more
 // is placed at this and grown to it.
@@ -52,6 +52,9 @@ constexpr double kLoosePlaced = 0.25;
 }  // namespace
 
 void import_pdem_egd(const std::vector<legacy::InptLine>& lines, const ImportOptions& options, Imported& out) {
+  if (options.meshes.size() > 2)
+    throw legacy::InptError("PDEM-EGD takes at most two mesh files (the terrain, then the funnel): got " +
+                            std::to_string(options.meshes.size()));
   LineFates in(lines, kLines, "PDEM-EGD");
   nlohmann::ordered_json& spec = out.spec;
   const double unit = options.length_unit;
@@ -215,6 +218,7 @@ void import_pdem_egd(const std::vector<legacy::InptLine>& lines, const ImportOpt
   in.dropped(23, "the legacy's cell size over the diameter; the Verlet skin here is numerics.skin (default 0.1)");
   in.dropped(24, "the manual does not use it");
   const double gz = in.real(26);
+  if (!(gz >= 0)) in.refuse(26, "the size of gravity, which pulls down: must be >= 0 (got " + show(gz) + ")");
   spec["gravity"] = {{"z", -gz}};
   in.became(26, "gravity = (0, 0, -gz)");
 
@@ -304,7 +308,37 @@ void import_pdem_egd(const std::vector<legacy::InptLine>& lines, const ImportOpt
     in.became(22, "stages[grow].growthFactor = " + show(grow_by));
   else
     in.dropped(22, "1.0: no growth");
+  // where each spec field came from, for the spec loader's problems
+  for (const char* f : {"materials[0].density"}) in.feeds(15, f);
+  for (const char* f : {"materials[0].youngsModulus", "materials[0].poissonRatio", "materials[0].normalStiffness"})
+    in.feeds(16, f);
+  in.feeds(17, "contact.tangentialStiffnessRatio");
+  in.feeds(18, "contact.tangentialDampingRatio");
+  in.feeds(19, "interactions[0]");
+  in.feeds(25, "interactions[1]");
+  in.feeds(27, "interactions[0].rollingFriction");
+  in.feeds(27, "interactions[1].rollingFriction");
+  const std::string packed = loose ? "packings[0]" : "lattices[0]";
+  in.feeds(2, packed);
+  in.feeds(11, packed + ".sizes.kind");
+  in.feeds(12, packed + ".sizes");
+  in.feeds(14, packed + ".sizes.mean");
+  in.feeds(14, packed + ".radius");
+  in.feeds(13, packed + ".solidFraction");
+  for (const char* axis : {"countX", "countY", "countZ"}) in.feeds(31, packed + "." + axis);
+  in.feeds(20, packed + ".min");
+  in.feeds(3, "bonds.model");
+  in.feeds(28, "bonds.youngsModulus");
+  in.feeds(28, "bonds.shearStiffnessRatio");
+  in.feeds(29, "bonds.tensileStrength");
+  in.feeds(29, "bonds.shearStrength");
+  in.feeds(26, "gravity");
+  in.feeds(7, "outputs.everySteps");
+  in.feeds(8, "outputs.lastFrames");
+  in.feeds(5, "stages");
+  in.feeds(22, "stages[1].growthFactor");
   out.lines = in.fates();
+  out.fields = in.fields();
 }
 
 }  // namespace dem::import

@@ -82,6 +82,18 @@ class Checker {
     return true;
   }
 
+  // A name shown in lists, terminals and file headers: no line breaks or escape sequences.
+  void printable_name(const std::string& path, const std::string& name) {
+    for (std::size_t k = 0; k < name.size(); ++k) {
+      const auto c = static_cast<unsigned char>(name[k]);
+      if (c < 0x20 || c == 0x7F) {
+        char buf[120];
+        std::snprintf(buf, sizeof buf, "must not hold control characters (byte %zu is 0x%02X)", k, c);
+        fail(path, buf);
+        return;
+      }
+    }
+  }
   void positive(const std::string& path, double v) {
     if (!(v > 0) || !std::isfinite(v)) fail(path, "must be a positive number (got " + num(v) + ")");
   }

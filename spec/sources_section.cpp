@@ -43,6 +43,7 @@ void load_source(const api::Source& in, const std::string& path, int index, Spec
   const std::size_t before = check.count();
   ParticleSource s;
   s.name = in.name().empty() ? "source " + std::to_string(index + 1) : in.name();
+  check.printable_name(path + ".name", in.name());
   s.path = path;
   s.material = ctx.particle_material(in.material(), path + ".material");
   s.sizes = load_sizes(in.sizes(), path + ".sizes", check);
@@ -82,6 +83,17 @@ void load_source(const api::Source& in, const std::string& path, int index, Spec
       check.fail(path + ".face", "wall \"" + in.face() + "\" is an infinite plane: give a plate or a mesh");
       return;
     }
+    // particles due while the wall is away would all enter at once when it comes back
+    const int stages = std::max<int>(1, static_cast<int>(scene.stages.size()));
+    for (int k = 0; k < stages; ++k) {
+      if (!in.stage().empty() && (scene.stages.empty() || scene.stages[k].name != in.stage())) continue;
+      if (wall.present_at(k)) continue;
+      check.fail(path + ".face", "wall \"" + in.face() + "\" is not there at stage " + std::to_string(k + 1) + " (\"" +
+                                     scene.stages[k].name +
+                                     "\"), where the source is active: give the source the "
+                                     "stage it inserts in (stage)");
+      break;
+    }
     s.depth = in.depth() == 0 ? d_max : in.depth();
     check.positive(path + ".depth", s.depth, kLength);
     lo = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -100,7 +112,10 @@ void load_source(const api::Source& in, const std::string& path, int index, Spec
   if (d_max > 0 && ((hi - lo).array() / d_max > kMaxCellsAcross).any())
     check.fail(path, "its region is more than " + num(kMaxCellsAcross) + " largest diameters across: make it smaller");
 
-  if ((in.mass_rate() > 0) == (in.count_rate() > 0)) {
+  if (in.mass_rate() < 0 || in.count_rate() < 0) {
+    if (in.mass_rate() < 0) check.positive(path + ".massRate", in.mass_rate());
+    if (in.count_rate() < 0) check.positive(path + ".countRate", in.count_rate());
+  } else if ((in.mass_rate() > 0) == (in.count_rate() > 0)) {
     check.fail(path, "give massRate (kg/s) or countRate (particles/s), one of them, positive");
   } else if (in.mass_rate() > 0) {
     s.mass_rate = in.mass_rate();

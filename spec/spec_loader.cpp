@@ -113,16 +113,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
   if (spec.name().size() > limits.max_name)
     check.fail("name", "must be at most " + std::to_string(limits.max_name) + " bytes (got " +
                            std::to_string(spec.name().size()) + ")");
-  // a name is shown in lists, terminals and file headers: no line breaks or escape sequences
-  for (std::size_t k = 0; k < spec.name().size(); ++k) {
-    const auto c = static_cast<unsigned char>(spec.name()[k]);
-    if (c < 0x20 || c == 0x7F) {
-      char buf[120];
-      std::snprintf(buf, sizeof buf, "must not hold control characters (byte %zu is 0x%02X)", k, c);
-      check.fail("name", buf);
-      break;
-    }
-  }
+  check.printable_name("name", spec.name());
   Scene scene;
   scene.name = spec.name();
   SpecContext ctx(check, base_dir, scene);

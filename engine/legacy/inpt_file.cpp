@@ -70,18 +70,28 @@ std::vector<InptLine> read_inpt(std::string_view text) {
       const std::size_t close = s.rfind(')');
       if (close == std::string_view::npos || close < open) refuse(number, "its comment's \"(\" is not closed");
       line.comment = trim(s.substr(open + 1, close - open - 1));
+      if (const std::string after = trim(s.substr(close + 1)); !after.empty())
+        refuse(number, "text follows its comment: \"" + after + "\"");
       values = s.substr(0, open);
     }
+    // values between commas, or side by side: a comma with nothing before it is a missing value
     std::string token;
+    bool since_comma = false;  // a value since the last comma (or the start)
     auto flush = [&] {
       if (!token.empty()) line.values.push_back(token);
+      since_comma = since_comma || !token.empty();
       token.clear();
     };
     for (char c : values) {
-      if (c == ',' || c == ' ' || c == '\t')
+      if (c == ',') {
         flush();
-      else
+        if (!since_comma) refuse(number, "an empty value between two commas (or before the first)");
+        since_comma = false;
+      } else if (c == ' ' || c == '\t') {
+        flush();
+      } else {
         token += c;
+      }
     }
     flush();
     if (line.values.empty())

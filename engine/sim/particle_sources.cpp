@@ -136,6 +136,10 @@ std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource
   std::vector<double> area_below;  // cumulative
   std::vector<Vec3> side;
   if (on_faces) {
+    // where the particles can be: over the faces, as far out as the layer or a largest diameter
+    // (a layer thinner than a particle still holds it, at its radius off the face), a radius wide
+    const double r_max = largest_diameter(source.sizes) / 2;
+    const double out_to = std::max(source.depth, 2 * r_max);
     lo = Vec3::Constant(1e300);
     hi = -lo;
     double total = 0;
@@ -144,10 +148,12 @@ std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource
       total += 0.5 * (f[1] - f[0]).cross(f[2] - f[0]).norm();
       area_below.push_back(total);
       for (const Vec3& x : f) {
-        lo = lo.cwiseMin(x.cwiseMin(x + side.back() * source.depth));
-        hi = hi.cwiseMax(x.cwiseMax(x + side.back() * source.depth));
+        lo = lo.cwiseMin(x.cwiseMin(x + side.back() * out_to));
+        hi = hi.cwiseMax(x.cwiseMax(x + side.back() * out_to));
       }
     }
+    lo -= Vec3::Constant(r_max);
+    hi += Vec3::Constant(r_max);
     if (faces.empty() || !(total > 0)) return out;
   }
   NearParticles near(largest_diameter(source.sizes));

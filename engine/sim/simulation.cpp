@@ -1131,6 +1131,12 @@ bool Simulation::feed_sources() {
     for (ParticleInit init : due) {
       init.source = k;
       append_particle(init);
+      // It enters after the step's drift, and the step's second half kick is still to come: it takes
+      // the first half kick back (it touches nothing, so its force is its weight), and so ends the
+      // step at the source's velocity, with the energy counted here.
+      const Vec3 half_kick = 0.5 * state_.dt * state_.gravity;
+      state_.particles.v.back() -= half_kick;
+      state_.half_kick.back() = half_kick;
       const double m = state_.particles.mass.back();
       energy += 0.5 * m * init.velocity.squaredNorm() - m * state_.gravity.dot(init.position);
     }

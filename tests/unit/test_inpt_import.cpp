@@ -118,7 +118,8 @@ TEST(InptImport, AMalformedFileIsRefusedNamingTheLine) {
       {with_line(pdem, 14, "(D: particle diameter)"), "INPT.inp line 14: has no value before its comment"},
       {with_line(pdem, 9, ""), "INPT.inp line 9: is blank"},
       {with_line(pdem, 2, "XYZ (pattern)"), "INPT.inp line 2 (pattern): must be HEX, FCC or LOS (got \"XYZ\")"},
-      {with_line(pdem, 12, "1.05 (Dmax/D, Dmin/D)"), "INPT.inp line 12: has 1 value, and Dmax/D, Dmin/D is value 2"},
+      {with_line(pdem, 12, "1.05 (Dmax/D, Dmin/D)"),
+       "INPT.inp line 12 (Dmax/D, Dmin/D): has 1 value where it holds 2: \"1.05\""},
       {with_line(pdem, 19, "0.5, 0.2 (amu, eps: restitution"), "INPT.inp line 19: its comment's \"(\" is not closed"},
       {with_line(pdem, 5, "250000, 100 (NFILL, NGROWTH)"), "INPT.inp line 5 (NFILL, NGROWTH): NFILL + NGROWTH + 1"},
       {with_line(pdem, 1, "maybe (restart)"), "INPT.inp line 1: restart must be .true. or .false. (got \"maybe\")"},
@@ -130,6 +131,12 @@ TEST(InptImport, AMalformedFileIsRefusedNamingTheLine) {
       {"1\n2\n", "INPT.inp has 2 lines: too few"},
       {with_line(pdem, 3, "??? (what)"), "INPT.inp line 3: \"???\" is neither"},
       {with_line(pdem, 7, "1\x01 (MPrint)"), "INPT.inp line 7: holds a control character"},
+      // what an independent tester found accepted in silence
+      {with_line(pdem, 14, "15.0, 16.0 (D: particle diameter)"), "INPT.inp line 14 (D): has 2 values where it holds 1"},
+      {with_line(pdem, 14, "15.0 (D: particle diameter) 16"), "INPT.inp line 14: text follows its comment: \"16\""},
+      {with_line(pdem, 12, "1.05,, 0.95 (Dmax/D, Dmin/D)"), "INPT.inp line 12: an empty value between two commas"},
+      {with_line(pdem, 26, "-9.8 (gz)"),
+       "INPT.inp line 26 (gz): the size of gravity, which pulls down: must be >= 0 (got -9.8)"},
   };
   for (const auto& [text, message] : cases) {
     const std::string error = error_of(text);
@@ -141,6 +148,29 @@ TEST(InptImport, AMalformedFileIsRefusedNamingTheLine) {
   import::ImportOptions with_mesh;
   with_mesh.meshes = {"terrain.dat"};
   EXPECT_NE(error_of(ballast, with_mesh).find("takes no mesh files"), std::string::npos);
+  EXPECT_NE(error_of(with_line(ballast, 13, "100.5, 0.0 (Nparticle)"))
+                .find("INPT.inp line 13: Nparticle must be a whole number (got \"100.5\")"),
+            std::string::npos);
+  import::ImportOptions three;
+  three.meshes = {"terrain.dat", "funnel.dat", "funnel.dat"};
+  EXPECT_NE(error_of(pdem, three).find("PDEM-EGD takes at most two mesh files (the terrain, then the funnel): got 3"),
+            std::string::npos);
+}
+
+// A value the spec then refuses is named by the INPT line it came from, not only the spec field.
+TEST(InptImport, ASpecProblemIsTracedToItsInptLine) {
+  const import::Imported imported =
+      import::import_inpt(with_line(read("pdem_egd_figure_4_14.inp"), 15, "0.0 (dens)"), {});
+  std::vector<std::string> problems;
+  try {
+    spec::to_scene(spec::parse_json(imported.spec.dump()));
+  } catch (const spec::SpecError& e) {
+    problems = e.problems();
+  }
+  ASSERT_FALSE(problems.empty());
+  const std::vector<std::string> located = import::locate(imported, problems);
+  ASSERT_EQ(located.size(), problems.size());
+  EXPECT_EQ(located[0].rfind("INPT.inp line 15 (dens): materials[0].density: ", 0), 0u) << located[0];
 }
 
 TEST(InptImport, WindowsLineEndsAndTrailingBlankLinesAreRead) {

@@ -97,6 +97,9 @@ TEST(SourceSpec, EachMistakeIsNamedWithItsPath) {
       {R"({"material": "sand", "sizes": {"kind": "NORMAL", "mean": 0.005, "spread": 1, "dMin": 0.0049, "dMax": 0.0050001}, )" +
            box + R"(, "massRate": 1})",
        "sources[0].sizes: hardly any size drawn"},
+      {"{" + sizes + ", " + box + R"(, "massRate": -1})", "sources[0].massRate: must be a positive number (got -1)"},
+      {"{" + sizes + ", " + box + R"(, "massRate": 1, "name": "a\nb"})",
+       "sources[0].name: must not hold control characters (byte 1 is 0x0A)"},
       // 1 kg/s of 5 mm grains for 1e6 s: 5.8 billion particles
       {"{" + sizes + ", " + box + R"(, "massRate": 1, "end": 1e6})", "sources[0]: would make 5"},
   };
@@ -104,6 +107,25 @@ TEST(SourceSpec, EachMistakeIsNamedWithItsPath) {
     const std::string problems = spec_problems(with_sources(source));
     EXPECT_NE(problems.find(problem), std::string::npos) << source << "\ngave:\n" << problems;
   }
+}
+
+// Particles due while the face's wall is away would all enter at once when it comes (a tester's source
+// on a plate added at the third stage inserted 189 grains in one step): refused.
+TEST(SourceSpec, AFaceSourceMustHaveItsWallThereWheneverItIsActive) {
+  const std::string source = R"({"face": "lid", "material": "sand", "sizes": {"kind": "ONE_SIZE", "mean": 0.005},
+    "countRate": 100})";
+  const std::string stages =
+      R"("stages": [{"name": "a", "steps": 10, "removeWalls": ["lid"]}, {"name": "b", "steps": 10,
+    "addWalls": [{"name": "lid2", "material": "steel", "plate": {"c1": {"x": -0.05, "y": -0.05, "z": 0.2},
+      "c2": {"x": 0.05, "y": -0.05, "z": 0.2}, "c3": {"x": 0.05, "y": 0.05, "z": 0.2}, "c4": {"x": -0.05, "y": 0.05, "z": 0.2}}}]}],)";
+  const std::string no_time = R"("dtFraction": 0.02)";
+  EXPECT_NE(spec_problems(with_sources(source, no_time, stages))
+                .find("sources[0].face: wall \"lid\" is not there at stage 1 (\"a\"), where the source is active"),
+            std::string::npos)
+      << spec_problems(with_sources(source, no_time, stages));
+  const std::string later = R"({"face": "lid2", "stage": "b", "material": "sand", "sizes": {"kind": "ONE_SIZE",
+    "mean": 0.005}, "countRate": 100})";
+  EXPECT_EQ(spec_problems(with_sources(later, no_time, stages)), "");
 }
 
 TEST(SourceSpec, AStreamForARunInStepsIsNotCountedAheadButOneInSecondsIs) {
