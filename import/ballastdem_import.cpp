@@ -119,6 +119,7 @@ void import_ballastdem(const std::vector<legacy::InptLine>& lines, const ImportO
 
   // 19-27: materials and contacts
   const double dens = in.real(19, 0), young = in.real(20, 0), poisson = in.real(20, 2);
+  if (!(dens > 0)) in.refuse(19, "dens_1 must be positive (got " + show(dens) + "): the stones' sizes follow from it");
   const double mean_mass = 0.5 * (mass_min + mass_max);
   const double radius = std::cbrt(3 * mean_mass / (4 * std::numbers::pi * dens));
   const double kn = std::numbers::pi * radius * young / 2;  // as PDEM-EGD's import: k_n = pi R E / 2
@@ -176,8 +177,11 @@ void import_ballastdem(const std::vector<legacy::InptLine>& lines, const ImportO
   long long count = in.integer(13, 0);
   const long long nparticle = count;
   const double stone_volume = mean_mass / dens;
-  if (count <= 0)
-    count = std::max(1LL, std::llround(kPlacedStoneFraction * length * width * kDropHeights * height / stone_volume));
+  if (count <= 0) {
+    const double fits = kPlacedStoneFraction * length * width * kDropHeights * height / stone_volume;
+    if (!(fits < 1e9)) in.refuse(13, "0 asks for as many stones as fit, and the box holds " + show(fits) + " of them");
+    count = std::max(1LL, std::llround(fits));
+  }
   in.became(13, "ballastStones.count = " + std::to_string(count) +
                     (nparticle > 0 ? ""
                                    : " (Nparticle 0: a twenty-fifth of the volume of the box four times as tall, in "

@@ -1,6 +1,7 @@
 #include "import/inpt_import.hpp"
 
 #include <cctype>
+#include <cmath>
 
 #include "import/line_fates.hpp"
 #include "import/program_imports.hpp"
@@ -68,6 +69,22 @@ Imported import_inpt(std::string_view text, const ImportOptions& options) {
     import_pdem_egd(lines, options, out);
   else
     import_ballastdem(lines, options, out);
+  // A value made from the lines (k_n from D and E, a count from a box and a mass) may overflow where
+  // each line was a number: named, as a spec cannot hold it.
+  std::string bad;
+  auto find_non_finite = [&](auto& self, const nlohmann::ordered_json& j, const std::string& path) -> void {
+    if (!bad.empty()) return;
+    if (j.is_number_float() && !std::isfinite(j.get<double>())) bad = path;
+    if (j.is_object())
+      for (auto it = j.begin(); it != j.end(); ++it)
+        self(self, it.value(), path.empty() ? it.key() : path + "." + it.key());
+    if (j.is_array())
+      for (std::size_t k = 0; k < j.size(); ++k) self(self, j[k], path + "[" + std::to_string(k) + "]");
+  };
+  find_non_finite(find_non_finite, out.spec, "");
+  if (!bad.empty())
+    throw legacy::InptError(
+        locate(out, {bad + ": is not a finite number: the values it is made from are too large"})[0]);
   // the files in the INPT file's unit, as the legacy programs wrote them
   if (options.length_unit == 1e-3) out.spec["outputs"]["lengthUnit"] = "mm";
   if (options.length_unit == 1e-2) out.spec["outputs"]["lengthUnit"] = "cm";

@@ -151,6 +151,14 @@ TEST(InptImport, AMalformedFileIsRefusedNamingTheLine) {
   EXPECT_NE(error_of(with_line(ballast, 13, "100.5, 0.0 (Nparticle)"))
                 .find("INPT.inp line 13: Nparticle must be a whole number (got \"100.5\")"),
             std::string::npos);
+  // found by the fuzz target: a density of 0 made the stones' count and stiffness infinite
+  EXPECT_NE(error_of(with_line(ballast, 19, ".0,2545.0 (dens)"))
+                .find("INPT.inp line 19 (dens_1, dens_2): dens_1 must be positive"),
+            std::string::npos);
+  EXPECT_NE(error_of(with_line(pdem, 14, "1e300 (D)"))
+                .find("INPT.inp line 16 (YoungM, PoissonR): materials[0].normalStiffness: is not a finite number"),
+            std::string::npos)
+      << error_of(with_line(pdem, 14, "1e300 (D)"));
   import::ImportOptions three;
   three.meshes = {"terrain.dat", "funnel.dat", "funnel.dat"};
   EXPECT_NE(error_of(pdem, three).find("PDEM-EGD takes at most two mesh files (the terrain, then the funnel): got 3"),
