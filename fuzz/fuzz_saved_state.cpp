@@ -3,12 +3,13 @@
 // without resealing it, so the fuzzer's bytes are sealed here: what is tested is every check the
 // reader makes against the job before it follows an index or a count, then a few steps from the
 // state it accepted. The job: bonded spheres with rolling springs on a mesh floor under a loaded
-// plate, in two stages (the bonds glued and the plate's load changed at the second, where the
-// state is written), so that every section of the state has something in it. With DEM_FUZZ_WRITE_SEED=PATH set,
-// writes a real state of that job (the seed of the corpus) and stops.
+// plate, in two stages (the bonds glued, the plate's load changed and grit poured in from a source at
+// the second, where the state is written), so that every section of the state has something in it. With
+// DEM_FUZZ_WRITE_SEED=PATH set, writes a real state of that job (the seed of the corpus) and stops.
 #include <boost/crc.hpp>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -45,6 +46,9 @@ const char* kJob = R"({
   "stages": [{"name": "settle", "steps": 150},
              {"name": "bond", "steps": 250, "bond": true, "gravity": {"z": -5},
               "wallChanges": [{"wall": "press", "load": {"servo": {"target": 2, "gain": 1e-3, "maxSpeed": 0.01}}}]}],
+  "sources": [{"name": "grit", "min": {"x": 0, "y": 0, "z": 0.032}, "max": {"x": 0.03, "y": 0.03, "z": 0.044},
+               "material": "rock", "sizes": {"kind": "UNIFORM", "dMin": 0.003, "dMax": 0.004}, "countRate": 2e5,
+               "velocity": {"z": -0.1}, "stage": "bond"}],
   "outputs": {"everySteps": 400}
 })";
 
@@ -59,6 +63,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
   if (const char* path = std::getenv("DEM_FUZZ_WRITE_SEED")) {
     dem::Simulation sim(job());
     for (int k = 0; k < 200; ++k) sim.step();
+    std::fprintf(stderr, "the seed: step %lld, %zu particles (%zu given)\n", static_cast<long long>(sim.step_count()),
+                 sim.particles().size(), sim.given_particles());
     std::ostringstream state;
     dem::StateIO::write(sim, state);
     const std::string bytes = state.str();
