@@ -42,6 +42,19 @@ Scene sand_stream(double duration) {
   return s;
 }
 
+// The stream from the underside of a lid over the box, at height z, in a layer `depth` deep.
+void pour_from_a_lid(Scene& s, double z, double depth) {
+  WallInit lid{"lid",
+               1,
+               PlateShape{{Vec3(-0.05, -0.05, z), Vec3(0.05, -0.05, z), Vec3(0.05, 0.05, z), Vec3(-0.05, 0.05, z)}},
+               {},
+               {}};
+  s.walls.push_back(lid);
+  s.sources[0].region = ParticleSource::Region::Face;
+  s.sources[0].face_wall = static_cast<int>(s.walls.size()) - 1;
+  s.sources[0].depth = depth;
+}
+
 double inserted_mass(const Simulation& sim) {
   double m = 0;
   for (std::size_t i = 0; i < sim.particles().size(); ++i)
@@ -134,16 +147,7 @@ TEST(Sources, ACrowdedRegionHoldsParticlesBackUntilThereIsRoom) {
 
 TEST(Sources, AFaceOfAPlateInsertsOnTheSideTheStreamMovesTo) {
   Scene s = sand_stream(0.1);
-  WallInit lid{
-      "lid",
-      1,
-      PlateShape{{Vec3(-0.05, -0.05, 0.3), Vec3(0.05, -0.05, 0.3), Vec3(0.05, 0.05, 0.3), Vec3(-0.05, 0.05, 0.3)}},
-      {},
-      {}};
-  s.walls.push_back(lid);
-  s.sources[0].region = ParticleSource::Region::Face;
-  s.sources[0].face_wall = static_cast<int>(s.walls.size()) - 1;
-  s.sources[0].depth = 0.02;
+  pour_from_a_lid(s, 0.3, 0.02);
   Simulation sim(std::move(s));
   while (sim.step_count() < sim.total_steps()) sim.step();
   ASSERT_GT(sim.scene().particles.size(), 20u);
@@ -158,16 +162,7 @@ TEST(Sources, AFaceOfAPlateInsertsOnTheSideTheStreamMovesTo) {
 // face must still be seen (an independent tester's face source of depth 1 mm made overlaps of 0.5 mm).
 TEST(Sources, AFaceLayerThinnerThanTheParticlesInsertsNoOverlaps) {
   Scene s = sand_stream(0.02);
-  WallInit lid{
-      "lid",
-      1,
-      PlateShape{{Vec3(-0.05, -0.05, 0.2), Vec3(0.05, -0.05, 0.2), Vec3(0.05, 0.05, 0.2), Vec3(-0.05, 0.05, 0.2)}},
-      {},
-      {}};
-  s.walls.push_back(lid);
-  s.sources[0].region = ParticleSource::Region::Face;
-  s.sources[0].face_wall = static_cast<int>(s.walls.size()) - 1;
-  s.sources[0].depth = 0.001;
+  pour_from_a_lid(s, 0.2, 0.001);
   s.sources[0].mass_rate = 0.5;
   Simulation sim(std::move(s));
   std::size_t before = 0;
