@@ -120,6 +120,7 @@ void import_ballastdem(const std::vector<legacy::InptLine>& lines, const ImportO
   // 19-27: materials and contacts
   const double dens = in.real(19, 0), young = in.real(20, 0), poisson = in.real(20, 2);
   if (!(dens > 0)) in.refuse(19, "dens_1 must be positive (got " + show(dens) + "): the stones' sizes follow from it");
+  if (!(in.real(19, 1) > 0)) in.refuse(19, "dens_2 must be positive (got " + show(in.real(19, 1)) + ")");
   const double mean_mass = 0.5 * (mass_min + mass_max);
   const double radius = std::cbrt(3 * mean_mass / (4 * std::numbers::pi * dens));
   const double kn = std::numbers::pi * radius * young / 2;  // as PDEM-EGD's import: k_n = pi R E / 2
@@ -175,6 +176,8 @@ void import_ballastdem(const std::vector<legacy::InptLine>& lines, const ImportO
             "start at Height");
 
   long long count = in.integer(13, 0);
+  if (count < 0)
+    in.refuse(13, "must be >= 0 (got " + std::to_string(count) + "): a count of stones, 0 for as many as fit");
   const long long nparticle = count;
   const double stone_volume = mean_mass / dens;
   if (count <= 0) {

@@ -119,7 +119,10 @@ void import_pdem_egd(const std::vector<legacy::InptLine>& lines, const ImportOpt
   if (ipattern < 0 || ipattern > 4) in.refuse(11, "must be 0 to 4 (got " + std::to_string(ipattern) + ")");
   const double dmax_ratio = in.real(12, 0), dmin_ratio = in.real(12, 1);
   const double d = in.real(14) * unit;
-  if (!(d > 0)) in.refuse(14, "must be positive (got " + in.line(14).values[0] + ")");
+  // a nanometre to a kilometre: what a spec's radii allow (and the stiffness made from D stays finite)
+  if (!(d >= 1e-9 && d <= 1e3))
+    in.refuse(14,
+              "must be a diameter from 1e-9 m to 1000 m (got " + in.line(14).values[0] + " x " + show(unit) + " m)");
   if (!(dmin_ratio > 0) || !(dmax_ratio >= dmin_ratio))
     in.refuse(12, "must be Dmax/D >= Dmin/D > 0 (got " + show(dmax_ratio) + ", " + show(dmin_ratio) + ")");
   static const char* kKinds[] = {"ONE_SIZE", "TWO_SIZES", "UNIFORM", "NORMAL", "LOGNORMAL"};

@@ -21,6 +21,19 @@ constexpr double kMaxCellsAcross = 1e6;
 constexpr double kMaxCountRate = 1e9;  // particles/s
 
 // The seconds the source runs at most, where the spec says it in seconds (0: unknown, a length in steps).
+// The seconds the source's window may last at most: its stage's or the run's length where given in
+// seconds (0: unknown, a length in steps).
+double window_length(const ParticleSource& s, const Scene& scene, const api::TimeStepping& time) {
+  if (s.stage >= 0) return scene.stages[s.stage].steps > 0 ? 0 : scene.stages[s.stage].duration;
+  if (scene.stages.empty()) return time.steps() > 0 ? 0 : time.duration();
+  double length = 0;
+  for (const Stage& stage : scene.stages) {
+    if (stage.steps > 0) return 0;
+    length += stage.duration;
+  }
+  return length;
+}
+
 double active_length(const ParticleSource& s, const Scene& scene, const api::TimeStepping& time) {
   if (std::isfinite(s.end)) return s.end - s.start;
   double length = 0;
@@ -94,7 +107,7 @@ void load_source(const api::Source& in, const std::string& path, int index, Spec
                                      "stage it inserts in (stage)");
       break;
     }
-    s.depth = in.depth() == 0 ? d_max : in.depth();
+    s.depth = in.depth() == 0 ? d_max : in.depth();  // 0 or omitted: a largest diameter
     check.positive(path + ".depth", s.depth, kLength);
     lo = Vec3::Constant(std::numeric_limits<double>::infinity());
     hi = -lo;
@@ -142,6 +155,11 @@ void load_source(const api::Source& in, const std::string& path, int index, Spec
       if (scene.stages[k].name == in.stage()) s.stage = static_cast<int>(k);
     if (s.stage < 0) check.fail(path + ".stage", "no stage is named \"" + in.stage() + "\"");
   }
+  if (const double window = window_length(s, scene, time);
+      check.count() == before && window > 0 && std::isfinite(window) && s.start >= window)
+    check.fail(path + ".start", "the source starts at " + num(s.start) + " s, when its " +
+                                    (s.stage >= 0 ? "stage" : "run") + " of " + num(window) +
+                                    " s is over: it would never insert");
   s.seed = in.seed() == 0 ? 1 : in.seed();
   if (in.every_steps() < 0 || in.every_steps() > (std::int64_t{1} << 53))
     check.fail(path + ".everySteps", "must be in [0, 2^53] (got " + std::to_string(in.every_steps()) + ")");

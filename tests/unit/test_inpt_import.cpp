@@ -155,10 +155,20 @@ TEST(InptImport, AMalformedFileIsRefusedNamingTheLine) {
   EXPECT_NE(error_of(with_line(ballast, 19, ".0,2545.0 (dens)"))
                 .find("INPT.inp line 19 (dens_1, dens_2): dens_1 must be positive"),
             std::string::npos);
-  EXPECT_NE(error_of(with_line(pdem, 14, "1e300 (D)"))
+  EXPECT_NE(error_of(with_line(pdem, 16, "1.0E308, 0.3 (YoungM)"))
                 .find("INPT.inp line 16 (YoungM, PoissonR): materials[0].normalStiffness: is not a finite number"),
             std::string::npos)
-      << error_of(with_line(pdem, 14, "1e300 (D)"));
+      << error_of(with_line(pdem, 16, "1.0E308, 0.3 (YoungM)"));
+  // from a second round of attack: each named by its own line
+  EXPECT_NE(
+      error_of(with_line(pdem, 14, "1e300 (D)")).find("INPT.inp line 14 (D): must be a diameter from 1e-9 m to 1000 m"),
+      std::string::npos);
+  EXPECT_NE(error_of(with_line(ballast, 13, "-100, 0.0 (Nparticle)"))
+                .find("INPT.inp line 13 (Nparticle): must be >= 0 (got -100)"),
+            std::string::npos);
+  EXPECT_NE(error_of(with_line(ballast, 19, "2545.0,0 (dens)"))
+                .find("INPT.inp line 19 (dens_1, dens_2): dens_2 must be positive"),
+            std::string::npos);
   import::ImportOptions three;
   three.meshes = {"terrain.dat", "funnel.dat", "funnel.dat"};
   EXPECT_NE(error_of(pdem, three).find("PDEM-EGD takes at most two mesh files (the terrain, then the funnel): got 3"),

@@ -98,6 +98,8 @@ TEST(SourceSpec, EachMistakeIsNamedWithItsPath) {
            box + R"(, "massRate": 1})",
        "sources[0].sizes: hardly any size drawn"},
       {"{" + sizes + ", " + box + R"(, "massRate": -1})", "sources[0].massRate: must be a positive number (got -1)"},
+      {"{" + sizes + ", " + box + R"(, "massRate": 1, "start": 0.5})",
+       "sources[0].start: the source starts at 0.5 s, when its run of 0.5 s is over: it would never insert"},
       {"{" + sizes + ", " + box + R"(, "massRate": 1, "name": "a\nb"})",
        "sources[0].name: must not hold control characters (byte 1 is 0x0A)"},
       // 1 kg/s of 5 mm grains for 1e6 s: 5.8 billion particles
