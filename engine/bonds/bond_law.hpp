@@ -48,20 +48,21 @@ struct Bond {
   double tensile_strength = 0;  // Pa
   double shear_strength = 0;    // Pa
   bool moments = true;          // false: a contact bond (forces only)
+  BondBreak state = BondBreak::Intact;
+  std::uint8_t padding[6] = {};  // saved with the state: its bytes are set, not whatever the memory held
   // The bonded state, from which the loads are measured: the distance of the centres, each centre's
   // distance to the bond centre along the bond, the direction to the other particle in each
   // particle's own frame, and the rotation from j's frame to i's (q_i^-1 q_j).
   double rest_length = 0;
   double lever_i = 0, lever_j = 0;
   Vec3 anchor_i = Vec3::Zero(), anchor_j = Vec3::Zero();
+  double broken_at = -1;  // time of the break, s (here, so that `relative` falls on 16 bytes without padding)
   Quat relative = Quat::Identity();
   // The loads of the last evaluation.
   double normal_force = 0;  // on i along n: positive pushes i away (compression)
   Vec3 shear_force = Vec3::Zero();
   Vec3 twist = Vec3::Zero();    // moment on i along n
   Vec3 bending = Vec3::Zero();  // moment on i in the bond plane
-  BondBreak state = BondBreak::Intact;
-  double broken_at = -1;  // time of the break, s
 };
 
 // Records the pair's state now as the bond's unloaded state.

@@ -103,11 +103,11 @@ struct PrescribedMotion {
 struct LoadControl {
   enum class Kind { Cyclic, Servo };
   Kind kind = Kind::Cyclic;
+  int cycles = 0;                   // (cyclic); beside `kind`, so that no padding lies between them (saved states)
   Vec3 direction = -Vec3::UnitZ();  // unit
   double mass = 0;                  // kg (cyclic)
   double f_min = 0, f_max = 0;      // N (cyclic)
   double frequency = 0;             // Hz (cyclic)
-  int cycles = 0;                   // (cyclic)
   double target = 0;                // N (servo)
   double gain = 0;                  // m/s per N (servo)
   double max_speed = 0;             // m/s (servo)

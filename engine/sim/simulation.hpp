@@ -22,6 +22,7 @@ struct BoundaryLoad {
   Vec3 force = Vec3::Zero();
   Vec3 torque = Vec3::Zero();
   int contacts = 0;
+  int padding = 0;           // saved with the state: its bytes are set, not whatever the memory held
   ContactResponse response;  // how that force answers the wall's motion (a servo's loop gain)
 };
 

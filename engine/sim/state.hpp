@@ -35,7 +35,8 @@ struct WallContacts {
 // A particle's contact with a mesh, kept from step to step: the spring history follows the contact
 // as it moves from triangle to triangle (matched by its normal), not the triangle.
 struct MeshSlot {
-  int mesh = -1;  // -1: empty
+  int mesh = -1;    // -1: empty
+  int padding = 0;  // saved with the state: its bytes are set, not whatever the memory held
   Vec3 normal = Vec3::Zero();
   Vec3 shear = Vec3::Zero();
   Vec3 roll = Vec3::Zero();

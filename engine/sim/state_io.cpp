@@ -96,6 +96,21 @@ struct InsertedParticle {
   int material;
 };
 
+// Saved as their bytes: no padding may lie in them, or two runs would save whatever the memory held
+// there (an independent tester found restart.dat differing between two runs of one spec).
+static_assert(sizeof(BoundaryLoad) == 2 * sizeof(Vec3) + 2 * sizeof(int) + sizeof(ContactResponse));
+static_assert(sizeof(MeshSlot) == 2 * sizeof(int) + 6 * sizeof(Vec3) + 6 * sizeof(double));
+static_assert(sizeof(LoadControl) == sizeof(LoadControl::Kind) + sizeof(int) + sizeof(Vec3) + 7 * sizeof(double));
+static_assert(sizeof(WallDriver::Record) == 8 + sizeof(PlainMotion) + sizeof(LoadControl) + sizeof(WallPose) +
+                                                6 * sizeof(double) + sizeof(Vec3) + sizeof(Eigen::Matrix3d));
+static_assert(sizeof(Bond) == 2 * sizeof(int) + sizeof(BondGeometry) + 4 * sizeof(double) + 8 + 3 * sizeof(double) +
+                                  2 * sizeof(Vec3) + sizeof(double) + sizeof(Quat) + sizeof(double) + 3 * sizeof(Vec3));
+static_assert(sizeof(Wall) == 2 * sizeof(int) + 2 * sizeof(Vec3) + 4 * sizeof(Vec3) + sizeof(WallPose) +
+                                  2 * sizeof(Vec3) + 4 * sizeof(Vec3));
+static_assert(sizeof(SourceProgress) == 5 * 8 &&
+              sizeof(InsertedParticle) == 2 * sizeof(Vec3) + sizeof(double) + 2 * sizeof(int));
+static_assert(sizeof(PairConstants) == 3 * sizeof(double) && sizeof(EnergyLedger) == 7 * sizeof(double));
+
 [[noreturn]] void inconsistent(const std::string& what) {
   throw std::runtime_error("the saved state does not hold together: " + what);
 }

@@ -94,6 +94,7 @@ class WallDriver {
   // is undefined behaviour (the saved-state fuzzer found it), so the flags are bytes and checked.
   struct Record {
     std::uint8_t has_motion = 0, has_center = 0, has_load = 0;
+    std::uint8_t padding[5] = {};  // saved with the state: its bytes are set, not whatever the memory held
     PlainMotion motion;
     LoadControl load;
     WallPose pose;
