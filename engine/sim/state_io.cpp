@@ -107,7 +107,7 @@ static_assert(sizeof(Bond) == 2 * sizeof(int) + sizeof(BondGeometry) + 4 * sizeo
                                   2 * sizeof(Vec3) + sizeof(double) + sizeof(Quat) + sizeof(double) + 3 * sizeof(Vec3));
 static_assert(sizeof(Wall) == 2 * sizeof(int) + 2 * sizeof(Vec3) + 4 * sizeof(Vec3) + sizeof(WallPose) +
                                   2 * sizeof(Vec3) + 4 * sizeof(Vec3));
-static_assert(sizeof(SourceProgress) == 5 * 8 &&
+static_assert(sizeof(SourceProgress) == 5 * sizeof(std::int64_t) &&
               sizeof(InsertedParticle) == 2 * sizeof(Vec3) + sizeof(double) + 2 * sizeof(int));
 static_assert(sizeof(PairConstants) == 3 * sizeof(double) && sizeof(EnergyLedger) == 7 * sizeof(double));
 
