@@ -3,7 +3,6 @@
 // run, where the run's length is known in seconds, against the spec's particle limit.
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include "sim/particle_sources.hpp"
@@ -172,7 +171,7 @@ void load_source(const api::Source& in, const std::string& path, int index, Spec
   try {
     for (int k = 0; k < kTrialDraws; ++k) {
       const double r = source_radius(s, k);
-      mean_mass += scene.materials[s.material].density * 4.0 / 3.0 * std::numbers::pi * r * r * r / kTrialDraws;
+      mean_mass += sphere_mass(scene.materials[s.material].density, r) / kTrialDraws;
     }
   } catch (const std::runtime_error& e) {
     check.fail(path + ".sizes", e.what());

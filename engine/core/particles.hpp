@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 #include "core/vec.hpp"
@@ -39,6 +40,10 @@ struct Particles {
   // Reorders every array so that new index k holds old index new_to_old[k].
   void permute(const std::vector<int>& new_to_old);
 };
+
+// A solid sphere of radius r: its mass, and its moment of inertia about a diameter.
+inline double sphere_mass(double density, double r) { return density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
+inline double sphere_inertia(double m, double r) { return 0.4 * m * r * r; }
 
 // A particle's state is usable: its position, velocity and spin are finite and so are the squares
 // the energies and files take of them (a speed past ~1e154 m/s overflows m v^2 before it overflows).

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <random>
 #include <unordered_map>
 
@@ -20,8 +19,6 @@ std::uint64_t mix(std::uint64_t z) {
 
 // Uniform in [0, 1) from the top 53 bits.
 double unit(std::uint64_t seed, std::uint64_t n) { return static_cast<double>(mix(mix(seed) ^ n) >> 11) * 0x1.0p-53; }
-
-double sphere_mass(double density, double r) { return density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
 
 // Tries this many places for a particle before the batch stops (the region is full for now).
 constexpr int kAttempts = 40;
@@ -117,7 +114,7 @@ std::vector<ParticleInit> source_extremes(const Scene& scene, const ParticleSour
 }
 
 std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource& source, SourceProgress& progress,
-                                        double active, const Particles& existing, const std::vector<Face>& faces,
+                                        double active, const Particles& existing, const FacesNow& faces_now,
                                         const WallTest& touches_wall) {
   std::vector<ParticleInit> out;
   const double density = scene.materials[source.material].density;
@@ -135,6 +132,7 @@ std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource
   Vec3 lo = source.box.min, hi = source.box.max;
   std::vector<double> area_below;  // cumulative
   std::vector<Vec3> side;
+  const std::vector<Face> faces = on_faces ? faces_now() : std::vector<Face>{};
   if (on_faces) {
     // where the particles can be: over the faces, as far out as the layer or a largest diameter
     // (a layer thinner than a particle still holds it, at its radius off the face), a radius wide

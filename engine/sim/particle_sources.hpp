@@ -29,6 +29,8 @@ std::vector<ParticleInit> source_extremes(const Scene& scene, const ParticleSour
 
 // A face of the region (a source on the faces of a plate or mesh), where the wall is now.
 using Face = std::array<Vec3, 3>;
+// The faces as the wall is now, asked for only when particles are due.
+using FacesNow = std::function<std::vector<Face>()>;
 
 // Whether a sphere at x of radius r would touch a wall (the walls there now).
 using WallTest = std::function<bool(const Vec3& x, double r)>;
@@ -37,7 +39,7 @@ using WallTest = std::function<bool(const Vec3& x, double r)>;
 // nearest particle), placed without overlap among `existing` and clear of the walls; fewer when the
 // region is too crowded for them (ParticleSource: they wait for the next batch). Updates `progress`.
 std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource& source, SourceProgress& progress,
-                                        double active, const Particles& existing, const std::vector<Face>& faces,
+                                        double active, const Particles& existing, const FacesNow& faces_now,
                                         const WallTest& touches_wall);
 
 }  // namespace dem

@@ -19,10 +19,6 @@
 namespace dem {
 namespace {
 
-// A solid sphere of radius r: its mass, and its moment of inertia about a diameter.
-double sphere_mass(double density, double r) { return density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
-double sphere_inertia(double m, double r) { return 0.4 * m * r * r; }
-
 Particles make_particles(const Scene& scene) {
   Particles p;
   const std::size_t n = scene.particles.size();
@@ -1122,11 +1118,9 @@ bool Simulation::feed_sources() {
     const std::int64_t every = std::max<std::int64_t>(1, source.every_steps);
     if (since <= 0 || (progress.last_attempt >= 0 && step_ + 1 - progress.last_attempt < every)) continue;
     progress.last_attempt = step_ + 1;
-    const std::vector<Face> faces =
-        source.region == ParticleSource::Region::Face ? faces_of(source.face_wall) : std::vector<Face>{};
-    const std::vector<ParticleInit> due =
-        due_particles(scene_, source, progress, std::min(since, source.end - source.start), state_.particles, faces,
-                      [this](const Vec3& x, double r) { return touches_wall(x, r); });
+    const std::vector<ParticleInit> due = due_particles(
+        scene_, source, progress, std::min(since, source.end - source.start), state_.particles,
+        [&] { return faces_of(source.face_wall); }, [this](const Vec3& x, double r) { return touches_wall(x, r); });
     double energy = 0;  // what the new particles bring: their kinetic and gravitational energy
     for (ParticleInit init : due) {
       init.source = k;
