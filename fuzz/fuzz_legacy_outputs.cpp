@@ -1,4 +1,4 @@
-// libFuzzer target: the readers of the legacy output files (ANIMATION_3D.dat, ForceChain_3D.dat,
+// libFuzzer target: the readers of the legacy output files (ANIMATION_3D.dat, ANIMATION_2D.dat, ForceChain_3D.dat,
 // the wall files, Force_Displacement.dat and the statistics rows), which the tests and the tools
 // use on files cut short or damaged. The first byte chooses the reader. A reader reports a problem
 // or a truncation; it never crashes.
@@ -12,7 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size == 0) return 0;
   std::istringstream in(std::string(reinterpret_cast<const char*>(data) + 1, size - 1));
   namespace legacy = dem::legacy;
-  switch (data[0] % 6) {
+  switch (data[0] % 7) {
     case 0:
       legacy::read_animation(in);
       break;
@@ -28,8 +28,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     case 4:
       legacy::read_force_displacement(in);
       break;
-    default:
+    case 5:
       legacy::read_rows(in, 1 + data[0] % 17);
+      break;
+    default:
+      legacy::read_animation_2d(in);
       break;
   }
   return 0;

@@ -20,5 +20,6 @@ inline constexpr double kBondRadiusMultiplier = 1;
 inline constexpr double kBondShearStiffnessRatio = 1;
 inline constexpr double kBondGapTolerance = 1e-3;  // of the smaller radius
 inline constexpr double kLengthUnit = 1;           // outputs in metres
+inline constexpr double kDiscThickness = 1;        // m, a 2D run's discs (PFC2D's unit thickness)
 
 }  // namespace dem::spec::defaults

@@ -10,9 +10,11 @@
 
 namespace dem::spec {
 
-std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<double>& diameters, std::mt19937_64& rng,
-                                 const std::function<bool(const Vec3&, double)>& accept,
-                                 const std::vector<Sphere>& obstacles) {
+std::vector<Vec3> random_packing(const Vec3& box_lo, const Vec3& box_hi, std::vector<double>& diameters,
+                                 std::mt19937_64& rng, const std::function<bool(const Vec3&, double)>& accept,
+                                 const std::vector<Sphere>& obstacles, bool planar) {
+  Vec3 lo = box_lo, hi = box_hi;
+  if (planar) lo.y() = hi.y() = 0;
   std::sort(diameters.begin(), diameters.end(), std::greater<>());
   const int n = static_cast<int>(diameters.size());
   std::vector<Vec3> placed;
@@ -40,13 +42,15 @@ std::vector<Vec3> random_packing(const Vec3& lo, const Vec3& hi, std::vector<dou
   constexpr int kAttempts = 2000;
   for (int k = 0; k < n; ++k) {
     const double r = diameters[k] / 2;
-    const Vec3 a = lo + Vec3::Constant(r), b = hi - Vec3::Constant(r);
+    Vec3 a = lo + Vec3::Constant(r), b = hi - Vec3::Constant(r);
+    if (planar) a.y() = b.y() = 0;
     if ((b.array() < a.array()).any())
       throw std::runtime_error("a sphere of diameter " + std::to_string(diameters[k]) + " does not fit in the box");
     bool ok = false;
     for (int attempt = 0; attempt < kAttempts && !ok; ++attempt) {
       Vec3 x;
-      for (int d = 0; d < 3; ++d) x[d] = std::uniform_real_distribution<double>(a[d], b[d])(rng);
+      for (int d = 0; d < 3; ++d)
+        x[d] = planar && d == 1 ? 0.0 : std::uniform_real_distribution<double>(a[d], b[d])(rng);
       ok = !accept || accept(x, r);
       for (int dz = -1; dz <= 1 && ok; ++dz)
         for (int dy = -1; dy <= 1 && ok; ++dy)

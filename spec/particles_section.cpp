@@ -43,6 +43,13 @@ std::optional<Region> load_region(const api::Mesh& in, const std::string& path, 
   return Region{ClosedMesh(*placed), std::abs(six_v) / 6};
 }
 
+// max above min in x, y and z (in 2D, x and z: the discs lie at y = 0 whatever the box's y range).
+bool check_box_order(const std::string& path, const Vec3& lo, const Vec3& hi, bool planar, Checker& check) {
+  const bool ordered = lo.x() < hi.x() && lo.z() < hi.z() && (planar || lo.y() < hi.y());
+  if (!ordered) check.fail(path, planar ? "must be above min in x and z" : "must be above min in x, y and z");
+  return ordered;
+}
+
 }  // namespace
 
 // Diameters (the manuals' IPATTERN), checked at `sp`.
@@ -94,7 +101,12 @@ void add_packing(const api::Packing& in, const std::string& path, SpecContext& c
   // a closed mesh's box stands for a corner left out
   const Vec3 lo = region && !in.has_min() ? region->min() : vec(in.min());
   const Vec3 hi = region && !in.has_max() ? region->max() : vec(in.max());
-  if (!(lo.array() < hi.array()).all()) check.fail(path + ".max", "must be above min in x, y and z");
+  const bool planar = scene.plane.has_value();  // a 2D run: discs at y = 0, the box's y range unused
+  check_box_order(path + ".max", lo, hi, planar, check);
+  if (planar && region && in.solid_fraction() > 0)
+    check.fail(path + ".solidFraction",
+               "a 2D packing inside a mesh takes count (the area of the mesh's section is "
+               "not computed)");
   const std::string sp = path + ".sizes";
   const SizeDistribution d = load_sizes(in.sizes(), sp, check);
   if ((in.count() > 0) == (in.solid_fraction() > 0)) check.fail(path, "give count or solidFraction (one of them)");
@@ -108,13 +120,16 @@ void add_packing(const api::Packing& in, const std::string& path, SpecContext& c
     if (in.count() > 0) {
       diameters = sample_diameters(d, in.count(), rng);
     } else {  // draw until the spheres' volume makes the solid fraction
-      const double target = in.solid_fraction() * (region ? region_volume : (hi - lo).prod());
+      // in 2D the fraction of the rectangle's area the discs cover
+      const double target = in.solid_fraction() * (planar   ? (hi - lo).x() * (hi - lo).z()
+                                                   : region ? region_volume
+                                                            : (hi - lo).prod());
       double volume = 0;
       SizeDraws draws;  // one budget for the whole packing, not one per diameter
       while (volume < target && diameters.size() < 10000000) {
         const double dia = sample_diameters(d, 1, rng, &draws)[0];
         diameters.push_back(dia);
-        volume += std::numbers::pi / 6 * dia * dia * dia;
+        volume += planar ? std::numbers::pi / 4 * dia * dia : std::numbers::pi / 6 * dia * dia * dia;
       }
     }
   } catch (const std::runtime_error& e) {
@@ -128,7 +143,7 @@ void add_packing(const api::Packing& in, const std::string& path, SpecContext& c
     // around the particles listed, lattices and packings before it
     std::vector<Sphere> there;
     for (const ParticleInit& p : scene.particles) there.push_back({p.position, p.radius});
-    const std::vector<Vec3> sites = random_packing(lo, hi, diameters, rng, accept, there);
+    const std::vector<Vec3> sites = random_packing(lo, hi, diameters, rng, accept, there, planar);
     for (std::size_t k = 0; k < sites.size(); ++k) {
       ParticleInit p;
       p.position = sites[k];
@@ -163,8 +178,15 @@ void add_lattice(const api::Lattice& in, const std::string& path, SpecContext& c
   } else {
     check.positive(path + ".radius", in.radius(), kRadius);
   }
-  const std::array<int, 3> counts{in.count_x(), in.count_y(), in.count_z()};
+  const bool planar = scene.plane.has_value();  // a 2D run: the lattice's layer at y = 0
+  std::array<int, 3> counts{in.count_x(), in.count_y(), in.count_z()};
   const bool counted = counts[0] != 0 || counts[1] != 0 || counts[2] != 0;
+  if (counted && planar) {
+    if (counts[1] > 1)
+      check.fail(path + ".countY", "a 2D lattice is one layer at y = 0: leave countY out or give 1 (got " +
+                                       std::to_string(counts[1]) + ")");
+    counts[1] = 1;
+  }
   if (counted) {
     const char* axis[] = {"countX", "countY", "countZ"};
     for (int d = 0; d < 3; ++d)
@@ -187,15 +209,13 @@ void add_lattice(const api::Lattice& in, const std::string& path, SpecContext& c
   if (counted) {
     const double bound = static_cast<double>(counts[0]) * counts[1] * counts[2];
     if (!check.room(path, scene.particles.size(), bound)) return;
-    sites = lattice_sites_counted(kind, lo, site_radius, spacing, counts);
+    sites = lattice_sites_counted(kind, lo, site_radius, spacing, counts, planar);
   } else {
     const Vec3 hi = region && !in.has_max() ? region->max() : vec(in.max());
-    if (!(lo.array() < hi.array()).all()) {
-      check.fail(path + ".max", "must be above min in x, y and z");
+    if (!check_box_order(path + ".max", lo, hi, planar, check)) return;
+    if (!check.room(path, scene.particles.size(), lattice_site_bound(kind, lo, hi, site_radius, spacing, planar)))
       return;
-    }
-    if (!check.room(path, scene.particles.size(), lattice_site_bound(kind, lo, hi, site_radius, spacing))) return;
-    sites = lattice_sites(kind, lo, hi, site_radius, spacing);
+    sites = lattice_sites(kind, lo, hi, site_radius, spacing, planar);
   }
   if (region)
     sites.erase(

@@ -45,6 +45,11 @@ std::optional<PairInteraction> load_interaction(const api::Interaction& in, cons
 // Every pair of materials that can meet has its interaction (after the walls, stages included).
 void check_interactions_complete(SpecContext& ctx);
 
+// plane_section.cpp: a 2D run (JobSpec.dimension, .discThickness), read before the particles are made;
+// check_plane, after every other section, refuses what would leave the plane, naming the field.
+void load_plane(const api::JobSpec& spec, SpecContext& ctx);
+void check_plane(const api::JobSpec& spec, SpecContext& ctx);
+
 // particles_section.cpp: listed particles, lattices, packings; then clumps_section.cpp's clumps and stones.
 void load_particles(const api::JobSpec& spec, SpecContext& ctx);
 void load_clumps(const api::JobSpec& spec, SpecContext& ctx);

@@ -118,6 +118,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
   scene.name = spec.name();
   SpecContext ctx(check, base_dir, scene);
   load_materials(spec, ctx);
+  load_plane(spec, ctx);
   load_particles(spec, ctx);
   load_walls(spec, ctx);
   load_growth(spec, ctx);
@@ -127,6 +128,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
   check_interactions_complete(ctx);
   check_triangle_count(scene, check);
   load_run_settings(spec, ctx);
+  check_plane(spec, ctx);
   if (check.failed()) throw SpecError(check.listed());
   return scene;
 }

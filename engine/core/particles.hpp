@@ -45,6 +45,18 @@ struct Particles {
 inline double sphere_mass(double density, double r) { return density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
 inline double sphere_inertia(double m, double r) { return 0.4 * m * r * r; }
 
+// What a particle is: a solid sphere, or in a 2D run (Scene::plane) a solid disc (a short cylinder) of
+// the run's thickness lying in the x-z plane, which turns only about its axis (y).
+struct Grain {
+  double disc_thickness = 0;  // m; 0: spheres
+  bool disc() const { return disc_thickness > 0; }
+  double mass(double density, double r) const {
+    return disc() ? density * std::numbers::pi * r * r * disc_thickness : sphere_mass(density, r);
+  }
+  // about a diameter (sphere) or the disc's axis (m r^2 / 2)
+  double inertia(double m, double r) const { return disc() ? 0.5 * m * r * r : sphere_inertia(m, r); }
+};
+
 // A particle's state is usable: its position, velocity and spin are finite and so are the squares
 // the energies and files take of them (a speed past ~1e154 m/s overflows m v^2 before it overflows).
 inline bool state_is_finite(const Vec3& x, const Vec3& v, const Vec3& w, double mass) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/model_parameters.hpp"
+#include "core/particles.hpp"
 #include "core/size_distribution.hpp"
 #include "core/vec.hpp"
 
@@ -279,6 +280,15 @@ struct Scene {
   std::vector<Stage> stages;
   // Particles entering during the run (none: the particles are those given, from start to end).
   std::vector<ParticleSource> sources;
+  // A 2D run (the legacy viewers' 2D data): discs of this thickness (m) in the x-z plane (y = 0), moving in it
+  // and turning about y; the contact and bond laws are the engine's own, between the discs' centres in the
+  // plane. Absent: a 3D run of spheres.
+  struct Plane {
+    double thickness = 1;
+  };
+  std::optional<Plane> plane;
+
+  Grain grain() const { return Grain{plane ? plane->thickness : 0}; }
 
   // The stage that glues the bonds (Stage::glue_bonds; at most one), or -1: none does.
   int bonding_stage() const {

@@ -12,6 +12,7 @@ namespace dem::legacy {
 namespace {
 
 constexpr std::string_view animation_header = "3DA:";
+constexpr std::string_view animation_2d_header = "2DA:";
 constexpr std::string_view force_chain_header = "3DF:";
 constexpr std::string_view wall_header = "3DW:";
 constexpr std::string_view wall_force_chain_header = "3DWF:";
@@ -458,6 +459,78 @@ std::optional<Stop> read_animation_frame(TokenLines& lines, AnimationFrame& fram
 }
 
 // ---------------------------------------------------------------------------------------------
+// ANIMATION_2D.dat: ANIMATION_3D.dat's layout with (x, z) points, a spin about y, segments for plates
+
+constexpr std::string_view plate_2d_layout = "id rplate x1 z1 x2 z2";
+constexpr std::string_view triangle_2d_layout = "id tri x1 z1 x2 z2";
+constexpr std::string_view disc_layout = "id x z D vx vz nc w part";
+
+std::optional<Stop> read_segments(FrameLines& frame_lines, std::string_view what, std::string_view layout,
+                                  std::string_view word, std::size_t count, std::vector<AnimationSegment>& out) {
+  out.reserve(safe_reserve(count));
+  for (std::size_t k = 0; k < count; ++k) {
+    if (auto stop = frame_lines.next({what, layout, 6, k + 1, count})) return stop;
+    if (auto stop = frame_lines.check_word(1, word)) return stop;
+    LineValues values = frame_lines.values();
+    AnimationSegment& segment = out.emplace_back();
+    segment.id = values.integer(0);
+    segment.ends[0] = {values.real(2), values.real(3)};
+    segment.ends[1] = {values.real(4), values.real(5)};
+    if (!values.ok()) return malformed(values.problem());
+  }
+  return std::nullopt;
+}
+
+std::optional<Stop> read_animation_2d_frame(TokenLines& lines, Animation2DFrame& frame) {
+  if (auto stop = check_frame_header(lines, animation_2d_header, 1, animation_2d_header)) return stop;
+  FrameLines frame_lines(lines, animation_2d_header);
+
+  if (auto stop = frame_lines.next({"domain line", "xmin xmax zmin zmax", 4})) return stop;
+  LineValues domain = frame_lines.values();
+  for (std::size_t k = 0; k < frame.domain.size(); ++k) frame.domain[k] = domain.real(k);
+  if (!domain.ok()) return malformed(domain.problem());
+
+  if (auto stop = frame_lines.next({"scalar line", "s1 s2 s3 s4", 4})) return stop;
+  LineValues scalars = frame_lines.values();
+  for (std::size_t k = 0; k < frame.scalars.size(); ++k) frame.scalars[k] = scalars.real(k);
+  if (!scalars.ok()) return malformed(scalars.problem());
+
+  if (auto stop = frame_lines.next({"segment count line", "NT", 1})) return stop;
+  LineValues triangle_count_values = frame_lines.values();
+  const std::size_t triangle_count = triangle_count_values.count(0);
+  if (!triangle_count_values.ok()) return malformed(triangle_count_values.problem());
+
+  if (auto stop = frame_lines.next({"count line", "step NP NW", 3})) return stop;
+  LineValues counts = frame_lines.values();
+  frame.step = counts.integer64(0);
+  const std::size_t disc_count = counts.count(1);
+  const std::size_t plate_count = counts.count(2);
+  if (!counts.ok()) return malformed(counts.problem());
+
+  if (auto stop = read_segments(frame_lines, "plate line", plate_2d_layout, plate_word, plate_count, frame.plates))
+    return stop;
+  if (auto stop = read_segments(frame_lines, "mesh segment line", triangle_2d_layout, triangle_word, triangle_count,
+                                frame.triangles))
+    return stop;
+
+  frame.discs.reserve(safe_reserve(disc_count));
+  for (std::size_t k = 0; k < disc_count; ++k) {
+    if (auto stop = frame_lines.next({"disc line", disc_layout, 9, k + 1, disc_count})) return stop;
+    LineValues values = frame_lines.values();
+    AnimationDisc& disc = frame.discs.emplace_back();
+    disc.id = values.integer(0);
+    disc.position = {values.real(1), values.real(2)};
+    disc.diameter = values.real(3);
+    disc.velocity = {values.real(4), values.real(5)};
+    disc.contacts = values.integer(6);
+    disc.spin = values.real(7);
+    disc.part = values.integer(8);
+    if (!values.ok()) return malformed(values.problem());
+  }
+  return std::nullopt;
+}
+
+// ---------------------------------------------------------------------------------------------
 // ForceChain_3D.dat
 
 constexpr std::string_view chain_layout = "i i-1 j Fn Ft";
@@ -696,6 +769,50 @@ void write_force_chain_frame(std::FILE* out, const ForceChainFrame& frame, Numbe
     text.end_line();
   }
   text.write_to(out);
+}
+
+void write_animation_2d_frame(std::FILE* out, const Animation2DFrame& frame, NumberFormat format) {
+  const AnimationStyles styles = animation_styles(format);
+  FrameText text(5 + frame.plates.size() + frame.triangles.size() + frame.discs.size());
+  text.word(animation_2d_header);
+  text.end_line();
+  for (double value : frame.domain) text.real(value, styles.domain);
+  text.end_line();
+  for (double value : frame.scalars) text.real(value, styles.scalar);
+  text.end_line();
+  text.integer(static_cast<long long>(frame.triangles.size()));
+  text.end_line();
+  text.integer(frame.step);
+  text.integer(static_cast<long long>(frame.discs.size()));
+  text.integer(static_cast<long long>(frame.plates.size()));
+  text.end_line();
+  for (const auto* segments : {&frame.plates, &frame.triangles})
+    for (const AnimationSegment& segment : *segments) {
+      text.integer(segment.id);
+      text.word(segments == &frame.plates ? plate_word : triangle_word);
+      for (const Vec2& end : segment.ends) {
+        text.real(end.x(), styles.corner);
+        text.real(end.y(), styles.corner);
+      }
+      text.end_line();
+    }
+  for (const AnimationDisc& disc : frame.discs) {
+    text.integer(disc.id);
+    text.real(disc.position.x(), styles.position);
+    text.real(disc.position.y(), styles.position);
+    text.real(disc.diameter, styles.diameter);
+    text.real(disc.velocity.x(), styles.velocity);
+    text.real(disc.velocity.y(), styles.velocity);
+    text.integer(disc.contacts);
+    text.real(disc.spin, styles.angular_velocity);
+    text.integer(disc.part);
+    text.end_line();
+  }
+  text.write_to(out);
+}
+
+ReadResult<Animation2DFrame> read_animation_2d(std::istream& in) {
+  return read_frames<Animation2DFrame>(in, read_animation_2d_frame);
 }
 
 ReadResult<AnimationFrame> read_animation(std::istream& in) {

@@ -52,6 +52,34 @@ struct AnimationFrame {
   std::vector<AnimationParticle> particles;
 };
 
+// ANIMATION_2D.dat (project-defined: both manuals' viewers read a "2D Data structure" they never print;
+// docs/formats.md section 3a): a 2D run's frames, ANIMATION_3D.dat's layout in the x-z plane. A point is (x, z).
+using Vec2 = Eigen::Vector2d;
+
+struct AnimationSegment {  // where a plate or a moving mesh's triangle crosses the plane
+  int id = 0;
+  std::array<Vec2, 2> ends;
+};
+
+struct AnimationDisc {
+  int id = 0;  // 1-based
+  Vec2 position = Vec2::Zero();
+  double diameter = 0;
+  Vec2 velocity = Vec2::Zero();
+  int contacts = 0;
+  double spin = 0;  // rad/s about +y, right-handed (turns +z towards +x)
+  int part = 0;
+};
+
+struct Animation2DFrame {
+  std::array<double, 4> domain{};   // xmin xmax zmin zmax
+  std::array<double, 4> scalars{};  // as ANIMATION_3D.dat's
+  std::int64_t step = 0;
+  std::vector<AnimationSegment> plates;
+  std::vector<AnimationSegment> triangles;
+  std::vector<AnimationDisc> discs;
+};
+
 struct ForceChain {
   int i = 0;  // 1-based, i < j
   int j = 0;
@@ -131,6 +159,10 @@ void write_force_chain_frame(std::FILE* out, const ForceChainFrame& frame, Numbe
 //   boundaries after it cannot be trusted.
 ReadResult<AnimationFrame> read_animation(std::istream& in);
 ReadResult<ForceChainFrame> read_force_chains(std::istream& in);
+
+// ANIMATION_2D.dat, with the writers' and readers' rules above (the 3D widths for the same quantities).
+void write_animation_2d_frame(std::FILE* out, const Animation2DFrame& frame, NumberFormat format);
+ReadResult<Animation2DFrame> read_animation_2d(std::istream& in);
 
 void write_wall_frame(std::FILE* out, const WallFrame& frame, NumberFormat format);
 void write_wall_force_chain_frame(std::FILE* out, const WallForceChainFrame& frame, NumberFormat format);

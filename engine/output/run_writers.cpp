@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "output/animation_2d_output.hpp"
 #include "output/energy_output.hpp"
 #include "output/stage_log_output.hpp"
 #include "output/legacy_output.hpp"
@@ -40,7 +41,10 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
     if (scene.outputs.last_frames > 0) return std::make_unique<LastFramesOnly>(std::move(writer));
     return writer;
   };
-  if (scene.outputs.animation)
+  if (scene.outputs.animation && scene.plane)
+    writers.push_back(
+        particle_frames(std::make_unique<Animation2DWriter>((dir / "ANIMATION_2D.dat").string(), sim, append)));
+  else if (scene.outputs.animation)
     writers.push_back(
         particle_frames(std::make_unique<AnimationWriter>((dir / "ANIMATION_3D.dat").string(), sim, append)));
   if (scene.outputs.force_chains)

@@ -109,6 +109,7 @@ std::vector<ParticleInit> source_extremes(const Scene& scene, const ParticleSour
   for (ParticleInit* p : {&smallest, &largest}) {
     p->material = source.material;
     p->velocity = source.velocity;
+    if (scene.plane) p->position.y() = 0;  // a 2D run's discs lie in y = 0
   }
   return {smallest, largest};
 }
@@ -119,7 +120,7 @@ std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource
   std::vector<ParticleInit> out;
   const double density = scene.materials[source.material].density;
   double r = source_radius(source, progress.inserted);
-  double m = sphere_mass(density, r);
+  double m = scene.grain().mass(density, r);
   // rate times time to the nearest particle: within half a particle of it
   auto owed = [&] {
     return source.mass_rate > 0 ? progress.mass + m / 2 <= source.mass_rate * active
@@ -165,6 +166,10 @@ std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource
     if (!on_faces) {
       Vec3 x;
       for (int d = 0; d < 3; ++d) {
+        if (d == 1 && scene.plane) {  // a 2D run's discs lie in y = 0
+          x[d] = 0;
+          continue;
+        }
         const double room = std::max(0.0, hi[d] - lo[d] - 2 * radius);
         x[d] = lo[d] + radius + next_unit() * room;
       }
@@ -200,7 +205,7 @@ std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource
     ++progress.inserted;
     progress.mass += m;
     r = source_radius(source, progress.inserted);
-    m = sphere_mass(density, r);
+    m = scene.grain().mass(density, r);
   }
   return out;
 }

@@ -33,17 +33,18 @@ Particles make_particles(const Scene& scene) {
   p.inv_inertia.resize(n);
   p.material.resize(n);
   p.id.resize(n);
+  const Grain grain = scene.grain();
   for (std::size_t i = 0; i < n; ++i) {
     const ParticleInit& in = scene.particles[i];
     const double r = in.radius;
-    const double m = sphere_mass(scene.materials[in.material].density, r);
+    const double m = grain.mass(scene.materials[in.material].density, r);
     p.x[i] = in.position;
     p.v[i] = in.fixed ? Vec3::Zero() : in.velocity;
     p.w[i] = in.fixed ? Vec3::Zero() : in.angular_velocity;
     p.radius[i] = r;
     p.mass[i] = m;
     p.inv_mass[i] = in.fixed ? 0 : 1 / m;
-    p.inv_inertia[i] = in.fixed ? 0 : 1 / sphere_inertia(m, r);
+    p.inv_inertia[i] = in.fixed ? 0 : 1 / grain.inertia(m, r);
     p.material[i] = in.material;
     p.id[i] = static_cast<int>(i);
     if (!in.force.isZero(0)) {
@@ -89,6 +90,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   for (const ParticleInit& init : scene_.particles)
     smallest_given_radius_ = std::min(smallest_given_radius_, init.radius);
   refuse_positions_past_precision();
+  if (scene_.plane) refuse_motion_off_the_plane();
   const int boundaries = static_cast<int>(scene_.walls.size());
   plane_index_.assign(boundaries, -1);
   mesh_index_.assign(boundaries, -1);
@@ -148,6 +150,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   // They come first so that the step knows the initial contacts (the speed their stored energy gives).
   state_.dt = 0;
   kernel_->compute_and_kick(state_);
+  if (scene_.plane) hold_in_plane();
   if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
   settle_walls(0, 0);
   // the step knows whether any bond was made (a bonds block that glued nothing does not shorten it)
@@ -430,6 +433,34 @@ void Simulation::refuse_positions_past_precision() const {
   throw SceneError(buf);
 }
 
+// A 2D run's discs start in the plane, moving in it and turning about y (the spec loader says which field is off).
+void Simulation::refuse_motion_off_the_plane() const {
+  for (std::size_t i = 0; i < scene_.particles.size(); ++i) {
+    const ParticleInit& p = scene_.particles[i];
+    if (p.position.y() == 0 && p.velocity.y() == 0 && p.angular_velocity.x() == 0 && p.angular_velocity.z() == 0 &&
+        p.force.y() == 0 && p.clump < 0)
+      continue;
+    throw SceneError("particles: particle " + std::to_string(i + 1) +
+                     " leaves the plane of a 2D run: its y, velocity y, spin x and z and force y must be 0, and it "
+                     "cannot belong to a clump");
+  }
+  if (scene_.gravity.y() != 0) throw SceneError("gravity: a 2D run's gravity lies in the x-z plane (its y must be 0)");
+}
+
+// The plane's reaction (a 2D run): the discs keep y = 0 and turn only about y. The kick has just added dt/2 f/m, so
+// clearing the out-of-plane velocity and spin is clearing those forces' and torques' part of it; the forces and
+// torques are cleared too for the next step's first half kick. The constraint does no work: it removes only
+// velocity components that were 0 before the kick.
+void Simulation::hold_in_plane() {
+  Particles& p = state_.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.f[i].y() = 0;
+    p.v[i].y() = 0;
+    p.t[i].x() = p.t[i].z() = 0;
+    p.w[i].x() = p.w[i].z() = 0;
+  }
+}
+
 // Two particles with one centre: the contact between them has no direction (its normal is 0/0).
 void Simulation::refuse_coincident_particles() const {
   const Particles& p = state_.particles;
@@ -498,6 +529,7 @@ void Simulation::step() {
       (interval > 0 && step_ + 1 - last_build_step_ >= interval))
     build_neighbors();
   kernel_->compute_and_kick(state_);
+  if (scene_.plane) hold_in_plane();
   if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, state_.dt);
   settle_walls(t_new, state_.dt);
   if (walls_move) {
@@ -570,18 +602,19 @@ double Simulation::grow(double contacts_work_at_start) {
   const std::vector<double> radius = grown_radii();
   const double work_at_end = kernel_->elastic_energy(state_, radius) - kernel_->elastic_energy(state_, p.radius);
   double work = 0.5 * (contacts_work_at_start + work_at_end);
+  const Grain grain = scene_.grain();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double r = radius[i];
-    const double m = sphere_mass(scene_.materials[scene_.particles[p.id[i]].material].density, r);
+    const double m = grain.mass(scene_.materials[scene_.particles[p.id[i]].material].density, r);
     if (p.inv_mass[i] > 0) {
-      const double dm = m - p.mass[i], di = sphere_inertia(m, r) - sphere_inertia(p.mass[i], p.radius[i]);
+      const double dm = m - p.mass[i], di = grain.inertia(m, r) - grain.inertia(p.mass[i], p.radius[i]);
       work += 0.5 * dm * p.v[i].squaredNorm() + 0.5 * di * p.w[i].squaredNorm() - dm * state_.gravity.dot(p.x[i]);
     }
     p.radius[i] = r;
     p.mass[i] = m;
     if (p.inv_mass[i] > 0) {
       p.inv_mass[i] = 1 / m;
-      p.inv_inertia[i] = 1 / sphere_inertia(m, r);
+      p.inv_inertia[i] = 1 / grain.inertia(m, r);
     }
   }
   refresh_contact_constants();
@@ -1095,6 +1128,7 @@ void Simulation::enter_stage(int k) {
   const double dt = state_.dt, now = time();  // time() is step * dt: taken before dt is set to 0
   state_.dt = 0;
   kernel_->compute_and_kick(state_);
+  if (scene_.plane) hold_in_plane();
   if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
   settle_walls(now, 0);
   state_.dt = dt;
@@ -1181,7 +1215,8 @@ bool Simulation::touches_wall(const Vec3& x, double r) const {
 void Simulation::append_particle(const ParticleInit& init) {
   Particles& p = state_.particles;
   const double r = init.radius;
-  const double m = sphere_mass(scene_.materials[init.material].density, r);
+  const Grain grain = scene_.grain();
+  const double m = grain.mass(scene_.materials[init.material].density, r);
   ParticleInit given = init;
   given.radius = r / growth_scale_;  // a growth scales the given sizes: this one is r now
   scene_.particles.push_back(given);
@@ -1193,7 +1228,7 @@ void Simulation::append_particle(const ParticleInit& init) {
   p.radius.push_back(r);
   p.mass.push_back(m);
   p.inv_mass.push_back(1 / m);
-  p.inv_inertia.push_back(1 / sphere_inertia(m, r));
+  p.inv_inertia.push_back(1 / grain.inertia(m, r));
   p.material.push_back(init.material);
   p.id.push_back(static_cast<int>(scene_.particles.size()) - 1);
   if (!p.external.empty()) p.external.push_back(Vec3::Zero());

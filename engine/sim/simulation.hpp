@@ -170,6 +170,8 @@ class Simulation {
   void check_wall_moves(const std::vector<WallPose>& before);
   void refuse_coincident_particles() const;
   void refuse_positions_past_precision() const;
+  void refuse_motion_off_the_plane() const;  // a 2D run (Scene::plane)
+  void hold_in_plane();                      // a 2D run: after each force evaluation
   void add_work(double& account, double work);
   void build_neighbors();
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);

@@ -54,7 +54,7 @@ double reference_speed(const Scene& scene) {
   double pushed = 0;
   for (const ParticleInit& p : scene.particles) {
     if (p.force.isZero(0) || p.fixed) continue;
-    const double mass = scene.materials[p.material].density * 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
+    const double mass = scene.grain().mass(scene.materials[p.material].density, p.radius);
     pushed = std::max(pushed, std::sqrt(2 * (scene.gravity + p.force / mass).norm() * extent));
   }
   for (const WallInit& w : scene.walls) {
@@ -130,8 +130,8 @@ namespace {
 // [a]x^T I^-1 [a]x) (the rigid-body impact mass, e.g. Brach, Mechanical Impact Dynamics, ch. 3).
 // Member spheres overlap, so their own mass would understate the body's several times over.
 double contact_mass(const Scene& scene, const ParticleInit& p) {
-  const double sphere = scene.materials[p.material].density * 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
-  if (p.clump < 0) return sphere;
+  const double own = scene.grain().mass(scene.materials[p.material].density, p.radius);
+  if (p.clump < 0) return own;
   const ClumpInit& c = scene.clumps[p.clump];
   const Vec3 arm = c.orientation.conjugate() * (p.position - c.position);  // in the principal frame
   Eigen::Matrix3d cross;
