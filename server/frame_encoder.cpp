@@ -67,6 +67,7 @@ EncodedFrame FrameEncoder::encode(const Simulation& sim, bool with_force_chains)
   base.set_positions(vectors_by_id(p.x, p.id));
   base.set_velocities(vectors_by_id(p.v, p.id));
   base.set_kinetic_energy(sim.kinetic_energy());
+  base.set_planar(sim.scene().plane.has_value());
   if (!sim.bonds().empty() || !sim.state().bodies.empty()) {
     const std::vector<int> fragment = sim.fragments();
     std::vector<std::int32_t> by_id(p.size());

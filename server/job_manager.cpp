@@ -328,7 +328,8 @@ std::shared_ptr<FrameChannel> JobManager::frames_of(std::int64_t id, std::string
   }
   const JobState state = it->second.state;
   if (state != JobState::Queued && state != JobState::Running) {
-    why = "job " + std::to_string(id) + " is " + to_string(state) + ": its frames are in its ANIMATION_3D.dat";
+    why = "job " + std::to_string(id) + " is " + to_string(state) +
+          ": its frames are in its ANIMATION_3D.dat (a 2D run's: ANIMATION_2D.dat)";
     return nullptr;
   }
   return frames_.open(id);

@@ -191,7 +191,8 @@ TEST_F(ServerFrames, AFinishedJobClosesTheStreamSayingWhere) {
   client::FrameStream stream(*client_, "/api/jobs/" + std::to_string(id) + "/frames");
   EXPECT_FALSE(stream.next().has_value());
   EXPECT_EQ(stream.close_reason(),
-            "job " + std::to_string(id) + " is succeeded: its frames are in its ANIMATION_3D.dat");
+            "job " + std::to_string(id) +
+                " is succeeded: its frames are in its ANIMATION_3D.dat (a 2D run's: ANIMATION_2D.dat)");
 }
 
 }  // namespace

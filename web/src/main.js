@@ -194,6 +194,7 @@ export class Viewer {
       time: frame ? frame.time : null,
       step: frame ? frame.step : null,
       visible: frame ? this.drawnCount : 0,
+      planar: Boolean(frame && frame.planar), // a 2D run's discs (ANIMATION_2D.dat)
       colourMode: this.settings.colourMode,
       playing: this.playback.playing,
       live: this.live,
@@ -269,7 +270,7 @@ export class Viewer {
     }
     const meshBox = this.boundary.meshBounds();
     if (meshBox) grow(meshBox[0], meshBox[1]);
-    if (min) this.stage.frame(min, max);
+    if (min) this.stage.frame(min, max, { planar: Boolean(first && first.planar) });
   }
 
   clearView() {

@@ -9,7 +9,7 @@
 //   DEM_SERVER_URL      http://127.0.0.1:PORT (no trailing slash)
 //   DEM_FIXTURES        the folder holding offline/ANIMATION_3D.dat, offline/ForceChain_3D.dat,
 //                       malformed/ANIMATION_3D.dat (no complete frame), truncated/ANIMATION_3D.dat
-//                       (cut inside frame 7: 6 complete frames)
+//                       (cut inside frame 7: 6 complete frames), planar/ANIMATION_2D.dat (a 2D run)
 import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -32,6 +32,37 @@ function fixtureSpec() {
   spec.time = { duration: 0.3 };
   spec.outputs = { interval: 0.02, forceChains: true, lengthUnit: 'mm' };
   return spec;
+}
+
+// A 2D run: discs of two sizes falling onto a sloping plate in a box of two planes, 0.2 s, a frame every 0.02 s.
+function planarSpec() {
+  return {
+    name: 'viewer test fixture, 2D',
+    dimension: 2,
+    discThickness: 0.01,
+    materials: [
+      { name: 'glass', density: 2500, youngsModulus: 1e8, poissonRatio: 0.25 },
+      { name: 'steel', rigid: true },
+    ],
+    interactions: [
+      { a: 'glass', b: 'glass', restitution: 0.5, friction: 0.5 },
+      { a: 'glass', b: 'steel', restitution: 0.5, friction: 0.5 },
+    ],
+    contact: { normal: 'HERTZ' },
+    lattices: [
+      { kind: 'HEX', min: { x: 0.005, z: 0.05 }, max: { x: 0.095, z: 0.1 }, radius: 0.004, spacing: 1.1, material: 'glass' },
+      { kind: 'HEX', min: { x: 0.005, z: 0.11 }, max: { x: 0.095, z: 0.15 }, radius: 0.006, spacing: 1.1, material: 'glass' },
+    ],
+    walls: [
+      { name: 'slope', material: 'steel', plate: { c1: { x: 0, y: -0.05, z: 0.03 }, c2: { x: 0.1, y: -0.05, z: 0 },
+        c3: { x: 0.1, y: 0.05, z: 0 }, c4: { x: 0, y: 0.05, z: 0.03 } } },
+      { name: 'left', material: 'steel', plane: { normal: { x: 1 } } },
+      { name: 'right', material: 'steel', plane: { point: { x: 0.1 }, normal: { x: -1 } } },
+    ],
+    gravity: { z: -9.81 },
+    time: { duration: 0.2 },
+    outputs: { interval: 0.02 },
+  };
 }
 
 // A malformed ANIMATION_3D.dat: the first frame with a garbled particle line, then cut in the
@@ -112,6 +143,14 @@ export default async function globalSetup() {
   fs.writeFileSync(path.join(malformed, 'ANIMATION_3D.dat'), malformedAnimation(goodText));
   fs.mkdirSync(path.join(tmp, 'truncated'));
   fs.writeFileSync(path.join(tmp, 'truncated', 'ANIMATION_3D.dat'), truncatedAnimation(goodText));
+  const planarFile = path.join(tmp, 'planar.json');
+  fs.writeFileSync(planarFile, JSON.stringify(planarSpec(), null, 1));
+  const planar = spawnSync(dem, ['run', planarFile, '--out', path.join(tmp, 'planar'), '--quiet'], {
+    encoding: 'utf8', timeout: 120_000, env: { ...process.env, OMP_NUM_THREADS: '1' },
+  });
+  if (planar.status !== 0 || !fs.existsSync(path.join(tmp, 'planar', 'ANIMATION_2D.dat'))) {
+    throw new Error(`dem run of the 2D fixture spec failed (status ${planar.status}):\n${planar.stdout}\n${planar.stderr}`);
+  }
 
   const server = spawn(demServer, ['--port', '0', '--data', path.join(tmp, 'server'), '--web', dist,
                                    '--cases', path.join(rootDir, 'cases')],

@@ -16,6 +16,7 @@ export const ANIMATION = () => fixture('offline', 'ANIMATION_3D.dat');
 export const FORCE_CHAINS = () => fixture('offline', 'ForceChain_3D.dat');
 export const MALFORMED = () => fixture('malformed', 'ANIMATION_3D.dat');
 export const TRUNCATED = () => fixture('truncated', 'ANIMATION_3D.dat');
+export const PLANAR = () => fixture('planar', 'ANIMATION_2D.dat');
 
 // `test` with an automatic fixture: any uncaught exception in the page fails the test, and the
 // page's console is attached to the report.
@@ -35,13 +36,13 @@ export const test = base.extend({
 
 // --- a tiny reader of ANIMATION_3D.dat and ForceChain_3D.dat (docs/formats.md sections 3, 4) ---
 
-// Frames of an ANIMATION_3D.dat: [{ step, particles, time }], from each '3DA:' header, the first
-// scalar (time, s) two lines after it and the "step NP NW" line four lines after it.
+// Frames of an ANIMATION_3D.dat (or a 2D run's ANIMATION_2D.dat): [{ step, particles, time }], from each
+// '3DA:' ('2DA:') header, the first scalar (time, s) two lines after it and the "step NP NW" line four after it.
 export function readAnimation(file) {
   const lines = fs.readFileSync(file, 'utf8').split(/\r?\n/).filter((l) => l.trim() !== '');
   const frames = [];
   for (let i = 0; i < lines.length; i++) {
-    if (lines[i].trim() !== '3DA:') continue;
+    if (lines[i].trim() !== '3DA:' && lines[i].trim() !== '2DA:') continue;
     const time = Number(lines[i + 2].trim().split(/\s+/)[0]);
     const [step, particles] = lines[i + 4].trim().split(/\s+/).map(Number);
     frames.push({ step, particles, time });

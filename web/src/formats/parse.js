@@ -3,10 +3,11 @@
 // started, and by Node checks (parseText).
 //
 //   first token '3DA:'          ANIMATION_3D.dat    (animation.js)
+//   first token '2DA:'          ANIMATION_2D.dat    (animation.js: a 2D run's discs)
 //   first token '3DF:'          ForceChain_3D.dat   (force_chains.js)
 //   first line  'NV NT'         mesh .dat           (mesh.js)
 
-import { AnimationParser, ANIMATION_HEADER } from './animation.js';
+import { AnimationParser, ANIMATION_HEADER, ANIMATION_2D_HEADER } from './animation.js';
 import { ForceChainParser, CHAIN_HEADER } from './force_chains.js';
 import { MeshParser } from './mesh.js';
 import { LineSplitter } from './lines.js';
@@ -15,7 +16,7 @@ import { addStats } from './stats.js';
 
 // The kind of file whose first non-blank line holds `tokens`, or null.
 export function detectKind(tokens) {
-  if (tokens[0] === ANIMATION_HEADER) return 'animation';
+  if (tokens[0] === ANIMATION_HEADER || tokens[0] === ANIMATION_2D_HEADER) return 'animation';
   if (tokens[0] === CHAIN_HEADER) return 'forceChains';
   const header = tokens.length === 1 ? tokens[0].split(',') : tokens; // "NV,NT" also counts
   if (header.length === 2 && header.every((t) => parseInteger(t) >= 0)) return 'mesh';
@@ -53,7 +54,8 @@ export class ChunkedParse {
       this.kind = detectKind(tokens);
       if (!this.kind) {
         this.unknown = `line ${k + 1}: not a DEM file: it starts with '${lines[k].trim().slice(0, 40)}', ` +
-          "expected '3DA:' (ANIMATION_3D.dat), '3DF: step NC' (ForceChain_3D.dat) or 'NV NT' (mesh .dat)";
+          "expected '3DA:' (ANIMATION_3D.dat), '2DA:' (ANIMATION_2D.dat), '3DF: step NC' (ForceChain_3D.dat) " +
+          "or 'NV NT' (mesh .dat)";
         return null;
       }
       this.parser = this.kind === 'animation' ? new AnimationParser()

@@ -23,6 +23,7 @@ const F_FORCE_CHAINS = 10;
 const F_WALLS = 11;
 const F_KINETIC_ENERGY = 12;
 const F_STAGE = 15;
+const F_PLANAR = 17; // a 2D run: discs in the x-z plane
 // Field numbers of WallShape.
 const W_WALL = 1;
 const W_TRIANGLES = 2;
@@ -172,7 +173,7 @@ export function decodeFrameMessage(data) {
   const raw = {
     job: 0, step: 0, totalSteps: 0, time: 0, particleCount: 0,
     positions: null, velocities: null, radii: null, fragments: null, forceChains: null,
-    walls: [], kineticEnergy: 0, stage: '',
+    walls: [], kineticEnergy: 0, stage: '', planar: false,
     present: new Set(),
   };
   while (!r.done()) {
@@ -188,6 +189,7 @@ export function decodeFrameMessage(data) {
       case F_PARTICLE_COUNT: if (wt === VARINT) raw.particleCount = r.varint() >>> 0; else known = false; break;
       case F_TIME: if (wt === FIXED64) raw.time = r.double(); else known = false; break;
       case F_KINETIC_ENERGY: if (wt === FIXED64) raw.kineticEnergy = r.double(); else known = false; break;
+      case F_PLANAR: if (wt === VARINT) raw.planar = r.varint() !== 0; else known = false; break;
       case F_POSITIONS:
       case F_VELOCITIES:
       case F_RADII:
@@ -290,6 +292,7 @@ export function toFrame(raw, previousRadii = null) {
     triangles,
     walls: raw.walls,
     stage: raw.stage,
+    planar: raw.planar,
     forceChains: raw.forceChains,
     scalars: { time: raw.time, plateDisplacement: 0, plateForce: 0, kineticEnergy: raw.kineticEnergy },
   };

@@ -613,15 +613,17 @@ class LivePanel {
       const names = new Set(artifacts.map((a) => a.name));
       if (session !== this.session) return;
       this.loadStatsCharts(id, session, job, artifacts);
-      if (!names.has('ANIMATION_3D.dat')) {
-        this.say(`job ${id} has no ANIMATION_3D.dat to replay (${job.state})`, true);
+      // a 2D run's frames are in ANIMATION_2D.dat
+      const file = names.has('ANIMATION_3D.dat') ? 'ANIMATION_3D.dat' : names.has('ANIMATION_2D.dat') ? 'ANIMATION_2D.dat' : null;
+      if (!file) {
+        this.say(`job ${id} has no ANIMATION_3D.dat (or ANIMATION_2D.dat) to replay (${job.state})`, true);
         return;
       }
-      this.say(`loading job ${id}'s ANIMATION_3D.dat`);
-      const result = await this.fetchAndParse(id, 'ANIMATION_3D.dat', artifacts, session);
+      this.say(`loading job ${id}'s ${file}`);
+      const result = await this.fetchAndParse(id, file, artifacts, session);
       if (!result) return;
       if (result.kind !== 'animation' || !result.frames || !result.frames.length) {
-        this.say(`job ${id}'s ANIMATION_3D.dat: ${result.problem || 'no frames'}`, true);
+        this.say(`job ${id}'s ${file}: ${result.problem || 'no frames'}`, true);
         this.statusLabel.textContent = 'nothing to replay';
         return;
       }

@@ -80,7 +80,8 @@ async function load(viewer, files) {
       const keepMesh = previous && !previous.frames.length ? previous.mesh : null;
       viewer.setRun({ frames: result.frames, mesh: keepMesh, unit: 'file' }, { fromFiles: true });
       const count = result.frames[0].count;
-      notes.push(`${name}: ${result.frames.length} frames of ${count} particles${cut}`);
+      const what = result.frames[0].planar ? 'discs (2D, the x-z plane seen from -y)' : 'particles';
+      notes.push(`${name}: ${result.frames.length} frames of ${count} ${what}${cut}`);
       if (waitingChains) {
         const matched = viewer.setForceChains(waitingChains.frames);
         notes.push(`${waitingChains.name} (opened before): ${matched} frames matched by step`);

@@ -70,8 +70,9 @@ export class Stage {
     if (this.needsRender || this.continuous > 0) this.renderNow();
   }
 
-  // Frames the camera on a box [min, max] (run bounds): from the front (-y), a little above.
-  frame(min, max) {
+  // Frames the camera on a box [min, max] (run bounds): from the front (-y), a little above; a 2D run's plane
+  // (x-z, `planar`) straight from the front.
+  frame(min, max, { planar = false } = {}) {
     const box = new THREE.Box3(new THREE.Vector3(...min), new THREE.Vector3(...max));
     if (box.isEmpty()) return;
     box.getCenter(this.center);
@@ -79,7 +80,8 @@ export class Stage {
     const distance = this.size / (2 * Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2))) * 1.1;
     this.camera.near = distance / 1000;
     this.camera.far = distance * 100;
-    this.camera.position.copy(this.center).add(new THREE.Vector3(0.35, -1, 0.45).normalize().multiplyScalar(distance));
+    const from = planar ? new THREE.Vector3(0, -1, 0) : new THREE.Vector3(0.35, -1, 0.45).normalize();
+    this.camera.position.copy(this.center).add(from.multiplyScalar(distance));
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(this.center);
     this.controls.update();
