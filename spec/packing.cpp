@@ -72,7 +72,8 @@ std::vector<Vec3> random_packing(const Vec3& box_lo, const Vec3& box_hi, std::ve
     if (!ok)
       throw std::runtime_error(
           "placed only " + std::to_string(k) + " of " + std::to_string(n) +
-          " spheres: the region is too full for random placement (it stalls near a solid fraction of 0.35)");
+          (planar ? " discs: the region is too full for random placement (in 2D it stalls near an area fraction of 0.5)"
+                  : " spheres: the region is too full for random placement (it stalls near a solid fraction of 0.35)"));
   }
   return placed;
 }

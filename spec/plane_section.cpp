@@ -1,7 +1,9 @@
 // A 2D run (JobSpec.dimension = 2, .discThickness): discs in the x-z plane, at y = 0. load_plane comes before the
 // particles are made (lattices, packings and sources place theirs in the plane); check_plane, after every other
 // section, refuses what would move or turn a disc out of the plane, naming the field.
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "spec/defaults.hpp"
 #include "spec/section_loaders.hpp"
@@ -9,27 +11,54 @@
 namespace dem::spec {
 namespace {
 
-// A motion that keeps a wall's trace in the plane: turning about y only.
-void check_motion_turns_about_y(const PrescribedMotion& m, const std::string& path, Checker& check) {
+// A motion that keeps a wall's trace in the plane: moving in it and turning about y only.
+void check_motion_in_plane(const PrescribedMotion& m, const std::string& path, Checker& check) {
   if (m.angular_velocity.x() != 0 || m.angular_velocity.z() != 0)
     check.fail(path + ".angularVelocity", "a 2D run's walls turn about y only: its x and z must be 0");
+  for (const auto& [field, v] : {std::pair{".velocity", m.velocity}, std::pair{".amplitude", m.amplitude}})
+    if (v.y() != 0)
+      check.fail(path + field, "a 2D run's walls move in the x-z plane: its y must be 0 (got " + num(v.y()) + ")");
+}
+
+void check_load_in_plane(const LoadControl& load, const std::string& path, Checker& check) {
+  if (load.direction.y() != 0)
+    check.fail(path + ".direction", "a 2D run's loaded walls push in the x-z plane: its y must be 0");
+}
+
+// A plate meets the discs as their section's line only when it stands across the plane (its normal in it) and
+// reaches both sides of y = 0; otherwise a disc would touch it where the files draw nothing, or off its line.
+void check_plate_across_plane(const PlateShape& plate, const std::string& path, Checker& check) {
+  const auto& c = plate.corners;
+  const Vec3 normal = (c[1] - c[0]).cross(c[3] - c[0]);
+  double low = c[0].y(), high = c[0].y();
+  for (const Vec3& x : c) {
+    low = std::min(low, x.y());
+    high = std::max(high, x.y());
+  }
+  if (std::abs(normal.y()) > 1e-9 * normal.norm())
+    check.fail(path + ".plate",
+               "a 2D run's plates stand across the x-z plane: the plate's normal must have no y "
+               "part (a tilted plate would meet the discs as spheres, off the line drawn)");
+  else if (!(low < 0 && high > 0))
+    check.fail(path + ".plate", "a 2D run's plates reach across the plane y = 0 (this one spans y from " + num(low) +
+                                    " to " + num(high) + ")");
 }
 
 }  // namespace
 
 void load_plane(const api::JobSpec& spec, SpecContext& ctx) {
   Checker& check = ctx.check;
-  const int dimension = spec.dimension() == 0 ? 3 : spec.dimension();
+  const int dimension = spec.has_dimension() ? spec.dimension() : 3;
   if (dimension != 2 && dimension != 3) {
     check.fail("dimension", "must be 2 (discs in the x-z plane) or 3 (got " + std::to_string(spec.dimension()) + ")");
     return;
   }
   if (dimension == 3) {
-    if (spec.disc_thickness() != 0)
+    if (spec.has_disc_thickness())
       check.fail("discThickness", "is for a 2D run's discs: give dimension 2, or leave it out");
     return;
   }
-  const double thickness = spec.disc_thickness() == 0 ? defaults::kDiscThickness : spec.disc_thickness();
+  const double thickness = spec.has_disc_thickness() ? spec.disc_thickness() : defaults::kDiscThickness;
   check.positive("discThickness", thickness, kLength);
   ctx.scene.plane = Scene::Plane{thickness};
 }
@@ -72,15 +101,16 @@ void check_plane(const api::JobSpec& spec, SpecContext& ctx) {
       check.fail(path + ".plane.normal",
                  "a 2D run's plane walls stand across the x-z plane: the normal's y must be 0 (a tilted plane would "
                  "meet the discs as spheres)");
-    if (w.motion) check_motion_turns_about_y(*w.motion, path + ".motion", check);
+    if (const auto* plate = std::get_if<PlateShape>(&w.shape)) check_plate_across_plane(*plate, path, check);
+    if (w.motion) check_motion_in_plane(*w.motion, path + ".motion", check);
+    if (w.load) check_load_in_plane(*w.load, path + ".load", check);
   }
   for (std::size_t s = 0; s < scene.stages.size(); ++s)
     for (std::size_t c = 0; c < scene.stages[s].wall_changes.size(); ++c) {
       const WallChange& change = scene.stages[s].wall_changes[c];
-      if (change.motion)
-        check_motion_turns_about_y(
-            *change.motion, at(at("stages", static_cast<int>(s)) + ".wallChanges", static_cast<int>(c)) + ".motion",
-            check);
+      const std::string path = at(at("stages", static_cast<int>(s)) + ".wallChanges", static_cast<int>(c));
+      if (change.motion) check_motion_in_plane(*change.motion, path + ".motion", check);
+      if (change.load) check_load_in_plane(*change.load, path + ".load", check);
     }
 }
 

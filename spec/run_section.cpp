@@ -65,7 +65,11 @@ void load_run_settings(const api::JobSpec& spec, SpecContext& ctx) {
     check.vector("domain.min", spec.domain().min(), kLength);
     check.vector("domain.max", spec.domain().max(), kLength);
     const Vec3 lo = vec(spec.domain().min()), hi = vec(spec.domain().max());
-    if (!(lo.array() < hi.array()).all()) check.fail("domain.max", "must be above domain.min in x, y and z");
+    // a 2D run's frames write x and z only
+    const bool planar = scene.plane.has_value();
+    if (!(lo.x() < hi.x() && lo.z() < hi.z() && (planar || lo.y() < hi.y())))
+      check.fail("domain.max",
+                 planar ? "must be above domain.min in x and z" : "must be above domain.min in x, y and z");
     scene.domain = Box{lo, hi};
   }
 

@@ -71,9 +71,12 @@ void load_source(const api::Source& in, const std::string& path, int index, Spec
     check.vector(path + ".min", in.min(), kLength);
     check.vector(path + ".max", in.max(), kLength);
     s.box = Box{vec(in.min()), vec(in.max())};
-    if (!(s.box.max - s.box.min).allFinite() || !((s.box.max - s.box.min).array() >= d_max).all())
-      check.fail(path + ".max",
-                 "the box must be at least the largest diameter (" + num(d_max) + " m) wide in x, y and z, above min");
+    Vec3 width = s.box.max - s.box.min;
+    const bool planar = ctx.scene.plane.has_value();  // a 2D run's discs enter at y = 0: the box's y is not used
+    if (planar) width.y() = d_max;
+    if (!width.allFinite() || !(width.array() >= d_max).all())
+      check.fail(path + ".max", "the box must be at least the largest diameter (" + num(d_max) + " m) wide in " +
+                                    (planar ? "x and z" : "x, y and z") + ", above min");
     lo = s.box.min;
     hi = s.box.max;
   } else {

@@ -884,9 +884,10 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
 double Simulation::kinetic_energy() const {
   const Particles& p = state_.particles;
   double e = bodies_kinetic_energy(state_.bodies);
+  const double k = spin_inertia_factor();
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.body.empty() && p.body[i] >= 0) continue;  // counted with its body
-    e += 0.5 * p.mass[i] * (p.v[i].squaredNorm() + 0.4 * p.radius[i] * p.radius[i] * p.w[i].squaredNorm());
+    e += 0.5 * p.mass[i] * (p.v[i].squaredNorm() + k * p.radius[i] * p.radius[i] * p.w[i].squaredNorm());
   }
   return e;
 }
@@ -894,9 +895,10 @@ double Simulation::kinetic_energy() const {
 double Simulation::rotational_energy() const {
   const Particles& p = state_.particles;
   double e = bodies_rotational_energy(state_.bodies);
+  const double k = spin_inertia_factor();
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.body.empty() && p.body[i] >= 0) continue;  // counted with its body
-    e += 0.5 * p.mass[i] * 0.4 * p.radius[i] * p.radius[i] * p.w[i].squaredNorm();
+    e += 0.5 * p.mass[i] * k * p.radius[i] * p.radius[i] * p.w[i].squaredNorm();
   }
   return e;
 }

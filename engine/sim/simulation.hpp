@@ -171,7 +171,9 @@ class Simulation {
   void refuse_coincident_particles() const;
   void refuse_positions_past_precision() const;
   void refuse_motion_off_the_plane() const;  // a 2D run (Scene::plane)
-  void hold_in_plane();                      // a 2D run: after each force evaluation
+  // A free particle's moment of inertia over m r^2: 2/5 (a sphere) or 1/2 (a 2D run's disc; Grain::inertia).
+  double spin_inertia_factor() const { return scene_.plane ? 0.5 : 0.4; }
+  void hold_in_plane();  // a 2D run: after each force evaluation
   void add_work(double& account, double work);
   void build_neighbors();
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);

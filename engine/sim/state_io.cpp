@@ -614,6 +614,25 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   for (const auto* v : {&cb.x, &cb.v, &cb.force, &cb.torque}) expect_size(*v, bodies, "the clumps");
   expect_size(cb.rotation, bodies, "the clumps' rotations");
   if (!r.at_end()) inconsistent("bytes follow its last value");
+  // A free particle weighs what the spec makes of its radius: a state saved with another dimension, disc thickness
+  // or density would go on with masses (and a plane) the spec does not describe.
+  {
+    const Grain grain = sim.scene_.grain();
+    auto kg = [](double m) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.6g kg", m);
+      return std::string(text);
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!p.body.empty() && p.body[i] >= 0) continue;  // a clump's member: its body's share
+      const double expected = grain.mass(sim.scene_.materials[p.material[i]].density, p.radius[i]);
+      if (std::abs(p.mass[i] - expected) > 1e-9 * expected || (sim.scene_.plane && p.x[i].y() != 0))
+        throw std::runtime_error(
+            "the saved state does not belong to this spec: particle " + std::to_string(p.id[i] + 1) + " weighs " +
+            kg(p.mass[i]) + " there, and " + kg(expected) + " as the spec's " + (sim.scene_.plane ? "disc" : "sphere") +
+            " of its radius: the spec's dimension, discThickness or density is not the one the state was saved with");
+    }
+  }
 }
 
 void StateIO::require_within_run(const Simulation& sim) {

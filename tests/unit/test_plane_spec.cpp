@@ -141,5 +141,50 @@ TEST(PlaneSpec, ThreeDimensionalPartsAreRefusedWithTheReason) {
   EXPECT_NE(spec_problems(counted).find("lattices[0].countY: a 2D lattice is one layer at y = 0"), std::string::npos);
 }
 
+// A reviewer's finds: a source box and the domain needed a y range the docs said was not used; plates beside the
+// plane, tilted across it or moved or loaded along y acted on the discs in 3D where the files drew nothing; a
+// dimension or disc thickness of 0 was taken for its default.
+TEST(PlaneSpec, BoxesNeedNoYRangeAndZeroIsNotADefault) {
+  const std::string source = planar(kHexLattice, R"("sources": [{"min": {"z": 0.2}, "max": {"x": 0.1, "z": 0.3},
+    "material": "glass", "sizes": {"kind": "ONE_SIZE", "mean": 0.004}, "countRate": 10}],
+    "domain": {"min": {"x": -0.1}, "max": {"x": 0.2, "z": 0.4}},)");
+  EXPECT_EQ(spec_problems(source), "");
+  EXPECT_EQ(spec_problems(planar(kHexLattice, R"("dimension": 0,)", "")),
+            "dimension: must be 2 (discs in the x-z plane) or 3 (got 0)\n");
+  EXPECT_NE(spec_problems(planar(kHexLattice, R"("discThickness": 0,)")).find("discThickness: must be a positive"),
+            std::string::npos);
+}
+
+TEST(PlaneSpec, PlatesAndMotionsThatWouldActOffThePlaneAreRefused) {
+  auto with_plate = [](const std::string& c, const std::string& more = "") {
+    return planar(kHexLattice, R"("stages": [{"duration": 0.1, "addWalls": [{"name": "p", "material": "steel",
+      "plate": )" + c + "}" + more +
+                                   "]}],");
+  };
+  const std::string across = R"({"c1": {"y": -1}, "c2": {"x": 1, "y": -1}, "c3": {"x": 1, "y": 1}, "c4": {"y": 1}})";
+  EXPECT_EQ(spec_problems(with_plate(across)).find(".plate:"), std::string::npos);
+  const std::string beside =
+      R"({"c1": {"y": 0.005}, "c2": {"x": 1, "y": 0.005}, "c3": {"x": 1, "y": 1}, "c4": {"y": 1}})";
+  EXPECT_NE(spec_problems(with_plate(beside))
+                .find("stages[0].addWalls[0].plate: a 2D run's plates reach across the "
+                      "plane y = 0 (this one spans y from 0.005 to 1)"),
+            std::string::npos)
+      << spec_problems(with_plate(beside));
+  const std::string tilted = R"({"c1": {"y": -1, "z": -1}, "c2": {"x": 1, "y": -1, "z": -1}, "c3": {"x": 1, "y": 1,
+    "z": 1}, "c4": {"y": 1, "z": 1}})";
+  EXPECT_NE(spec_problems(with_plate(tilted)).find("stages[0].addWalls[0].plate: a 2D run's plates stand across"),
+            std::string::npos);
+  const std::string sliding = planar(kHexLattice, R"("stages": [{"duration": 0.1, "wallChanges": [{"wall": "left",
+    "motion": {"velocity": {"y": 1}, "amplitude": {"y": 2}}}, {"wall": "right", "load": {"direction": {"y": -1},
+    "servo": {"target": 1, "gain": 1e-3, "maxSpeed": 1}}}]}],)");
+  const std::string problems = spec_problems(sliding);
+  EXPECT_NE(problems.find("stages[0].wallChanges[0].motion.velocity: a 2D run's walls move in the x-z plane"),
+            std::string::npos)
+      << problems;
+  EXPECT_NE(problems.find("stages[0].wallChanges[0].motion.amplitude: a 2D run's walls move"), std::string::npos);
+  EXPECT_NE(problems.find("stages[0].wallChanges[1].load.direction: a 2D run's loaded walls push in the x-z plane"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace dem::test

@@ -146,7 +146,7 @@ class LivePanel {
     this.jobLabel = this.jobLabel || ensure('live-job', 'span', follow || root);
     this.statusLabel = ensure('live-status', 'div', follow || root, { class: 'hint live-note' });
     const buttons = follow ? make('div', follow, { className: 'buttons live-buttons' }) : root;
-    this.replayButton = ensure('replay', 'button', buttons, { type: 'button', text: 'Replay', title: "load the finished job's ANIMATION_3D.dat (and ForceChain_3D.dat) and play it" });
+    this.replayButton = ensure('replay', 'button', buttons, { type: 'button', text: 'Replay', title: "load the finished job's ANIMATION_3D.dat or ANIMATION_2D.dat (and ForceChain_3D.dat) and play it" });
     this.stopButton = ensure('live-stop', 'button', buttons, { type: 'button', text: 'Stop following' });
     this.cancelButton = ensure('live-cancel', 'button', buttons, { type: 'button', text: 'Cancel job' });
     this.replayButton.disabled = true;
