@@ -409,31 +409,48 @@ std::optional<Stop> read_polygons(FrameLines& frame_lines, std::string_view what
   return std::nullopt;
 }
 
-std::optional<Stop> read_animation_frame(TokenLines& lines, AnimationFrame& frame) {
-  if (auto stop = check_frame_header(lines, animation_header, 1, animation_header)) return stop;
-  FrameLines frame_lines(lines, animation_header);
+// The four lines an animation frame (3D or 2D) opens with after its header: the domain, the scalars, the count
+// of triangle (2D: segment) lines, and "step NP NW".
+struct FrameCounts {
+  std::size_t triangles = 0, particles = 0, plates = 0;
+};
 
-  if (auto stop = frame_lines.next({"domain line", "xmin xmax ymin ymax zmin zmax", 6})) return stop;
-  LineValues domain = frame_lines.values();
-  for (std::size_t k = 0; k < frame.domain.size(); ++k) frame.domain[k] = domain.real(k);
-  if (!domain.ok()) return malformed(domain.problem());
+template <std::size_t DomainValues>
+std::optional<Stop> read_frame_opening(FrameLines& frame_lines, std::string_view domain_layout,
+                                       std::string_view triangle_count_name, std::array<double, DomainValues>& domain,
+                                       std::array<double, 4>& scalars, std::int64_t& step, FrameCounts& counts) {
+  if (auto stop = frame_lines.next({"domain line", domain_layout, DomainValues})) return stop;
+  LineValues domain_values = frame_lines.values();
+  for (std::size_t k = 0; k < DomainValues; ++k) domain[k] = domain_values.real(k);
+  if (!domain_values.ok()) return malformed(domain_values.problem());
 
   if (auto stop = frame_lines.next({"scalar line", "s1 s2 s3 s4", 4})) return stop;
-  LineValues scalars = frame_lines.values();
-  for (std::size_t k = 0; k < frame.scalars.size(); ++k) frame.scalars[k] = scalars.real(k);
-  if (!scalars.ok()) return malformed(scalars.problem());
+  LineValues scalar_values = frame_lines.values();
+  for (std::size_t k = 0; k < scalars.size(); ++k) scalars[k] = scalar_values.real(k);
+  if (!scalar_values.ok()) return malformed(scalar_values.problem());
 
-  if (auto stop = frame_lines.next({"triangle count line", "NT", 1})) return stop;
+  if (auto stop = frame_lines.next({triangle_count_name, "NT", 1})) return stop;
   LineValues triangle_count_values = frame_lines.values();
-  const std::size_t triangle_count = triangle_count_values.count(0);
+  counts.triangles = triangle_count_values.count(0);
   if (!triangle_count_values.ok()) return malformed(triangle_count_values.problem());
 
   if (auto stop = frame_lines.next({"count line", "step NP NW", 3})) return stop;
-  LineValues counts = frame_lines.values();
-  frame.step = counts.integer64(0);
-  const std::size_t particle_count = counts.count(1);
-  const std::size_t plate_count = counts.count(2);
-  if (!counts.ok()) return malformed(counts.problem());
+  LineValues count_values = frame_lines.values();
+  step = count_values.integer64(0);
+  counts.particles = count_values.count(1);
+  counts.plates = count_values.count(2);
+  if (!count_values.ok()) return malformed(count_values.problem());
+  return std::nullopt;
+}
+
+std::optional<Stop> read_animation_frame(TokenLines& lines, AnimationFrame& frame) {
+  if (auto stop = check_frame_header(lines, animation_header, 1, animation_header)) return stop;
+  FrameLines frame_lines(lines, animation_header);
+  FrameCounts counts;
+  if (auto stop = read_frame_opening(frame_lines, "xmin xmax ymin ymax zmin zmax", "triangle count line", frame.domain,
+                                     frame.scalars, frame.step, counts))
+    return stop;
+  const std::size_t particle_count = counts.particles, plate_count = counts.plates, triangle_count = counts.triangles;
 
   if (auto stop = read_polygons(frame_lines, "plate line", plate_layout, plate_word, plate_count, frame.plates))
     return stop;
@@ -484,28 +501,11 @@ std::optional<Stop> read_segments(FrameLines& frame_lines, std::string_view what
 std::optional<Stop> read_animation_2d_frame(TokenLines& lines, Animation2DFrame& frame) {
   if (auto stop = check_frame_header(lines, animation_2d_header, 1, animation_2d_header)) return stop;
   FrameLines frame_lines(lines, animation_2d_header);
-
-  if (auto stop = frame_lines.next({"domain line", "xmin xmax zmin zmax", 4})) return stop;
-  LineValues domain = frame_lines.values();
-  for (std::size_t k = 0; k < frame.domain.size(); ++k) frame.domain[k] = domain.real(k);
-  if (!domain.ok()) return malformed(domain.problem());
-
-  if (auto stop = frame_lines.next({"scalar line", "s1 s2 s3 s4", 4})) return stop;
-  LineValues scalars = frame_lines.values();
-  for (std::size_t k = 0; k < frame.scalars.size(); ++k) frame.scalars[k] = scalars.real(k);
-  if (!scalars.ok()) return malformed(scalars.problem());
-
-  if (auto stop = frame_lines.next({"segment count line", "NT", 1})) return stop;
-  LineValues triangle_count_values = frame_lines.values();
-  const std::size_t triangle_count = triangle_count_values.count(0);
-  if (!triangle_count_values.ok()) return malformed(triangle_count_values.problem());
-
-  if (auto stop = frame_lines.next({"count line", "step NP NW", 3})) return stop;
-  LineValues counts = frame_lines.values();
-  frame.step = counts.integer64(0);
-  const std::size_t disc_count = counts.count(1);
-  const std::size_t plate_count = counts.count(2);
-  if (!counts.ok()) return malformed(counts.problem());
+  FrameCounts counts;
+  if (auto stop = read_frame_opening(frame_lines, "xmin xmax zmin zmax", "segment count line", frame.domain,
+                                     frame.scalars, frame.step, counts))
+    return stop;
+  const std::size_t disc_count = counts.particles, plate_count = counts.plates, triangle_count = counts.triangles;
 
   if (auto stop = read_segments(frame_lines, "plate line", plate_2d_layout, plate_word, plate_count, frame.plates))
     return stop;
@@ -642,6 +642,25 @@ struct RowReader {
   }
 };
 
+// An animation frame's header and the four lines after it (read_frame_opening).
+template <std::size_t DomainValues>
+void write_frame_opening(FrameText& text, std::string_view header, const std::array<double, DomainValues>& domain,
+                         const std::array<double, 4>& scalars, const AnimationStyles& styles, std::int64_t step,
+                         const FrameCounts& counts) {
+  text.word(header);
+  text.end_line();
+  for (double value : domain) text.real(value, styles.domain);
+  text.end_line();
+  for (double value : scalars) text.real(value, styles.scalar);
+  text.end_line();
+  text.integer(static_cast<long long>(counts.triangles));
+  text.end_line();
+  text.integer(step);
+  text.integer(static_cast<long long>(counts.particles));
+  text.integer(static_cast<long long>(counts.plates));
+  text.end_line();
+}
+
 // Plate lines ("id rplate" + 4 corners), then triangle lines ("id tri" + 3 corners).
 void write_polygons(FrameText& text, const std::vector<AnimationPlate>& plates,
                     const std::vector<AnimationTriangle>& triangles, RealStyle style) {
@@ -724,19 +743,8 @@ ReadResult<ForceDisplacementRow> read_force_displacement(std::istream& in) {
 void write_animation_frame(std::FILE* out, const AnimationFrame& frame, NumberFormat format) {
   const AnimationStyles styles = animation_styles(format);
   FrameText text(5 + frame.plates.size() + frame.triangles.size() + frame.particles.size());
-
-  text.word(animation_header);
-  text.end_line();
-  for (double value : frame.domain) text.real(value, styles.domain);
-  text.end_line();
-  for (double value : frame.scalars) text.real(value, styles.scalar);
-  text.end_line();
-  text.integer(static_cast<long long>(frame.triangles.size()));
-  text.end_line();
-  text.integer(frame.step);
-  text.integer(static_cast<long long>(frame.particles.size()));
-  text.integer(static_cast<long long>(frame.plates.size()));
-  text.end_line();
+  write_frame_opening(text, animation_header, frame.domain, frame.scalars, styles, frame.step,
+                      {frame.triangles.size(), frame.particles.size(), frame.plates.size()});
 
   write_polygons(text, frame.plates, frame.triangles, styles.corner);
   for (const AnimationParticle& particle : frame.particles) {
@@ -774,18 +782,8 @@ void write_force_chain_frame(std::FILE* out, const ForceChainFrame& frame, Numbe
 void write_animation_2d_frame(std::FILE* out, const Animation2DFrame& frame, NumberFormat format) {
   const AnimationStyles styles = animation_styles(format);
   FrameText text(5 + frame.plates.size() + frame.triangles.size() + frame.discs.size());
-  text.word(animation_2d_header);
-  text.end_line();
-  for (double value : frame.domain) text.real(value, styles.domain);
-  text.end_line();
-  for (double value : frame.scalars) text.real(value, styles.scalar);
-  text.end_line();
-  text.integer(static_cast<long long>(frame.triangles.size()));
-  text.end_line();
-  text.integer(frame.step);
-  text.integer(static_cast<long long>(frame.discs.size()));
-  text.integer(static_cast<long long>(frame.plates.size()));
-  text.end_line();
+  write_frame_opening(text, animation_2d_header, frame.domain, frame.scalars, styles, frame.step,
+                      {frame.triangles.size(), frame.discs.size(), frame.plates.size()});
   for (const auto* segments : {&frame.plates, &frame.triangles})
     for (const AnimationSegment& segment : *segments) {
       text.integer(segment.id);

@@ -91,47 +91,12 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
     smallest_given_radius_ = std::min(smallest_given_radius_, init.radius);
   refuse_positions_past_precision();
   if (scene_.plane) refuse_motion_off_the_plane();
-  const int boundaries = static_cast<int>(scene_.walls.size());
-  plane_index_.assign(boundaries, -1);
-  mesh_index_.assign(boundaries, -1);
-  wall_extent_.assign(boundaries, 0.0);
-  for (int k = 0; k < boundaries; ++k) {
-    const WallInit& w = scene_.walls[k];
-    Vec3 centroid;
-    if (std::holds_alternative<MeshShape>(w.shape)) {
-      mesh_index_[k] = static_cast<int>(state_.meshes.size());
-      state_.meshes.push_back(MeshWall::from(w, k));
-      centroid = state_.meshes.back().centroid();
-    } else {
-      plane_index_[k] = static_cast<int>(state_.walls.size());
-      state_.walls.push_back(Wall::from(w));
-      centroid = state_.walls.back().centroid();
-    }
-    drivers_.emplace_back(w, centroid, scene_.gravity);
-    const Vec3 c0 = drivers_.back().pose().center0;
-    if (mesh_index_[k] >= 0) {
-      for (const Vec3& v : state_.meshes.back().vertices0) wall_extent_[k] = std::max(wall_extent_[k], (v - c0).norm());
-    } else if (state_.walls.back().kind == Wall::Kind::Plate) {
-      for (const Vec3& v : state_.walls.back().corners) wall_extent_[k] = std::max(wall_extent_[k], (v - c0).norm());
-    } else {  // a plane is as wide as the particles' reach from its centre
-      for (const ParticleInit& p : scene_.particles)
-        wall_extent_[k] = std::max(wall_extent_[k], (p.position - c0).norm() + p.radius);
-    }
-  }
-  boundary_loads_.assign(boundaries, BoundaryLoad{});
-  wall_present_.assign(boundaries, 1);
+  boundaries_.build(scene_, scene_.particles, state_.walls, state_.meshes);
+  boundary_loads_.assign(scene_.walls.size(), BoundaryLoad{});
   if (scene_.growth && scene_.growth->steps > 0)
     growth_plan_ = GrowthPlan{1, scene_.growth->factor, 0, scene_.growth->steps};
   if (!scene_.stages.empty()) apply_stage_settings(0, /*restore=*/false);
-  wall_varies_.assign(boundaries, 0);
-  for (int k = 0; k < boundaries; ++k)
-    wall_varies_[k] = drivers_[k].moves() || scene_.walls[k].first_stage > 0 ||
-                      scene_.walls[k].last_stage != std::numeric_limits<int>::max();
-  for (const Stage& stage : scene_.stages)
-    for (const WallChange& c : stage.wall_changes) wall_varies_[c.wall] = 1;
-  boundary_of_plane_.assign(state_.walls.size(), 0);
-  for (int k = 0; k < boundaries; ++k)
-    if (plane_index_[k] >= 0) boundary_of_plane_[plane_index_[k]] = k;
+  boundaries_.note_variation(scene_);
   // of the sources' extremes when the run starts empty
   std::vector<double> radii_for_skin = state_.particles.radius;
   if (radii_for_skin.empty())
@@ -206,7 +171,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
         smallest_given_radius_);
     throw SceneError(buf);
   };
-  for (int k = 0; k < boundaries; ++k) check_motion(scene_.walls[k], scene_.walls[k].where(k));
+  for (int k = 0; k < boundaries_.size(); ++k) check_motion(scene_.walls[k], scene_.walls[k].where(k));
   for (std::size_t s = 0; s < scene_.stages.size(); ++s)
     for (std::size_t c = 0; c < scene_.stages[s].wall_changes.size(); ++c) {
       WallInit changed = scene_.walls[scene_.stages[s].wall_changes[c].wall];
@@ -299,26 +264,7 @@ Vec3 Simulation::angular_momentum() const {
   return total;
 }
 
-bool Simulation::any_wall_varies() const {
-  return std::any_of(wall_varies_.begin(), wall_varies_.end(), [](std::uint8_t v) { return v != 0; });
-}
-
-bool Simulation::has_moving_walls() const {
-  for (std::size_t k = 0; k < drivers_.size(); ++k)
-    if (wall_present_[k] && drivers_[k].moves()) return true;
-  return false;
-}
-
-void Simulation::move_walls(double t_new, double dt) {
-  for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!wall_present_[k] || !drivers_[k].moves()) continue;
-    drivers_[k].begin_step(t_new, dt);
-    if (plane_index_[k] >= 0)
-      state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
-    else
-      state_.meshes[mesh_index_[k]].move_to(drivers_[k].pose());
-  }
-}
+void Simulation::move_walls(double t_new, double dt) { boundaries_.begin_step(t_new, dt, state_.walls, state_.meshes); }
 
 void Simulation::settle_walls(double t_new, double dt) {
   // Sums over particles in index order: the same totals for any number of threads.
@@ -329,7 +275,8 @@ void Simulation::settle_walls(double t_new, double dt) {
   // is_contact: false for the push of the step after a parting (the spring's missed impulse)
   auto add = [&](int k, const Vec3& force_on_particle, const Vec3& point, bool is_contact = true) {
     BoundaryLoad& load = boundary_loads_[k];
-    const Vec3 centre = drivers_[k].pose().center0 + drivers_[k].pose().displacement;
+    const WallPose& pose = boundaries_.driver(k).pose();
+    const Vec3 centre = pose.center0 + pose.displacement;
     load.force -= force_on_particle;
     load.torque -= (point - centre).cross(force_on_particle);
     if (is_contact) ++load.contacts;
@@ -344,8 +291,8 @@ void Simulation::settle_walls(double t_new, double dt) {
     for (int i = 0; i < n; ++i)
       for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
         if (wc.touching[e] || !wc.force[e].isZero(0)) {
-          add(boundary_of_plane_[wc.wall[e]], wc.force[e], wc.point[e], wc.touching[e] != 0);
-          respond(boundary_of_plane_[wc.wall[e]], wc.kn[e], wc.cn[e]);
+          add(boundaries_.of_plane(wc.wall[e]), wc.force[e], wc.point[e], wc.touching[e] != 0);
+          respond(boundaries_.of_plane(wc.wall[e]), wc.kn[e], wc.cn[e]);
         }
   MeshContacts& mc = state_.mesh_contacts;
   for (int i = 0; i < n && !mc.used.empty(); ++i) {
@@ -363,29 +310,7 @@ void Simulation::settle_walls(double t_new, double dt) {
       parting = MeshParting{};
     }
   }
-  for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!wall_present_[k] || !drivers_[k].load_controlled()) continue;
-    drivers_[k].end_step(t_new, dt, boundary_loads_[k].force, boundary_loads_[k].response);
-    if (plane_index_[k] >= 0)
-      state_.walls[plane_index_[k]].move_to(drivers_[k].pose());
-    else
-      state_.meshes[mesh_index_[k]].move_to(drivers_[k].pose());
-  }
-}
-
-// How far any wall point may have moved since the last neighbour build: the shift of its centre
-// plus the arc its farthest point has turned through.
-double Simulation::wall_shift_since_build() const {
-  double shift = 0;
-  for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!wall_present_[k] || !drivers_[k].moves()) continue;
-    const WallPose& now = drivers_[k].pose();
-    const WallPose& then = pose_at_build_[k];
-    const Eigen::Matrix3d turn = then.rotation.transpose() * now.rotation;
-    const double angle = std::acos(std::clamp((turn.trace() - 1) / 2, -1.0, 1.0));
-    shift = std::max(shift, (now.displacement - then.displacement).norm() + angle * wall_extent_[k]);
-  }
-  return shift;
+  boundaries_.end_step(t_new, dt, boundary_loads_, state_.walls, state_.meshes);
 }
 
 // A wall (a load drives it; a prescribed motion was checked at the set-up) that moved so far in
@@ -393,19 +318,9 @@ double Simulation::wall_shift_since_build() const {
 void Simulation::check_wall_moves(const std::vector<WallPose>& before) {
   if (first_too_fast_) return;
   const double reach = 0.5 * scene_.numerics.max_overlap_fraction * smallest_given_radius_;
-  for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!wall_present_[k] || !drivers_[k].moves()) continue;
-    const WallPose& now = drivers_[k].pose();
-    const Eigen::Matrix3d turn = before[k].rotation.transpose() * now.rotation;
-    const double angle = std::acos(std::clamp((turn.trace() - 1) / 2, -1.0, 1.0));
-    const double moved = (now.displacement - before[k].displacement).norm() + angle * wall_extent_[k];
-    if (moved > reach) {
-      first_too_fast_ =
-          TooFast{step_ + 1,          static_cast<double>(step_ + 1) * state_.dt, -1, moved, smallest_given_radius_,
-                  static_cast<int>(k)};
-      return;
-    }
-  }
+  if (const auto past = boundaries_.moved_past(before, reach))
+    first_too_fast_ = TooFast{
+        step_ + 1, static_cast<double>(step_ + 1) * state_.dt, -1, past->second, smallest_given_radius_, past->first};
 }
 
 // A double resolves a coordinate to 1.1e-16 of its size: 1e9 radii from the origin an overlap is
@@ -490,9 +405,9 @@ void Simulation::add_work(double& account, double work) {
 // particles put on it (trapezoid of the step's start and end) times its displacement and turn.
 void Simulation::add_wall_work(const std::vector<WallPose>& before, const std::vector<BoundaryLoad>& loads_before) {
   double work = 0;
-  for (std::size_t k = 0; k < drivers_.size(); ++k) {
-    if (!wall_present_[k] || !drivers_[k].moves()) continue;
-    const WallPose& now = drivers_[k].pose();
+  for (int k = 0; k < boundaries_.size(); ++k) {
+    if (!boundaries_.present(k) || !boundaries_.driver(k).moves()) continue;
+    const WallPose& now = boundaries_.driver(k).pose();
     const Vec3 shift = now.displacement - before[k].displacement;
     const Eigen::AngleAxisd turn(Eigen::Matrix3d(now.rotation * before[k].rotation.transpose()));
     const Vec3 force = 0.5 * (loads_before[k].force + boundary_loads_[k].force);
@@ -505,11 +420,11 @@ void Simulation::add_wall_work(const std::vector<WallPose>& before, const std::v
 void Simulation::step() {
   update_stage();
   const double t_new = static_cast<double>(step_ + 1) * state_.dt;
-  const bool walls_move = has_moving_walls();
+  const bool walls_move = boundaries_.any_moving();
   std::vector<WallPose> poses_before;
   std::vector<BoundaryLoad> loads_before;
   if (walls_move) {
-    for (const WallDriver& d : drivers_) poses_before.push_back(d.pose());
+    poses_before = boundaries_.poses();
     loads_before = boundary_loads_;
   }
   // growth's work on the contacts at the step's start positions; grow() adds that at its end
@@ -525,7 +440,7 @@ void Simulation::step() {
   const double half_skin = 0.5 * skin_;
   const int interval = scene_.numerics.search_interval;
   // a pair closes by at most twice (the largest move + the largest growth) since the build
-  if (inserted || std::sqrt(moved2) + grown > half_skin || wall_shift_since_build() > half_skin ||
+  if (inserted || std::sqrt(moved2) + grown > half_skin || boundaries_.shift_since_build() > half_skin ||
       (interval > 0 && step_ + 1 - last_build_step_ >= interval))
     build_neighbors();
   kernel_->compute_and_kick(state_);
@@ -740,8 +655,7 @@ void Simulation::build_neighbors() {
   build_wall_contacts(previous, order);
   build_mesh_contacts(order);
   growth_at_build_ = growth_scale_;
-  pose_at_build_.clear();
-  for (const WallDriver& d : drivers_) pose_at_build_.push_back(d.pose());
+  boundaries_.mark_build();
   x_at_build_ = p.x;
   last_build_step_ = step_;
 }
@@ -779,7 +693,8 @@ void Simulation::build_wall_contacts(const WallContacts& previous, const std::ve
   for (int i = 0; i < n; ++i) {
     const int old = new_to_old.empty() ? i : new_to_old[i];
     for (int w = 0; w < static_cast<int>(state_.walls.size()); ++w) {
-      if (!wall_present_[boundary_of_plane_[w]] || state_.walls[w].distance(p.x[i]) >= p.radius[i] + skin_) continue;
+      if (!boundaries_.present(boundaries_.of_plane(w)) || state_.walls[w].distance(p.x[i]) >= p.radius[i] + skin_)
+        continue;
       Vec3 shear = Vec3::Zero(), roll = Vec3::Zero();
       std::uint8_t touching = 0;  // at the last force evaluation (the force loop's first and last steps)
       if (!previous.row_start.empty()) {
@@ -830,7 +745,7 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
   const double r_max =
       std::max(largest_given_radius_, n > 0 ? *std::max_element(p.radius.begin(), p.radius.end()) : 0.0);
   for (MeshWall& mesh : state_.meshes) {
-    if (!mesh.grid_stale || !wall_present_[mesh.boundary]) continue;
+    if (!mesh.grid_stale || !boundaries_.present(mesh.boundary)) continue;
     mesh.grid.build(mesh.vertices, mesh.triangles, 2 * r_max + skin_);
     mesh.grid_stale = false;
   }
@@ -847,7 +762,7 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
       const Vec3 lo = p.x[i] - Vec3::Constant(reach), hi = p.x[i] + Vec3::Constant(reach);
       for (int m = 0; m < static_cast<int>(state_.meshes.size()); ++m) {
         const MeshWall& mesh = state_.meshes[m];
-        if (!wall_present_[mesh.boundary]) continue;
+        if (!boundaries_.present(mesh.boundary)) continue;
         near.clear();
         mesh.grid.for_each_in_box(lo, hi, [&](int t) { near.push_back(t); });
         std::sort(near.begin(), near.end());
@@ -948,7 +863,6 @@ std::vector<int> Simulation::fragments() const {
 }
 
 std::vector<WallContact> Simulation::wall_contacts() const {
-  const std::vector<int>& boundary_of_plane = boundary_of_plane_;
   std::vector<WallContact> out;
   const WallContacts& wc = state_.wall_contacts;
   const MeshContacts& mc = state_.mesh_contacts;
@@ -956,7 +870,7 @@ std::vector<WallContact> Simulation::wall_contacts() const {
     std::vector<WallContact> mine;
     if (!wc.row_start.empty())
       for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
-        if (wc.touching[e]) mine.push_back({i, boundary_of_plane[wc.wall[e]], wc.fn[e], wc.ft[e]});
+        if (wc.touching[e]) mine.push_back({i, boundaries_.of_plane(wc.wall[e]), wc.fn[e], wc.ft[e]});
     for (int k = 0, used = mc.count(i); k < used; ++k)
       mine.push_back({i, state_.meshes[mc.slot(i, k).mesh].boundary, mc.slot(i, k).fn, mc.slot(i, k).ft});
     std::stable_sort(mine.begin(), mine.end(),
@@ -1057,12 +971,14 @@ void Simulation::apply_stage_settings(int k, bool restore) {
   const double now = time();
   for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
     const bool there = scene_.walls[w].present_at(k);
-    if (there && !wall_present_[w] && !restore) drivers_[w].start_clock(now);  // a wall come now
-    wall_present_[w] = there;
+    if (there && !boundaries_.present(static_cast<int>(w)) && !restore)
+      boundaries_.driver(static_cast<int>(w)).start_clock(now);  // a wall come now
+    boundaries_.set_present(static_cast<int>(w), there);
   }
-  for (WallDriver& d : drivers_) d.set_gravity(gravity);
+  for (int w = 0; w < boundaries_.size(); ++w) boundaries_.driver(w).set_gravity(gravity);
   if (!restore) {
-    for (const WallChange& c : scene_.stages[k].wall_changes) drivers_[c.wall].change(c.motion, c.load, now, gravity);
+    for (const WallChange& c : scene_.stages[k].wall_changes)
+      boundaries_.driver(c.wall).change(c.motion, c.load, now, gravity);
     return;
   }
   // every wall's motion and load as stage k has them, for StateIO to compare with the saved ones
@@ -1072,7 +988,7 @@ void Simulation::apply_stage_settings(int k, bool restore) {
       const auto c = std::find_if(changes.begin(), changes.end(),
                                   [&](const WallChange& change) { return change.wall == static_cast<int>(w); });
       if (c == changes.end()) continue;
-      drivers_[w].change(c->motion, c->load, 0, gravity);
+      boundaries_.driver(static_cast<int>(w)).change(c->motion, c->load, 0, gravity);
       break;
     }
 }
@@ -1103,7 +1019,8 @@ void Simulation::drop_slots_of_absent_meshes() {
     int kept = 0;
     for (int k = 0; k < kSlots; ++k) {
       const MeshSlot slot = mc.slots[i * kSlots + k];
-      if (slot.mesh >= 0 && wall_present_[state_.meshes[slot.mesh].boundary]) mc.slots[i * kSlots + kept++] = slot;
+      if (slot.mesh >= 0 && boundaries_.present(state_.meshes[slot.mesh].boundary))
+        mc.slots[i * kSlots + kept++] = slot;
     }
     for (int k = kept; k < kSlots; ++k) mc.slots[i * kSlots + k] = MeshSlot{};
     mc.used[i] = kept > 0;
@@ -1156,7 +1073,8 @@ bool Simulation::feed_sources() {
     progress.last_attempt = step_ + 1;
     const std::vector<ParticleInit> due = due_particles(
         scene_, source, progress, std::min(since, source.end - source.start), state_.particles,
-        [&] { return faces_of(source.face_wall); }, [this](const Vec3& x, double r) { return touches_wall(x, r); });
+        [&] { return boundaries_.faces(source.face_wall, state_.walls, state_.meshes); },
+        [this](const Vec3& x, double r) { return boundaries_.touches(x, r, state_.walls, state_.meshes); });
     double energy = 0;  // what the new particles bring: their kinetic and gravitational energy
     for (ParticleInit init : due) {
       init.source = k;
@@ -1174,44 +1092,6 @@ bool Simulation::feed_sources() {
     any = any || !due.empty();
   }
   return any;
-}
-
-std::vector<Face> Simulation::faces_of(int wall) const {
-  std::vector<Face> faces;
-  if (!wall_present_[wall]) return faces;
-  if (plane_index_[wall] >= 0) {
-    const std::array<Vec3, 4>& c = state_.walls[plane_index_[wall]].corners;
-    faces.push_back({c[0], c[1], c[2]});
-    faces.push_back({c[0], c[2], c[3]});
-    return faces;
-  }
-  const MeshWall& mesh = state_.meshes[mesh_index_[wall]];
-  for (const auto& t : mesh.triangles) faces.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
-  return faces;
-}
-
-bool Simulation::touches_wall(const Vec3& x, double r) const {
-  for (std::size_t w = 0; w < state_.walls.size(); ++w)
-    if (wall_present_[boundary_of_plane_[w]] && state_.walls[w].distance(x) < r) return true;
-  const Vec3 lo = x - Vec3::Constant(r), hi = x + Vec3::Constant(r);
-  for (const MeshWall& mesh : state_.meshes) {
-    if (!wall_present_[mesh.boundary]) continue;
-    bool touching = false;
-    auto test = [&](int t) {
-      const auto& tri = mesh.triangles[t];
-      const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
-      if ((a.cwiseMin(b).cwiseMin(c).array() > hi.array()).any() ||
-          (a.cwiseMax(b).cwiseMax(c).array() < lo.array()).any())
-        return;
-      touching = touching || (closest_on_triangle(x, a, b, c).point - x).squaredNorm() < r * r;
-    };
-    if (!mesh.grid_stale)  // binned where the mesh is now
-      mesh.grid.for_each_in_box(lo, hi, test);
-    else
-      for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) test(t);
-    if (touching) return true;
-  }
-  return false;
 }
 
 void Simulation::append_particle(const ParticleInit& init) {

@@ -13,18 +13,9 @@
 #include "sim/particle_sources.hpp"
 #include "sim/state.hpp"
 #include "sim/time_step.hpp"
+#include "walls/boundaries.hpp"
 
 namespace dem {
-
-// What the particles do to one wall (in Scene::walls order) this step: the force on the wall and
-// its torque about the wall's centre (the rotation centre of its motion).
-struct BoundaryLoad {
-  Vec3 force = Vec3::Zero();
-  Vec3 torque = Vec3::Zero();
-  int contacts = 0;
-  int padding = 0;           // saved with the state: its bytes are set, not whatever the memory held
-  ContactResponse response;  // how that force answers the wall's motion (a servo's loop gain)
-};
 
 // A particle touching a wall, for the wall force-chain file.
 struct WallContact {
@@ -113,11 +104,11 @@ class Simulation {
   // whether the coming step is a frame (the last step of a run is one).
   void update_stage();
   // Whether scene wall k is there in this stage (a stage may add or remove walls).
-  bool wall_present(int k) const { return wall_present_[k] != 0; }
+  bool wall_present(int k) const { return boundaries_.present(k); }
   // Whether scene wall k may move, come or go at some point of the run (its own motion or load, a
   // stage's change, a stage adding or removing it): outputs draw such a wall in every frame.
-  bool wall_varies(int k) const { return wall_varies_[k] != 0; }
-  bool any_wall_varies() const;
+  bool wall_varies(int k) const { return boundaries_.varies(k); }
+  bool any_wall_varies() const { return boundaries_.any_varies(); }
 
   double kinetic_energy() const;        // translational + rotational, J
   double rotational_energy() const;     // the rotational part, J
@@ -145,14 +136,15 @@ class Simulation {
 
   // Per wall of the scene, updated every step.
   const std::vector<BoundaryLoad>& boundary_loads() const { return boundary_loads_; }
-  const WallDriver& wall_driver(int wall) const { return drivers_[wall]; }
+  const WallDriver& wall_driver(int wall) const { return boundaries_.driver(wall); }
+  const Boundaries& boundaries() const { return boundaries_; }
   const std::vector<Wall>& walls() const { return state_.walls; }  // planes and plates
   const std::vector<MeshWall>& meshes() const { return state_.meshes; }
   // Index in walls() or meshes() of scene wall k (-1 when it is the other kind).
-  int plane_index(int k) const { return plane_index_[k]; }
-  int mesh_index(int k) const { return mesh_index_[k]; }
-  int boundary_of_plane(int p) const { return boundary_of_plane_[p]; }  // scene wall of walls()[p]
-  bool has_moving_walls() const;
+  int plane_index(int k) const { return boundaries_.plane_index(k); }
+  int mesh_index(int k) const { return boundaries_.mesh_index(k); }
+  int boundary_of_plane(int p) const { return boundaries_.of_plane(p); }  // scene wall of walls()[p]
+  bool has_moving_walls() const { return boundaries_.any_moving(); }
 
   // Set by the first step that left a particle's position, velocity or spin non-finite (every step
   // is checked, at the cost of one comparison per particle).
@@ -181,7 +173,6 @@ class Simulation {
   void build_mesh_contacts(const std::vector<int>& new_to_old);
   void move_walls(double t_new, double dt);    // the walls' first half of the step
   void settle_walls(double t_new, double dt);  // loads from this step's forces, then their second half
-  double wall_shift_since_build() const;
   // The growth of this step (Scene::growth), given its work on the contacts at the step's start
   // positions; returns how much the largest radius grew since the last build.
   double grow(double contacts_work_at_start);
@@ -211,8 +202,6 @@ class Simulation {
   bool feed_sources();
   bool source_active(int k) const;
   double source_active_time(int k) const;  // since the source's start, after this step
-  std::vector<Face> faces_of(int wall) const;
-  bool touches_wall(const Vec3& x, double r) const;
   // Adds one particle to the run (a source's, or one a saved state holds) with an empty history.
   void append_particle(const ParticleInit& init);
 
@@ -228,11 +217,7 @@ class Simulation {
   int builds_ = 0;
   bool contacts_recorded_ = true;
   std::int64_t last_build_step_ = 0;
-  std::vector<WallDriver> drivers_;  // per scene wall
-  std::vector<int> plane_index_, mesh_index_;
-  std::vector<int> boundary_of_plane_;   // scene wall of each plane or plate
-  std::vector<WallPose> pose_at_build_;  // per scene wall
-  std::vector<double> wall_extent_;      // largest distance of a wall's points from its centre
+  Boundaries boundaries_;  // every scene wall, whatever its kind: its driver, where it is, whether it is there
   std::vector<BoundaryLoad> boundary_loads_;
   double largest_given_radius_ = 0;   // of the scene's particles (growth scales it)
   double smallest_given_radius_ = 0;  // of the scene's particles
@@ -248,9 +233,7 @@ class Simulation {
   int stage_ = 0;
   std::int64_t stage_start_step_ = 0;
   std::int64_t stage_end_step_ = 0;
-  bool stage_ended_early_ = false;          // its end condition ended it (at stage_end_step_)
-  std::vector<std::uint8_t> wall_present_;  // per scene wall, in this stage
-  std::vector<std::uint8_t> wall_varies_;   // per scene wall
+  bool stage_ended_early_ = false;  // its end condition ended it (at stage_end_step_)
   std::optional<NonFinite> first_non_finite_;
   std::optional<TooFast> first_too_fast_;
   bool moved_too_far_ = false;  // set by the last drift

@@ -158,7 +158,7 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   Writer w(out);
   w.bytes(kMagic, sizeof kMagic);
   w.put(static_cast<std::uint64_t>(s.particles.size()));
-  w.put(static_cast<std::uint64_t>(sim.drivers_.size()));
+  w.put(static_cast<std::uint64_t>(sim.boundaries_.drivers_.size()));
   w.put(static_cast<std::uint64_t>(s.bonds.bonds().size()));
   w.put(s.dt);
   w.put(sim.step_);
@@ -226,8 +226,8 @@ void StateIO::write(const Simulation& sim, std::ostream& out) {
   w.put(mc.constants);
   w.put(s.walls);
   for (const MeshWall& m : s.meshes) w.put(m.pose);
-  for (const WallDriver& d : sim.drivers_) w.put(d.record());
-  w.put(sim.pose_at_build_);
+  for (const WallDriver& d : sim.boundaries_.drivers_) w.put(d.record());
+  w.put(sim.boundaries_.pose_at_build_);
   w.put(sim.boundary_loads_);
   w.put(sim.growth_at_build_);
   w.put(sim.growth_scale_);
@@ -294,8 +294,9 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     std::snprintf(buf, sizeof buf, "%s %.17g there, %.17g in this spec", what.c_str(), saved, now);
     throw std::runtime_error(std::string("the saved state was written for another job: ") + buf);
   };
-  if (walls != sim.drivers_.size())
-    mismatch("walls", static_cast<double>(walls), static_cast<double>(sim.drivers_.size()));
+  Boundaries& boundaries = sim.boundaries_;
+  if (walls != boundaries.drivers_.size())
+    mismatch("walls", static_cast<double>(walls), static_cast<double>(boundaries.drivers_.size()));
   if (dt != s.dt) mismatch("time step", dt, s.dt);
   r.get(sim.step_, "the step count");
   r.get(sim.builds_, "the step count");
@@ -526,7 +527,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   std::vector<WallPose> mesh_poses(s.meshes.size());
   for (WallPose& pose : mesh_poses) r.get(pose, "the walls");
   std::vector<WallDriver> saved_drivers;
-  for (std::size_t k = 0; k < sim.drivers_.size(); ++k) {
+  for (std::size_t k = 0; k < boundaries.drivers_.size(); ++k) {
     WallDriver::Record record;
     r.get(record, "the walls");
     try {
@@ -545,22 +546,19 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   std::vector<int> loads_starting;
   for (std::size_t k = 0; k < saved_drivers.size(); ++k) {
     try {
-      if (sim.drivers_[k].continue_from(saved_drivers[k], sim.time())) loads_starting.push_back(static_cast<int>(k));
+      if (boundaries.drivers_[k].continue_from(saved_drivers[k], sim.time()))
+        loads_starting.push_back(static_cast<int>(k));
     } catch (const std::runtime_error& e) {
       throw std::runtime_error(sim.scene_.walls[k].where(k) + " (" + sim.scene_.walls[k].name + "): " + e.what());
     }
   }
-  r.get(sim.pose_at_build_, "the walls");
+  r.get(boundaries.pose_at_build_, "the walls");
   r.get(sim.boundary_loads_, "the walls");
-  expect_size(sim.pose_at_build_, sim.drivers_.size(), "the walls' poses");
-  expect_size(sim.boundary_loads_, sim.drivers_.size(), "the walls' loads");
+  expect_size(boundaries.pose_at_build_, boundaries.drivers_.size(), "the walls' poses");
+  expect_size(sim.boundary_loads_, boundaries.drivers_.size(), "the walls' loads");
   for (int k : loads_starting) {  // a load that starts now feels the particles' push from the start, as at t = 0
-    WallDriver& d = sim.drivers_[k];
-    d.end_step(sim.time(), 0, sim.boundary_loads_[k].force, sim.boundary_loads_[k].response);
-    if (sim.plane_index_[k] >= 0)
-      s.walls[sim.plane_index_[k]].move_to(d.pose());
-    else
-      s.meshes[sim.mesh_index_[k]].move_to(d.pose());
+    boundaries.drivers_[k].end_step(sim.time(), 0, sim.boundary_loads_[k].force, sim.boundary_loads_[k].response);
+    boundaries.place(k, s.walls, s.meshes);
   }
   r.get(sim.growth_at_build_, "the walls");
   r.get(sim.growth_scale_, "the walls");
