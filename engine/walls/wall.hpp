@@ -15,8 +15,10 @@ struct Wall {
   int material = 0;
   Vec3 point = Vec3::Zero();    // plane: a point; plate: corner 1
   Vec3 normal = Vec3::UnitZ();  // unit
-  std::array<Vec3, 4> corners;  // plate only, counter-clockwise about `normal`
-  WallPose pose;                // where it is relative to its start, and how fast it moves
+  // plate only, counter-clockwise about `normal`; a plane's are 0 (Eigen leaves a vector unset, and a saved state
+  // would carry whatever the memory held: two runs of one spec then saved other bytes)
+  std::array<Vec3, 4> corners{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  WallPose pose;  // where it is relative to its start, and how fast it moves
 
   static Wall from(const WallInit& init);
 
@@ -38,7 +40,7 @@ struct Wall {
   Vec3 closest_on_plate(const Vec3& x) const;
 
   Vec3 point0_ = Vec3::Zero(), normal0_ = Vec3::UnitZ();
-  std::array<Vec3, 4> corners0_;
+  std::array<Vec3, 4> corners0_{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
 };
 
 }  // namespace dem
