@@ -53,8 +53,9 @@ struct Grain {
   double mass(double density, double r) const {
     return disc() ? density * std::numbers::pi * r * r * disc_thickness : sphere_mass(density, r);
   }
-  // about a diameter (sphere) or the disc's axis (m r^2 / 2)
-  double inertia(double m, double r) const { return disc() ? 0.5 * m * r * r : sphere_inertia(m, r); }
+  // The moment of inertia over m r^2: about a diameter (a sphere, 2/5) or the disc's axis (1/2).
+  double inertia_factor() const { return disc() ? 0.5 : 0.4; }
+  double inertia(double m, double r) const { return inertia_factor() * m * r * r; }
 };
 
 // A particle's state is usable: its position, velocity and spin are finite and so are the squares

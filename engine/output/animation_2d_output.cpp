@@ -36,26 +36,20 @@ Animation2DWriter::Animation2DWriter(const std::string& path, const Simulation& 
 }
 
 legacy::Animation2DFrame Animation2DWriter::make_frame(const Simulation& sim, const std::array<double, 4>& domain) {
-  const double unit = sim.scene().outputs.length_unit;
-  auto in_plane = [unit](const Vec3& x) { return legacy::Vec2(x.x() / unit, x.z() / unit); };
-  // the 3D frame's scalars and walls, cut by the plane
+  // the 3D frame's scalars and walls (in the file's unit, which leaves where they cross y = 0 unchanged), cut by
+  // the plane
+  auto in_plane = [](const Vec3& x) { return legacy::Vec2(x.x(), x.z()); };
   const legacy::AnimationFrame full = AnimationWriter::make_frame(sim, {});
   legacy::Animation2DFrame frame;
   frame.domain = domain;
   frame.scalars = full.scalars;
   frame.step = full.step;
-  for (const legacy::AnimationPlate& plate : full.plates) {
-    std::array<Vec3, 4> corners;
-    for (int k = 0; k < 4; ++k) corners[k] = plate.corners[k] * unit;
-    if (const auto trace = trace_on_plane(corners.data(), 4))
+  for (const legacy::AnimationPlate& plate : full.plates)
+    if (const auto trace = trace_on_plane(plate.corners.data(), 4))
       frame.plates.push_back({plate.id, {in_plane((*trace)[0]), in_plane((*trace)[1])}});
-  }
-  for (const legacy::AnimationTriangle& triangle : full.triangles) {
-    std::array<Vec3, 3> corners;
-    for (int k = 0; k < 3; ++k) corners[k] = triangle.corners[k] * unit;
-    if (const auto trace = trace_on_plane(corners.data(), 3))
+  for (const legacy::AnimationTriangle& triangle : full.triangles)
+    if (const auto trace = trace_on_plane(triangle.corners.data(), 3))
       frame.triangles.push_back({triangle.id, {in_plane((*trace)[0]), in_plane((*trace)[1])}});
-  }
   frame.discs.reserve(full.particles.size());
   for (const legacy::AnimationParticle& p : full.particles)
     frame.discs.push_back({p.id,

@@ -114,9 +114,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
   // Forces at t = 0 for the first half kick: a zero step leaves history and velocities unchanged.
   // They come first so that the step knows the initial contacts (the speed their stored energy gives).
   state_.dt = 0;
-  kernel_->compute_and_kick(state_);
-  if (scene_.plane) hold_in_plane();
-  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
+  compute_forces_and_kick();
   settle_walls(0, 0);
   // the step knows whether any bond was made (a bonds block that glued nothing does not shorten it)
   // (a stage that glues bonds later needs a step that resolves them from the start)
@@ -362,6 +360,14 @@ void Simulation::refuse_motion_off_the_plane() const {
   if (scene_.gravity.y() != 0) throw SceneError("gravity: a 2D run's gravity lies in the x-z plane (its y must be 0)");
 }
 
+// The forces at the particles' positions now and the step's second half kick (state_.dt: 0 for the forces alone, at
+// the start and at a stage's start), the plane's reaction in a 2D run, and the clumps' bodies' kick.
+void Simulation::compute_forces_and_kick() {
+  kernel_->compute_and_kick(state_);
+  if (scene_.plane) hold_in_plane();
+  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, state_.dt);
+}
+
 // The plane's reaction (a 2D run): the discs keep y = 0 and turn only about y. The kick has just added dt/2 f/m, so
 // clearing the out-of-plane velocity and spin is clearing those forces' and torques' part of it; the forces and
 // torques are cleared too for the next step's first half kick. The constraint does no work: it removes only
@@ -443,9 +449,7 @@ void Simulation::step() {
   if (inserted || std::sqrt(moved2) + grown > half_skin || boundaries_.shift_since_build() > half_skin ||
       (interval > 0 && step_ + 1 - last_build_step_ >= interval))
     build_neighbors();
-  kernel_->compute_and_kick(state_);
-  if (scene_.plane) hold_in_plane();
-  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, state_.dt);
+  compute_forces_and_kick();
   settle_walls(t_new, state_.dt);
   if (walls_move) {
     add_wall_work(poses_before, loads_before);
@@ -799,7 +803,7 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
 double Simulation::kinetic_energy() const {
   const Particles& p = state_.particles;
   double e = bodies_kinetic_energy(state_.bodies);
-  const double k = spin_inertia_factor();
+  const double k = scene_.grain().inertia_factor();
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.body.empty() && p.body[i] >= 0) continue;  // counted with its body
     e += 0.5 * p.mass[i] * (p.v[i].squaredNorm() + k * p.radius[i] * p.radius[i] * p.w[i].squaredNorm());
@@ -810,7 +814,7 @@ double Simulation::kinetic_energy() const {
 double Simulation::rotational_energy() const {
   const Particles& p = state_.particles;
   double e = bodies_rotational_energy(state_.bodies);
-  const double k = spin_inertia_factor();
+  const double k = scene_.grain().inertia_factor();
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.body.empty() && p.body[i] >= 0) continue;  // counted with its body
     e += 0.5 * p.mass[i] * k * p.radius[i] * p.radius[i] * p.w[i].squaredNorm();
@@ -1046,9 +1050,7 @@ void Simulation::enter_stage(int k) {
   std::fill(state_.spin_kick.begin(), state_.spin_kick.end(), Vec3::Zero());
   const double dt = state_.dt, now = time();  // time() is step * dt: taken before dt is set to 0
   state_.dt = 0;
-  kernel_->compute_and_kick(state_);
-  if (scene_.plane) hold_in_plane();
-  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, 0);
+  compute_forces_and_kick();
   settle_walls(now, 0);
   state_.dt = dt;
   add_work(ledger_.stages, mechanical_energy() - before);

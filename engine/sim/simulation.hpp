@@ -163,9 +163,9 @@ class Simulation {
   void refuse_coincident_particles() const;
   void refuse_positions_past_precision() const;
   void refuse_motion_off_the_plane() const;  // a 2D run (Scene::plane)
-  // A free particle's moment of inertia over m r^2: 2/5 (a sphere) or 1/2 (a 2D run's disc; Grain::inertia).
-  double spin_inertia_factor() const { return scene_.plane ? 0.5 : 0.4; }
-  void hold_in_plane();  // a 2D run: after each force evaluation
+  void hold_in_plane();                      // a 2D run: after each force evaluation
+  // The forces, the second half kick (state_.dt; 0: the forces alone), the plane's reaction and the bodies' kick.
+  void compute_forces_and_kick();
   void add_work(double& account, double work);
   void build_neighbors();
   void build_wall_contacts(const WallContacts& previous, const std::vector<int>& new_to_old);
