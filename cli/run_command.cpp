@@ -9,7 +9,9 @@
 #include "cli/progress_bar.hpp"
 #include "core/errors.hpp"
 #include "output/legacy_output.hpp"
+#include "output/run_results.hpp"
 #include "output/run_writers.hpp"
+#include "results/results_json.hpp"
 #include "sim/state_io.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -124,12 +126,16 @@ int run_command(const std::vector<std::string>& args) {
 
     std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, a.out, append);
     writers.push_back(std::make_unique<StateWriter>((std::filesystem::path(a.out) / "restart.dat").string()));
+    auto recorder = std::make_unique<ResultsRecorder>(
+        sim, (std::filesystem::path(a.out) / ResultsRecorder::kTrackName).string(), append);
     std::vector<Observer*> observers;
     for (auto& w : writers) observers.push_back(w.get());
+    observers.push_back(recorder.get());
 
     RunOptions options;
     if (!a.quiet) options.on_progress = make_progress_printer(isatty(STDERR_FILENO));
     const RunOutcome outcome = run(sim, observers, options);
+    results::write_results_file(recorder->results(), a.out);
     if (!outcome.ok) {
       std::fprintf(stderr, "dem run: %s\n(the files in %s hold every frame written before the stop)\n",
                    outcome.error.c_str(), a.out.c_str());
@@ -142,6 +148,7 @@ int run_command(const std::vector<std::string>& args) {
     std::printf("done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d\n",
                 static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate,
                 sim.neighbor_builds());
+    std::printf("results: %s\n", (std::filesystem::path(a.out) / results::kResultsName).c_str());
     for (std::size_t k = 0; k < sim.scene().sources.size(); ++k) {
       const SourceProgress& progress = sim.source_progress()[k];
       std::printf("source \"%s\": inserted %lld particles, %.6g kg; %lld batches found no room for a particle due\n",

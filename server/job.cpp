@@ -69,6 +69,7 @@ nlohmann::json to_json(const JobRecord& job) {  // dumped with invalid UTF-8 rep
     j["runSeconds"] = job.run_seconds;
     j["streamSeconds"] = job.stream_seconds;
   }
+  if (!job.results.is_null()) j["results"] = job.results;
   return j;
 }
 

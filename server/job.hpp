@@ -34,6 +34,7 @@ struct JobRecord {
   std::int64_t checkpoint_step = -1;  // step of the last checkpoint; -1: none
   double run_seconds = 0;             // wall time of its stepping (summed over resumed runs)
   double stream_seconds = 0;          // of which the engine spent making live frames
+  nlohmann::json results;             // what the run found (results.json), once it ended; null before
 
   double progress() const;
 };

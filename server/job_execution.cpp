@@ -7,7 +7,9 @@
 #include <optional>
 #include <sstream>
 
+#include "output/run_results.hpp"
 #include "output/run_writers.hpp"
+#include "results/results_json.hpp"
 #include "server/checkpoint.hpp"
 #include "server/own_files.hpp"
 #include "spec/spec_loader.hpp"
@@ -128,9 +130,11 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, folder.outputs().string(), resume);
     FramePublisher publisher(hooks.job, hooks.frames, hooks.max_frame_rate);
     Checkpointer checkpointer(folder, hooks.checkpoint_seconds, hooks.on_checkpoint);
+    ResultsRecorder recorder(sim, (folder.outputs() / ResultsRecorder::kTrackName).string(), resume);
     std::vector<Observer*> observers;
-    observers.reserve(writers.size());
+    observers.reserve(writers.size() + 1);
     for (auto& w : writers) observers.push_back(w.get());
+    observers.push_back(&recorder);
 
     RunOptions options;
     options.cancel = hooks.stop;
@@ -155,6 +159,10 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     } else if (!outcome.ok) {
       result.kind = ExecutionResult::Kind::Failed;
       result.error = outcome.error;
+    }
+    if (result.kind != ExecutionResult::Kind::Stopped) {  // a stopped job goes on, or was cancelled
+      results::write_results_file(recorder.results(), folder.outputs().string());
+      result.results = results::to_json(recorder.results());
     }
   } catch (const spec::SpecError& e) {
     result.kind = ExecutionResult::Kind::Failed;

@@ -9,6 +9,8 @@
 #include <memory>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "server/frame_hub.hpp"
 #include "server/job_folder.hpp"
 #include "sim/runner.hpp"
@@ -36,6 +38,7 @@ struct ExecutionResult {
   double run_seconds = 0;     // the stepping loop's wall time, observers included
   double stream_seconds = 0;  // of which making and handing out live frames
   std::int64_t step = -1;     // the step the run reached (where it failed or stopped); -1: never began
+  nlohmann::json results;     // the run's results (results.json) when it ran to its end or failed; else null
 };
 
 ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks);

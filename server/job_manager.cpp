@@ -504,6 +504,10 @@ void JobManager::run_one(const JobRecord& job) {
     j.seconds_left = 0;
     j.run_seconds += result.run_seconds;
     j.stream_seconds += result.stream_seconds;
+    if (!result.results.is_null()) {
+      j.results = result.results;
+      j.results["runSeconds"] = j.run_seconds;  // summed over the runs of a resumed job
+    }
     switch (result.kind) {
       case ExecutionResult::Kind::Succeeded:
         j.state = archive_error.empty() ? JobState::Succeeded : JobState::Failed;

@@ -48,7 +48,7 @@ class Statement {
 
 constexpr const char* kColumns =
     "id, name, state, created_at, started_at, finished_at, error, idempotency_key, particles, step, total_steps, "
-    "time_step, checkpoint_step, run_seconds, stream_seconds, length_unit";
+    "time_step, checkpoint_step, run_seconds, stream_seconds, length_unit, results";
 
 }  // namespace
 
@@ -86,10 +86,11 @@ JobStore::JobStore(const std::string& path) : path_(path) {
       " checkpoint_step INTEGER NOT NULL DEFAULT -1,"
       " run_seconds REAL NOT NULL DEFAULT 0,"
       " stream_seconds REAL NOT NULL DEFAULT 0,"
-      " length_unit TEXT NOT NULL DEFAULT 'm')");
+      " length_unit TEXT NOT NULL DEFAULT 'm',"
+      " results TEXT NOT NULL DEFAULT '')");
   // columns added since the table was first made: a data folder of an older server gains them
   for (const char* column : {"run_seconds REAL NOT NULL DEFAULT 0", "stream_seconds REAL NOT NULL DEFAULT 0",
-                             "length_unit TEXT NOT NULL DEFAULT 'm'"}) {
+                             "length_unit TEXT NOT NULL DEFAULT 'm'", "results TEXT NOT NULL DEFAULT ''"}) {
     const std::string sql = std::string("ALTER TABLE jobs ADD COLUMN ") + column;
     sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr);  // fails, harmlessly, when it is there
   }
@@ -133,6 +134,9 @@ std::vector<JobRecord> JobStore::load_all() {
     j.run_seconds = q.column_real(13);
     j.stream_seconds = q.column_real(14);
     j.length_unit = q.column_text(15);
+    // a results text the table cannot parse (never written by the server) is shown as none
+    j.results = nlohmann::json::parse(q.column_text(16), nullptr, false);
+    if (j.results.is_discarded()) j.results = nullptr;
     jobs.push_back(std::move(j));
   }
   return jobs;
@@ -163,11 +167,15 @@ void JobStore::update(const JobRecord& job) {
   Statement q(
       db_,
       "UPDATE jobs SET name = ?, state = ?, started_at = ?, finished_at = ?, error = ?, particles = ?, step = ?,"
-      " total_steps = ?, time_step = ?, checkpoint_step = ?, run_seconds = ?, stream_seconds = ? WHERE id = ?",
+      " total_steps = ?, time_step = ?, checkpoint_step = ?, run_seconds = ?, stream_seconds = ?, results = ?"
+      " WHERE id = ?",
       path_);
   q.text(1, job.name).text(2, to_string(job.state)).text(3, job.started_at).text(4, job.finished_at).text(5, job.error);
   q.integer(6, job.particles).integer(7, job.step).integer(8, job.total_steps).real(9, job.time_step);
-  q.integer(10, job.checkpoint_step).real(11, job.run_seconds).real(12, job.stream_seconds).integer(13, job.id);
+  q.integer(10, job.checkpoint_step).real(11, job.run_seconds).real(12, job.stream_seconds);
+  q.text(13, job.results.is_null() ? std::string()
+                                   : job.results.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace))
+      .integer(14, job.id);
   q.row();
 }
 

@@ -13,6 +13,9 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
   const std::int64_t every = sim.scene().outputs.every_steps;
   const int check_every = std::max(1, sim.scene().numerics.check_interval);
   const StabilityGuard guard(sim);
+  std::vector<Observer*> step_observers;
+  for (Observer* o : observers)
+    if (o->wants_steps()) step_observers.push_back(o);
   auto frame = [&] {
     guard.check_writable(sim);  // nothing non-finite is ever written
     for (Observer* o : observers) o->frame(sim);
@@ -45,6 +48,7 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
       guard.check_finite(sim);
       const std::int64_t s = sim.step_count();
       if (s % check_every == 0 || s == total || sim.deep_overlap()) guard.check(sim);
+      for (Observer* o : step_observers) o->step(sim);
       if (frame_due) frame();
       if (options.after_step) options.after_step(sim, frame_due);
       if (options.on_progress || options.periodically) {

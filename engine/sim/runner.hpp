@@ -25,6 +25,10 @@ class Observer {
   virtual ~Observer() = default;
   virtual void frame(const Simulation& sim) = 0;
   virtual void finish(const Simulation&, const RunOutcome&) {}
+  // An observer that needs every step (a few numbers per step, as the results' load cycles) says so:
+  // step() is then called after each step, frames included.
+  virtual bool wants_steps() const { return false; }
+  virtual void step(const Simulation&) {}
 };
 
 struct Progress {

@@ -50,6 +50,8 @@ class WallDriver {
 
   bool moves() const { return motion_.has_value() || load_.has_value(); }
   bool load_controlled() const { return load_.has_value(); }
+  const std::optional<LoadControl>& load() const { return load_; }
+  double load_start() const { return load_start_; }  // the time the load began (its cyclic clock's zero)
   const WallPose& pose() const { return pose_; }
 
   void begin_step(double t_new, double dt);

@@ -1,0 +1,239 @@
+// A run's results (output/run_results.hpp) against closed forms: a loaded plate pressing on a sphere
+// on the floor settles (2 F + m g) / 2 kn at each minimum of its load; free flight travels v t and drops g t^2 / 2; a
+// lattice covers its own area; a bonded pair pulled apart is two fragments with half its mass broken off. And a run
+// continued from a saved state gives the cycles of one run straight through.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "output/run_results.hpp"
+#include "sim/state_io.hpp"
+#include "support/report.hpp"
+#include "support/scenes.hpp"
+
+namespace dem::test {
+namespace {
+
+constexpr double kKn = 1e7;        // N/m: a sphere on a rigid wall has 2 kn (docs/physics.md)
+constexpr double kPlateMass = 10;  // kg
+constexpr double kFMin = 100, kFMax = 1000, kFrequency = 3;
+constexpr double kG = 9.81;
+
+std::string track_path(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("dem_results_" + name + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return (dir / ResultsRecorder::kTrackName).string();
+}
+
+constexpr double kR = 0.05;
+const double kSphereMass = sphere_mass(2600, kR);
+
+// A plate under a cyclic load, resting on a sphere on the floor (linear contacts, two springs in
+// series): quasi-static, since the plate rings on them at about 70 Hz, twenty times the load's 3 Hz.
+Scene plate_on_sphere(int cycles) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.3, 0.5, kKn);
+  const double r = kR;
+  s.particles.push_back(sphere(Vec3::Zero(), r));
+  WallInit plate;
+  plate.name = "sleeper";
+  plate.material = 1;
+  plate.shape = PlateShape{{Vec3(-0.1, -0.1, r), Vec3(-0.1, 0.1, r), Vec3(0.1, 0.1, r), Vec3(0.1, -0.1, r)}};
+  LoadControl load;
+  load.kind = LoadControl::Kind::Cyclic;
+  load.mass = kPlateMass;
+  load.direction = -Vec3::UnitZ();
+  load.f_min = kFMin;
+  load.f_max = kFMax;
+  load.frequency = kFrequency;
+  load.cycles = cycles;
+  plate.load = load;
+  s.walls = {plate, plane(Vec3(0, 0, -r), Vec3::UnitZ(), "floor")};
+  s.gravity = Vec3(0, 0, -kG);
+  s.time.dt = 2e-5;  // 1/55 of the contact time with the plate
+  s.time.steps = static_cast<std::int64_t>((cycles + 0.2) / kFrequency / s.time.dt);
+  return s;
+}
+
+RunResults run_with_recorder(Simulation& sim, const std::string& track, bool append) {
+  ResultsRecorder recorder(sim, track, append);
+  run(sim, {&recorder});
+  return recorder.results();
+}
+
+TEST(RunResults, APlateOnASphereSettlesItsStaticCompressionAtEachMinimumOfItsCyclicLoad) {
+  Simulation sim(plate_on_sphere(3));
+  const RunResults r = run_with_recorder(sim, track_path("plate"), false);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.loaded_walls.size(), 1u);
+  const LoadedWallResults& w = r.loaded_walls[0];
+  EXPECT_EQ(w.wall, "sleeper");
+  EXPECT_TRUE(w.cyclic);
+  ASSERT_EQ(w.cycles.size(), 3u);
+  // both springs carry the plate's load and weight, the floor's the sphere's weight too
+  const double weight = kPlateMass * kG, sphere_weight = kSphereMass * kG;
+  const double k = 2 * kKn;
+  const double at_min = (2 * (kFMin + weight) + sphere_weight) / k, at_max = (2 * (kFMax + weight) + sphere_weight) / k;
+  for (const LoadCycle& c : w.cycles) {
+    report("plate on a sphere: settlement at the end of cycle " + std::to_string(c.cycle), c.displacement, at_min);
+    EXPECT_NEAR(c.displacement, at_min, 0.01 * at_min) << "cycle " << c.cycle;
+    EXPECT_NEAR(c.peak_displacement, at_max, 0.01 * at_max) << "cycle " << c.cycle;
+    EXPECT_NEAR(c.resilient, 2 * (kFMax - kFMin) / k, 0.01 * 2 * (kFMax - kFMin) / k) << "cycle " << c.cycle;
+    EXPECT_NEAR(c.end_time, c.cycle / kFrequency, 1.5 * sim.dt());
+    if (c.cycle > 1) {  // the first cycle starts with the plate's landing
+      EXPECT_NEAR(c.force_min, kFMin + weight, 0.01 * (kFMin + weight));
+      EXPECT_NEAR(c.force_max, kFMax + weight, 0.01 * (kFMax + weight));
+    }
+  }
+  EXPECT_NEAR(w.force_max, kFMax + weight, 0.01 * (kFMax + weight));
+  EXPECT_DOUBLE_EQ(w.start_time, 0);
+}
+
+TEST(RunResults, ARunContinuedFromASavedStateGivesTheCyclesOfOneRunStraightThrough) {
+  const Scene scene = plate_on_sphere(3);
+  Simulation whole(scene);
+  const RunResults straight = run_with_recorder(whole, track_path("whole"), false);
+
+  const std::string track = track_path("parts");
+  Simulation first(scene);
+  {
+    ResultsRecorder recorder(first, track, false);
+    std::vector<Observer*> observers{&recorder};
+    RunOptions options;
+    std::atomic<bool> stop{false};
+    options.cancel = &stop;
+    options.after_step = [&](const Simulation& s, bool) { stop = s.time() >= 0.5; };  // the middle of cycle 2
+    run(first, observers, options);
+  }
+  std::stringstream saved;
+  StateIO::write(first, saved);
+  Simulation second(scene);
+  StateIO::read(second, saved);
+  const RunResults continued = run_with_recorder(second, track, true);
+
+  ASSERT_EQ(continued.loaded_walls.size(), 1u);
+  const std::vector<LoadCycle>& a = straight.loaded_walls[0].cycles;
+  const std::vector<LoadCycle>& b = continued.loaded_walls[0].cycles;
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), a.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(b[k].end_step, a[k].end_step);
+    EXPECT_DOUBLE_EQ(b[k].displacement, a[k].displacement);
+    EXPECT_NEAR(b[k].peak_displacement, a[k].peak_displacement, 1e-3 * a[k].peak_displacement);
+  }
+  // the cycle cut in two has its range from the resume on: the peak of cycle 2 was at the cut
+  EXPECT_NEAR(continued.loaded_walls[0].force_max, straight.loaded_walls[0].force_max,
+              1e-6 * straight.loaded_walls[0].force_max);
+}
+
+// Two spheres in free flight, v = (3, 4, 0) m/s under g: the centre of mass travels 5 t, drops
+// g t^2 / 2 (velocity Verlet is exact for a constant force); the runout runs from the highest
+// sphere's top to the front sphere's leading edge.
+TEST(RunResults, FreeFlightTravelsVTAndDropsHalfGTSquared) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.5, 0.5, 1e5);
+  const double r = 0.1, t = 0.5;
+  s.particles.push_back(sphere({0, 0, 1.5}, r, {3, 4, 0}));
+  s.particles.push_back(sphere({1, 0, 1}, r, {3, 4, 0}));
+  s.gravity = Vec3(0, 0, -kG);
+  s.time.dt = 1e-3;
+  s.time.steps = 500;
+  Simulation sim(s);
+  const RunResults res = run_with_recorder(sim, track_path("flight"), false);
+  ASSERT_TRUE(res.motion.has_value());
+  const MotionResults& m = *res.motion;
+  const double drop = kG * t * t / 2;
+  EXPECT_NEAR(m.com_travel, 5 * t, 1e-9);
+  EXPECT_NEAR(m.com_drop, drop, 1e-9);
+  EXPECT_NEAR(m.direction.x(), 0.6, 1e-12);
+  EXPECT_NEAR(m.direction.y(), 0.8, 1e-12);
+  EXPECT_NEAR(m.com_travel_angle, std::atan2(drop, 5 * t) * 180 / std::numbers::pi, 1e-9);
+  EXPECT_NEAR(m.front_end - m.front_start, 5 * t, 1e-9);
+  // the crown: the top of the sphere at z = 1.5; the toe: the sphere from x = 1, its leading edge low
+  const Vec3 d(0.6, 0.8, 0), up(0, 0, 1);
+  const Vec3 crown(0, 0, 1.5 + r), toe = Vec3(1 + 3 * t, 4 * t, 1 - drop) + r * d - r * up;
+  EXPECT_NEAR(m.runout_length, (toe - crown).dot(d), 1e-9);
+  EXPECT_NEAR(m.fall_height, (crown - toe).dot(up), 1e-9);
+  EXPECT_NEAR(m.h_over_l, m.fall_height / m.runout_length, 1e-12);
+  EXPECT_EQ(res.steps, 500);
+  EXPECT_TRUE(res.ok);
+  EXPECT_NEAR(res.energy_dissipated, 0, 1e-9 * res.energy_start + 1e-9);  // nothing touches
+}
+
+// A layer of n x n spheres, each centred on a cell of one diameter: it covers n^2 d^2.
+TEST(RunResults, ALayerCoversItsOwnArea) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.5, 0.5, 1e5);
+  const double r = 0.02, d = 2 * r;
+  const int n = 7;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) s.particles.push_back(sphere({(i + 0.5) * d * 1.0000001, (j + 0.5) * d, 0}, r));
+  s.time.dt = 1e-4;
+  s.time.steps = 10;
+  Simulation sim(s);
+  const RunResults res = run_with_recorder(sim, track_path("layer"), false);
+  ASSERT_TRUE(res.motion.has_value());
+  EXPECT_NEAR(res.motion->deposit_area, n * n * d * d, 1e-9);
+  EXPECT_NEAR(res.motion->deposit_length, n * d, 1e-6);
+  EXPECT_NEAR(res.motion->deposit_width, n * d, 1e-6);
+  EXPECT_FALSE(res.fragments.has_value());  // no bonds
+  EXPECT_TRUE(res.loaded_walls.empty());
+}
+
+// A bonded pair pulled apart (and a loose sphere beside it): two pieces become three, the lighter
+// half of the pair is the mass broken off, one bond broke in tension.
+TEST(RunResults, ABondedPairPulledApartIsTwoFragmentsWithHalfItsMassBrokenOff) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.5, 0.5, 1e5);
+  const double r = 0.01;
+  s.particles.push_back(sphere({0, 0, 0}, r, {-1, 0, 0}));
+  s.particles.push_back(sphere({2 * r, 0, 0}, r, {1, 0, 0}));
+  s.particles.push_back(sphere({1, 1, 1}, r));
+  BondSettings bonds;
+  bonds.youngs_modulus = 1e7;
+  bonds.tensile_strength = 1e3;
+  bonds.shear_strength = 1e3;
+  s.bonds = bonds;
+  s.time.dt = 1e-6;
+  s.time.steps = 2000;
+  Simulation sim(s);
+  const RunResults res = run_with_recorder(sim, track_path("pair"), false);
+  ASSERT_TRUE(res.fragments.has_value());
+  const FragmentResults& f = *res.fragments;
+  const double m = sphere_mass(2600, r);
+  EXPECT_EQ(f.initial_count, 2);
+  EXPECT_EQ(f.count, 3);
+  EXPECT_EQ(f.bonds_initial, 1);
+  EXPECT_EQ(f.bonds_intact, 0);
+  EXPECT_EQ(f.bonds_broken_tension, 1);
+  EXPECT_EQ(f.bonds_broken_shear, 0);
+  EXPECT_NEAR(f.crushed_mass, m, 1e-12);
+  EXPECT_NEAR(f.crushed_mass_fraction, 0.5, 1e-12);
+  EXPECT_NEAR(f.largest_mass_fraction, 1.0 / 3, 1e-12);
+  ASSERT_EQ(f.sizes.size(), 1u);
+  EXPECT_EQ(f.sizes[0].fragments, 3);
+  EXPECT_NEAR(f.sizes[0].mass, 3 * m, 1e-12);
+}
+
+// A track file that is not one is refused by name, not read as nothing.
+TEST(RunResults, ADamagedTrackFileIsRefusedByName) {
+  const std::string track = track_path("damaged");
+  {
+    std::ofstream out(track);
+    out << "DEM-RESULTS-TRACK 1\nload 7 0 0 0 1\n";
+  }
+  Simulation sim(plate_on_sphere(1));
+  try {
+    ResultsRecorder recorder(sim, track, true);
+    FAIL() << "read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(track), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no such wall"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dem::test
