@@ -3,11 +3,20 @@
 #include <string>
 #include <vector>
 
+#include "core/scene.hpp"
+
 namespace dem::cli {
 
 int run_command(const std::vector<std::string>& args);
 int validate_command(const std::vector<std::string>& args);
 int import_command(const std::vector<std::string>& args);  // cli/import_command.cpp
+int study_command(const std::vector<std::string>& args);   // cli/study_command.cpp
+
+// Runs a checked scene into `out` as `dem run` does: the legacy files, restart.dat and results.json
+// (threads < 0: the spec's; restart: a saved state to continue from, "" for none). Returns the exit
+// status (0, or 1 when the run stopped); throws for a state or file that cannot be read or written.
+int run_scene(Scene scene, const std::string& label, const std::string& out, int threads, bool quiet,
+              const std::string& restart);
 
 // Client verbs of a dem-server (cli/client_commands.cpp)
 int submit_command(const std::vector<std::string>& args);

@@ -18,6 +18,15 @@ const char* kUsage =
     "                                   a legacy INPT.inp (PDEM-EGD's: MESH the terrain, then the funnel) as\n"
     "                                   a job spec, with every line's fate; --unit: metres per INPT length\n"
     "                                   unit (default 1; 0.001 for mm)\n"
+    "  dem study STUDY.json --out DIR [--threads N] [--quiet] [--plan]\n"
+    "                                   a parameter study: the base spec's runs for each value (or combination\n"
+    "                                   of values) of the fields it names, one after another into DIR/run-NNN,\n"
+    "                                   then DIR/study.csv, study.json (one row per run: its values and its\n"
+    "                                   results.json) and study.svg (each result against the first parameter);\n"
+    "                                   runs done before with the same spec are kept; --plan lists the runs\n"
+    "  dem study STUDY.json --out DIR --submit [--detach]      the same study on a dem-server (its jobs run\n"
+    "                                   there); waits for them and downloads the table and figure into DIR\n"
+    "  dem study --id ID --out DIR                            follow a study on the server to its end\n"
     "\n"
     "  dem submit SPEC.json [--wait] [--idempotency-key K] [--quiet]\n"
     "                                   send a job spec to dem-server (mesh files go inline) and print the\n"
@@ -49,6 +58,7 @@ int main(int argc, char** argv) {
   if (verb == "run") return dem::cli::run_command(args);
   if (verb == "validate") return dem::cli::validate_command(args);
   if (verb == "import") return dem::cli::import_command(args);
+  if (verb == "study") return dem::cli::study_command(args);
   if (verb == "submit") return dem::cli::submit_command(args);
   if (verb == "status") return dem::cli::status_command(args);
   if (verb == "list") return dem::cli::list_command(args);

@@ -105,57 +105,61 @@ int validate_command(const std::vector<std::string>& args) {
   return 1;
 }
 
+int run_scene(Scene scene, const std::string& label, const std::string& out, int threads, bool quiet,
+              const std::string& restart) {
+  if (threads >= 0) scene.numerics.threads = threads;
+  Simulation sim(std::move(scene));
+  const bool append = !restart.empty();
+  if (append) {
+    StateIO::read_file(sim, restart);
+    StateIO::require_within_run(sim);
+  }
+  const std::int64_t first_step = sim.step_count();  // a continued run starts at its saved step
+  std::filesystem::create_directories(out);
+  std::printf("%s: %zu particles, %zu walls, %lld steps; %s\n", label.c_str(), sim.particles().size(),
+              sim.scene().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
+  std::fflush(stdout);
+
+  std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, out, append);
+  writers.push_back(std::make_unique<StateWriter>((std::filesystem::path(out) / "restart.dat").string()));
+  auto recorder = std::make_unique<ResultsRecorder>(
+      sim, (std::filesystem::path(out) / ResultsRecorder::kTrackName).string(), append);
+  std::vector<Observer*> observers;
+  for (auto& w : writers) observers.push_back(w.get());
+  observers.push_back(recorder.get());
+
+  RunOptions options;
+  if (!quiet) options.on_progress = make_progress_printer(isatty(STDERR_FILENO));
+  const RunOutcome outcome = run(sim, observers, options);
+  writers.clear();  // closes the files
+  results::write_results_file(recorder->results(), out);
+  if (!outcome.ok) {
+    std::fprintf(stderr, "dem run: %s\n(the files in %s hold every frame written before the stop)\n",
+                 outcome.error.c_str(), out.c_str());
+    return 1;
+  }
+  // the steps this run took, which loop_seconds timed (outcome.steps is the step it ended at)
+  const std::int64_t steps_run = outcome.steps - first_step;
+  const double rate = static_cast<double>(sim.particles().size()) * static_cast<double>(steps_run) /
+                      std::max(outcome.loop_seconds, 1e-9);
+  std::printf("done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d\n",
+              static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate,
+              sim.neighbor_builds());
+  for (std::size_t k = 0; k < sim.scene().sources.size(); ++k) {
+    const SourceProgress& progress = sim.source_progress()[k];
+    std::printf("source \"%s\": inserted %lld particles, %.6g kg; %lld batches found no room for a particle due\n",
+                sim.scene().sources[k].name.c_str(), static_cast<long long>(progress.inserted), progress.mass,
+                static_cast<long long>(progress.crowded_batches));
+  }
+  std::printf("results: %s\n", (std::filesystem::path(out) / results::kResultsName).c_str());
+  return 0;
+}
+
 int run_command(const std::vector<std::string>& args) {
   RunArgs a;
   if (!parse_run_args(args, a)) return 2;
   try {
-    Scene scene = load(a.spec);
-    if (a.threads >= 0) scene.numerics.threads = a.threads;
-    Simulation sim(std::move(scene));
-    const bool append = !a.restart.empty();
-    if (append) {
-      StateIO::read_file(sim, a.restart);
-      StateIO::require_within_run(sim);
-    }
-    const std::int64_t first_step = sim.step_count();  // a continued run starts at its saved step
-    std::filesystem::create_directories(a.out);
-    std::printf("%s: %zu particles, %zu walls, %lld steps; %s\n", a.spec.c_str(), sim.particles().size(),
-                sim.scene().walls.size(), static_cast<long long>(sim.total_steps()),
-                sim.time_step().describe().c_str());
-    std::fflush(stdout);
-
-    std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, a.out, append);
-    writers.push_back(std::make_unique<StateWriter>((std::filesystem::path(a.out) / "restart.dat").string()));
-    auto recorder = std::make_unique<ResultsRecorder>(
-        sim, (std::filesystem::path(a.out) / ResultsRecorder::kTrackName).string(), append);
-    std::vector<Observer*> observers;
-    for (auto& w : writers) observers.push_back(w.get());
-    observers.push_back(recorder.get());
-
-    RunOptions options;
-    if (!a.quiet) options.on_progress = make_progress_printer(isatty(STDERR_FILENO));
-    const RunOutcome outcome = run(sim, observers, options);
-    results::write_results_file(recorder->results(), a.out);
-    if (!outcome.ok) {
-      std::fprintf(stderr, "dem run: %s\n(the files in %s hold every frame written before the stop)\n",
-                   outcome.error.c_str(), a.out.c_str());
-      return 1;
-    }
-    // the steps this run took, which loop_seconds timed (outcome.steps is the step it ended at)
-    const std::int64_t steps_run = outcome.steps - first_step;
-    const double rate = static_cast<double>(sim.particles().size()) * static_cast<double>(steps_run) /
-                        std::max(outcome.loop_seconds, 1e-9);
-    std::printf("done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d\n",
-                static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate,
-                sim.neighbor_builds());
-    std::printf("results: %s\n", (std::filesystem::path(a.out) / results::kResultsName).c_str());
-    for (std::size_t k = 0; k < sim.scene().sources.size(); ++k) {
-      const SourceProgress& progress = sim.source_progress()[k];
-      std::printf("source \"%s\": inserted %lld particles, %.6g kg; %lld batches found no room for a particle due\n",
-                  sim.scene().sources[k].name.c_str(), static_cast<long long>(progress.inserted), progress.mass,
-                  static_cast<long long>(progress.crowded_batches));
-    }
-    return 0;
+    return run_scene(load(a.spec), a.spec, a.out, a.threads, a.quiet, a.restart);
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "%s: invalid spec:\n", a.spec.c_str());
     for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());

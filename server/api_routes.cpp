@@ -41,6 +41,13 @@ constexpr const char* kAction = "POST, OPTIONS";
 const char* allowed_methods(const std::vector<std::string>& s) {
   if (s.size() == 2 && (s[1] == "health" || s[1] == "openapi.json" || s[1] == "cases")) return kReadOnly;
   if (s.size() == 3 && s[1] == "cases") return kReadOnly;
+  if (s.size() >= 2 && s[1] == "studies") {
+    if (s.size() == 2) return kJobs;
+    if (s.size() == 3) return kReadOnly;
+    if (s.size() == 4 && (s[3] == "cancel" || s[3] == "resume")) return kAction;
+    if (s.size() == 4 && (s[3] == "results.json" || s[3] == "results.csv" || s[3] == "figure.svg")) return kReadOnly;
+    return nullptr;
+  }
   if (s.size() >= 2 && s[1] == "jobs") {
     if (s.size() == 2) return kJobs;
     if (s.size() == 3) return kJob;
@@ -98,6 +105,51 @@ Response submit(const Request& req, ApiContext& ctx) {
   } catch (const SceneError& e) {
     return error_response(req, http::status::bad_request, "invalid spec", {e.what()});
   }
+}
+
+Response create_study(const Request& req, ApiContext& ctx) {
+  if (content_type(req) != "application/json")
+    return error_response(req, http::status::unsupported_media_type,
+                          "Content-Type \"" + content_type(req) + "\" is not a study: send application/json");
+  const nlohmann::json study = nlohmann::json::parse(req.body(), nullptr, false);
+  if (study.is_discarded())
+    return error_response(req, http::status::bad_request, "the study is not JSON (docs/api.md, \"Studies\")");
+  try {
+    const StudyRecord created = ctx.studies.create(study);
+    Response res = json_response(req, http::status::created, ctx.studies.describe(created));
+    res.set(http::field::location, "/api/studies/" + std::to_string(created.id));
+    return res;
+  } catch (const study::StudyError& e) {
+    return error_response(req, http::status::bad_request, "invalid study", e.problems());
+  } catch (const spec::SpecError& e) {
+    return error_response(req, http::status::bad_request, "invalid study", e.problems());
+  }
+}
+
+http::message_generator study_resource(const Request& req, const std::vector<std::string>& s, ApiContext& ctx) {
+  if (s.size() == 2) {
+    if (req.method() == http::verb::post) return create_study(req, ctx);
+    nlohmann::json list = nlohmann::json::array();
+    for (const StudyRecord& study : ctx.studies.list()) list.push_back(ctx.studies.describe(study));
+    return json_response(req, http::status::ok, {{"studies", list}});
+  }
+  const std::optional<std::int64_t> id = parse_job_id(s[2]);
+  const std::optional<StudyRecord> study = id ? ctx.studies.get(*id) : std::nullopt;
+  if (!study) return error_response(req, http::status::not_found, "no study " + s[2]);
+  if (s.size() == 3) return json_response(req, http::status::ok, ctx.studies.describe(*study));
+  if (s[3] == "cancel" || s[3] == "resume") {
+    if (s[3] == "cancel")
+      ctx.studies.cancel(*study);
+    else
+      ctx.studies.resume(*study);
+    return json_response(req, http::status::ok, ctx.studies.describe(*study));
+  }
+  const study::StudyPlan plan = ctx.studies.plan(*study);
+  const std::vector<study::StudyRow> rows = ctx.studies.rows(*study, plan);
+  if (s[3] == "results.json") return json_response(req, http::status::ok, study::table_json(plan, rows));
+  if (s[3] == "results.csv")
+    return text_response(req, http::status::ok, "text/csv; charset=utf-8", study::table_csv(plan, rows));
+  return text_response(req, http::status::ok, "image/svg+xml", study::figure_svg(plan, rows));
 }
 
 Response list_jobs(const Request& req, const Target& target, ApiContext& ctx) {
@@ -216,6 +268,7 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
       return text_response(req, http::status::ok, "application/json", std::move(*spec));
     return error_response(req, http::status::not_found, "no bundled case " + s[2]);
   }
+  if (s[1] == "studies") return study_resource(req, s, ctx);
   // s[1] == "jobs"
   if (s.size() == 2) return m == http::verb::post ? submit(req, ctx) : list_jobs(req, target, ctx);
   const std::optional<std::int64_t> id = parse_job_id(s[2]);

@@ -10,11 +10,13 @@
 
 #include "server/http_util.hpp"
 #include "server/job_manager.hpp"
+#include "server/study_manager.hpp"
 
 namespace dem::server {
 
 struct ApiContext {
   JobManager& jobs;
+  StudyManager& studies;
   const std::string& openapi;          // the OpenAPI description served at /api/openapi.json
   const std::filesystem::path& cases;  // the bundled cases
 };

@@ -135,7 +135,9 @@ int run_server(const ServerOptions& options) {
   JobManager jobs(manager_options, frames);
   ConnectionLimits connections(options.max_connections, options.max_connections_per_client);
   asio::thread_pool checks(2);  // submissions' checks; joined when the server returns
+  StudyManager studies(options.data, jobs);
   ServerState state{jobs,
+                    studies,
                     frames,
                     openapi_json(),
                     options.web,

@@ -246,7 +246,8 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
   // Checking a submission builds its simulation (dem validate's checks), which for a large scene
   // takes a while: off the connections' threads, which must go on answering (two large
   // submissions once held /api/health for 2.6 s).
-  if (api && req.method() == http::verb::post && target.segments.size() == 2 && target.segments[1] == "jobs") {
+  if (api && req.method() == http::verb::post && target.segments.size() == 2 &&
+      (target.segments[1] == "jobs" || target.segments[1] == "studies")) {
     return boost::asio::post(
         state_.checks, [self = shared_from_this(), req = std::move(req), target = std::move(target)] {
           boost::asio::post(self->stream_.get_executor(),
@@ -259,7 +260,7 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
 http::message_generator HttpSession::answer(const Request& req, const Target& target) {
   try {
     if (!target.segments.empty() && target.segments[0] == "api") {
-      ApiContext ctx{state_.jobs, state_.openapi, state_.cases};
+      ApiContext ctx{state_.jobs, state_.studies, state_.openapi, state_.cases};
       return handle_api(req, target, ctx);
     }
     // a page opened with ?access_token= keeps the token in a cookie for its scripts and styles: the

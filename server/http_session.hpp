@@ -26,6 +26,7 @@ namespace dem::server {
 // What every connection shares.
 struct ServerState {
   JobManager& jobs;
+  StudyManager& studies;
   FrameHub& frames;
   std::string openapi;
   std::filesystem::path web;

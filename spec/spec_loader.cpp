@@ -90,6 +90,15 @@ api::JobSpec parse_json(const std::string& text) {
   return spec;
 }
 
+std::string to_json_text(const api::JobSpec& spec) {
+  std::string text;
+  google::protobuf::util::JsonPrintOptions options;
+  options.add_whitespace = true;
+  const auto status = google::protobuf::util::MessageToJsonString(spec, &text, options);
+  if (!status.ok()) throw SpecError({"spec: cannot be written as JSON: " + std::string(status.message())});
+  return text;
+}
+
 api::JobSpec parse_binary(const std::string& bytes) {
   api::JobSpec spec;
   if (!spec.ParseFromString(bytes)) throw SpecError({"spec: not a valid protobuf JobSpec message"});

@@ -23,6 +23,8 @@ class SpecError : public std::runtime_error {
 
 // Parses the canonical JSON mapping; unknown fields and wrong types are errors.
 api::JobSpec parse_json(const std::string& text);
+// The canonical JSON mapping of a spec (fields at their defaults left out).
+std::string to_json_text(const api::JobSpec& spec);
 // Parses protobuf wire bytes.
 api::JobSpec parse_binary(const std::string& bytes);
 // Reads a JSON spec file (errors name the file).

@@ -1,0 +1,266 @@
+// dem study: a parameter study (study/study_plan.hpp) run here, one job after another, or on a
+// dem-server (--submit), ending with its table (study.csv, study.json) and figure (study.svg).
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "cli/commands.hpp"
+#include "cli/verb_args.hpp"
+#include "core/errors.hpp"
+#include "results/results_json.hpp"
+#include "spec/referenced_files.hpp"
+#include "spec/spec_loader.hpp"
+#include "study/study_table.hpp"
+
+namespace dem::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+const Verb kVerb{"study",
+                 "study STUDY.json --out DIR [--threads N] [--quiet] [--plan] | study STUDY.json --out DIR --submit "
+                 "[--detach] | study --id ID --out DIR",
+                 "the study file",
+                 {"--out", "--threads", "--id"},
+                 {"--quiet", "--plan", "--submit", "--detach"},
+                 0,
+                 1};
+
+json read_json(const fs::path& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot open the " + what);
+  std::stringstream text;
+  text << in.rdbuf();
+  json j = json::parse(text.str(), nullptr, false);
+  if (j.is_discarded()) throw std::runtime_error(path.string() + ": the " + what + " is not JSON");
+  return j;
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  const fs::path part = path.string() + ".part";
+  {
+    std::ofstream out(part, std::ios::binary);
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write " + part.string() + " (a full disk?)");
+  }
+  fs::rename(part, path);
+}
+
+// The study file, its base spec (read from its file when the study names one) and the folder the
+// base's own files (meshes) are found from.
+struct StudyInput {
+  json study;
+  json base;
+  std::string base_dir;
+};
+
+StudyInput read_study(const std::string& path) {
+  StudyInput in;
+  in.study = read_json(path, "study file");
+  in.base_dir = fs::path(path).parent_path().string();
+  if (in.study.is_object() && in.study.contains("base") && in.study["base"].is_string()) {
+    const fs::path base = spec::resolve_file(in.study["base"].get<std::string>(), in.base_dir);
+    in.base = read_json(base, "base spec");
+    in.base_dir = base.parent_path().string();
+  }
+  return in;
+}
+
+void write_table(const fs::path& out, const study::StudyPlan& plan, const std::vector<study::StudyRow>& rows) {
+  write_text(out / "study.json", study::table_json(plan, rows).dump(2) + "\n");
+  write_text(out / "study.csv", study::table_csv(plan, rows));
+  write_text(out / "study.svg", study::figure_svg(plan, rows));
+}
+
+std::string row_line(const study::StudyPlan& plan, const study::StudyRow& row) {
+  std::string line = "run " + std::to_string(row.index) + " (" + study::describe_values(plan.parameters, row.values) +
+                     "): " + row.state;
+  if (!row.error.empty()) line += ": " + row.error;
+  if (row.results.is_object())
+    for (const std::string& key : study::plot_keys(plan, {row}))
+      for (const auto& [name, value] : study::flatten(row.results))
+        if (name == key) line += "; " + key + " = " + value.dump();
+  return line;
+}
+
+// Every run's spec checked as `dem validate` checks it, before any runs: a typo in the tenth value
+// is found now, not after nine runs.
+std::vector<Scene> check_runs(const study::StudyPlan& plan, const std::string& base_dir) {
+  std::vector<std::string> problems;
+  std::vector<Scene> scenes;
+  for (const study::StudyRun& run : plan.runs) {
+    const std::string where =
+        "run " + std::to_string(run.index) + " (" + study::describe_values(plan.parameters, run.values) + "): ";
+    try {
+      scenes.push_back(spec::to_scene(spec::parse_json(run.spec.dump()), base_dir));
+    } catch (const spec::SpecError& e) {
+      for (const std::string& p : e.problems()) problems.push_back(where + p);
+    } catch (const SceneError& e) {
+      problems.push_back(where + e.what());
+    }
+  }
+  if (!problems.empty()) throw study::StudyError(problems);
+  return scenes;
+}
+
+int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path& out, int threads, bool quiet) {
+  std::vector<Scene> scenes = check_runs(plan, in.base_dir);
+  fs::create_directories(out);
+  std::vector<study::StudyRow> rows;
+  for (const study::StudyRun& run : plan.runs) rows.push_back(study::row_of(run));
+  write_table(out, plan, rows);
+  int failed = 0;
+  for (std::size_t k = 0; k < plan.runs.size(); ++k) {
+    const study::StudyRun& run = plan.runs[k];
+    study::StudyRow& row = rows[k];
+    char name[32];
+    std::snprintf(name, sizeof name, "run-%03d", run.index);
+    const fs::path folder = out / name;
+    // a run done before with this very spec is kept: a study stopped half-way goes on where it stopped
+    const fs::path results = folder / results::kResultsName, spec_file = folder / "spec.json";
+    if (fs::exists(results) && fs::exists(spec_file)) {
+      const json done = read_json(results, "results file");
+      const json spec = json::parse(std::ifstream(spec_file), nullptr, false);
+      if (spec == run.spec && done.value("status", "") == "completed") {
+        row.state = "succeeded";
+        row.results = done;
+        std::printf("%s (done before, kept)\n", row_line(plan, row).c_str());
+        continue;
+      }
+    }
+    fs::create_directories(folder);
+    fs::remove(results);
+    write_text(spec_file, run.spec.dump(2) + "\n");
+    std::printf("run %d of %zu (%s) into %s\n", run.index, plan.runs.size(),
+                study::describe_values(plan.parameters, run.values).c_str(), folder.c_str());
+    std::fflush(stdout);
+    int status = 1;
+    try {
+      status = run_scene(std::move(scenes[k]), spec_file.string(), folder.string(), threads, quiet, "");
+    } catch (const std::exception& e) {
+      row.error = e.what();
+    }
+    if (fs::exists(results)) row.results = read_json(results, "results file");
+    row.state = status == 0 ? "succeeded" : "failed";
+    if (status != 0 && row.error.empty() && row.results.is_object()) row.error = row.results.value("error", "");
+    failed += status != 0;
+    std::printf("%s\n", row_line(plan, row).c_str());
+    write_table(out, plan, rows);
+  }
+  std::printf("study \"%s\": %zu runs, %d failed; table %s, figure %s\n", plan.name.c_str(), plan.runs.size(), failed,
+              (out / "study.csv").c_str(), (out / "study.svg").c_str());
+  return failed == 0 ? 0 : 1;
+}
+
+// Follows a server's study until every job has ended, then downloads its table and figure.
+int follow(const ServerApi& api, std::int64_t id, const fs::path& out) {
+  const std::string target = "/api/studies/" + std::to_string(id);
+  std::string last;
+  json study;
+  for (;;) {
+    study = api.call("GET", target);
+    const std::string line = "study " + std::to_string(id) + ": " + study.value("summary", std::string());
+    if (line != last) {
+      std::printf("%s\n", line.c_str());
+      std::fflush(stdout);
+      last = line;
+    }
+    if (study.value("finished", false)) break;
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+  }
+  fs::create_directories(out);
+  write_text(out / "study.json", api.send("GET", target + "/results.json").body);
+  write_text(out / "study.csv", api.send("GET", target + "/results.csv").body);
+  write_text(out / "study.svg", api.send("GET", target + "/figure.svg").body);
+  int failed = 0;
+  for (const json& job : study.value("jobs", json::array())) failed += job.value("state", "") != "succeeded";
+  std::printf("study %lld: table %s, figure %s\n", static_cast<long long>(id), (out / "study.csv").c_str(),
+              (out / "study.svg").c_str());
+  return failed == 0 ? 0 : 1;
+}
+
+// The study as the server takes it: its base inline, and the base's files (meshes) inline in it.
+json for_server(const StudyInput& in) {
+  json study = in.study;
+  study["base"] = json::parse(spec::to_json_text([&] {
+    api::JobSpec base = spec::parse_json((in.base.is_object() ? in.base : in.study["base"]).dump());
+    spec::inline_files(base, in.base_dir);
+    return base;
+  }()));
+  return study;
+}
+
+}  // namespace
+
+int study_command(const std::vector<std::string>& args) {
+  VerbArgs a;
+  if (const auto exit = parse_verb_args(kVerb, args, a)) return *exit;
+  const std::string out = a.value("--out");
+  const bool plan_only = a.flag("--plan");
+  if (a.values.count("--id")) {
+    const std::optional<std::int64_t> id = job_id(a.value("--id"));
+    if (!id) return usage_error(kVerb, "a study id is a whole number (got \"" + a.value("--id") + "\")");
+    if (!a.positional.empty()) return usage_error(kVerb, "--id follows a study on the server: give no study file");
+    if (out.empty()) return usage_error(kVerb, "--out DIR: where the table and the figure go");
+    return with_server(kVerb, a, [&](const ServerApi& api) { return follow(api, *id, out); });
+  }
+  if (a.positional.empty()) return usage_error(kVerb, "missing the study file");
+  if (out.empty() && !plan_only && !a.flag("--detach"))
+    return usage_error(kVerb, "--out DIR: where the runs, the table and the figure go");
+  int threads = -1;
+  if (a.values.count("--threads")) {
+    try {
+      std::size_t used = 0;
+      threads = std::stoi(a.value("--threads"), &used);
+      if (used != a.value("--threads").size()) threads = -1;
+    } catch (const std::exception&) {
+      threads = -1;
+    }
+    if (threads < 0)
+      return usage_error(kVerb, "--threads is a whole number >= 0 (got \"" + a.value("--threads") + "\")");
+  }
+  const std::string& path = a.positional[0];
+  try {
+    const StudyInput in = read_study(path);
+    const study::StudyPlan plan = study::plan_study(in.study, in.base);
+    if (plan_only) {
+      check_runs(plan, in.base_dir);
+      std::printf("study \"%s\": %zu runs (%s), every spec valid\n", plan.name.c_str(), plan.runs.size(),
+                  plan.grid ? "grid" : "zip");
+      for (const study::StudyRun& run : plan.runs)
+        std::printf("run %d: %s\n", run.index, study::describe_values(plan.parameters, run.values).c_str());
+      return 0;
+    }
+    if (!a.flag("--submit")) {
+      if (a.flag("--detach")) return usage_error(kVerb, "--detach goes with --submit (a study on the server)");
+      return run_here(plan, in, out, threads, a.flag("--quiet"));
+    }
+    const json study = for_server(in);
+    return with_server(kVerb, a, [&](const ServerApi& api) {
+      const client::Response response = api.send("POST", "/api/studies", study.dump(), "application/json");
+      const json created = api.json_of(response, "/api/studies");
+      const std::int64_t id = created.value("id", std::int64_t{-1});
+      std::printf("submitted study %lld: %zu jobs\n", static_cast<long long>(id),
+                  created.value("jobs", json::array()).size());
+      std::fflush(stdout);
+      if (a.flag("--detach")) return 0;
+      return follow(api, id, out);
+    });
+  } catch (const study::StudyError& e) {
+    std::fprintf(stderr, "%s: invalid study:\n", path.c_str());
+    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+  } catch (const spec::SpecError& e) {
+    std::fprintf(stderr, "%s: invalid base spec:\n", path.c_str());
+    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dem study: %s\n", e.what());
+  }
+  return 1;
+}
+
+}  // namespace dem::cli

@@ -1,0 +1,190 @@
+#include "server/study_manager.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "server/durable_file.hpp"
+#include "spec/spec_loader.hpp"
+
+namespace dem::server {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+json record_json(const StudyRecord& s) {
+  return {{"id", s.id}, {"name", s.name}, {"createdAt", s.created_at}, {"jobs", s.jobs}, {"study", s.study}};
+}
+
+}  // namespace
+
+StudyManager::StudyManager(const fs::path& data, JobManager& jobs) : folder_(data / "studies"), jobs_(jobs) {
+  fs::create_directories(folder_);
+  for (const fs::directory_entry& e : fs::directory_iterator(folder_)) {
+    if (!e.is_regular_file() || e.path().extension() != ".json") continue;  // a .part of a write cut short
+    std::ifstream in(e.path(), std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    const json j = json::parse(text.str(), nullptr, false);
+    StudyRecord s;
+    try {
+      if (j.is_discarded()) throw std::runtime_error("not JSON");
+      s.id = j.at("id").get<std::int64_t>();
+      s.name = j.at("name").get<std::string>();
+      s.created_at = j.at("createdAt").get<std::string>();
+      s.jobs = j.at("jobs").get<std::vector<std::int64_t>>();
+      s.study = j.at("study");
+    } catch (const std::exception& error) {
+      throw std::runtime_error("the study record " + e.path().string() + " cannot be read (" + error.what() +
+                               "): move it out of the data folder");
+    }
+    next_id_ = std::max(next_id_, s.id + 1);
+    studies_.push_back(std::move(s));
+  }
+  std::sort(studies_.begin(), studies_.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+}
+
+StudyRecord StudyManager::create(const json& posted) {
+  if (posted.is_object() && posted.contains("base") && !posted["base"].is_object())
+    throw study::StudyError(
+        {"base: the server takes the base spec inline, with its files (meshes) in it "
+         "(dem study --submit inlines them)"});
+  study::StudyPlan plan = study::plan_study(posted, json());
+  std::vector<std::string> problems;
+  std::vector<api::JobSpec> specs;
+  for (const study::StudyRun& run : plan.runs) {
+    const std::string where =
+        "run " + std::to_string(run.index) + " (" + study::describe_values(plan.parameters, run.values) + "): ";
+    try {
+      specs.push_back(spec::parse_json(run.spec.dump()));
+      spec::to_scene(specs.back());  // as a submission is checked; the server reads no files
+    } catch (const spec::SpecError& e) {
+      for (const std::string& p : e.problems()) problems.push_back(where + p);
+    } catch (const SceneError& e) {
+      problems.push_back(where + e.what());
+    }
+    if (problems.size() > 100) break;
+  }
+  if (!problems.empty()) throw study::StudyError(problems);
+
+  StudyRecord record;
+  record.name = plan.name;
+  record.created_at = utc_now();
+  record.study = posted;
+  try {
+    for (const api::JobSpec& spec : specs) record.jobs.push_back(jobs_.submit(spec, "").job.id);
+  } catch (...) {
+    for (std::int64_t id : record.jobs) jobs_.cancel(id);
+    throw;
+  }
+  std::lock_guard lock(mutex_);
+  record.id = next_id_++;
+  try {
+    write_file_durably(folder_ / (std::to_string(record.id) + ".json"), record_json(record).dump());
+  } catch (...) {
+    for (std::int64_t id : record.jobs) jobs_.cancel(id);
+    throw;
+  }
+  studies_.push_back(record);
+  return record;
+}
+
+std::vector<StudyRecord> StudyManager::list() const {
+  std::lock_guard lock(mutex_);
+  return studies_;
+}
+
+std::optional<StudyRecord> StudyManager::get(std::int64_t id) const {
+  std::lock_guard lock(mutex_);
+  for (const StudyRecord& s : studies_)
+    if (s.id == id) return s;
+  return std::nullopt;
+}
+
+study::StudyPlan StudyManager::plan(const StudyRecord& study) const { return study::plan_study(study.study, json()); }
+
+std::vector<study::StudyRow> StudyManager::rows(const StudyRecord& study, const study::StudyPlan& plan) const {
+  std::vector<study::StudyRow> rows;
+  for (std::size_t k = 0; k < plan.runs.size(); ++k) {
+    study::StudyRow row = study::row_of(plan.runs[k]);
+    if (k < study.jobs.size()) {
+      row.job = study.jobs[k];
+      if (const std::optional<JobRecord> job = jobs_.get(row.job)) {
+        row.state = to_string(job->state);
+        row.error = job->error;
+        row.results = job->results;
+      } else {
+        row.state = "deleted";
+      }
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+json StudyManager::describe(const StudyRecord& study) const {
+  const study::StudyPlan p = plan(study);
+  const std::vector<study::StudyRow> r = rows(study, p);
+  std::map<std::string, int> counts;
+  json jobs = json::array();
+  bool finished = true;
+  double progress = 0;
+  for (const study::StudyRow& row : r) {
+    ++counts[row.state];
+    json values = json::object();
+    for (std::size_t k = 0; k < p.parameters.size() && k < row.values.size(); ++k)
+      values[p.parameters[k].path] = row.values[k];
+    json j = {{"run", row.index}, {"job", row.job}, {"parameters", values}, {"state", row.state}};
+    const std::optional<JobRecord> job = jobs_.get(row.job);
+    if (job) {
+      j["progress"] = job->progress();
+      progress += job->progress();
+      finished = finished && is_final(job->state);
+    } else {
+      progress += 1;
+    }
+    if (!row.error.empty()) j["error"] = row.error;
+    jobs.push_back(std::move(j));
+  }
+  std::string summary;
+  for (const auto& [state, n] : counts) summary += (summary.empty() ? "" : ", ") + std::to_string(n) + " " + state;
+  json parameters = json::array();
+  for (const study::StudyParameter& parameter : p.parameters) parameters.push_back(parameter.path);
+  const std::string base = "/api/studies/" + std::to_string(study.id);
+  return {{"id", study.id},
+          {"name", study.name},
+          {"createdAt", study.created_at},
+          {"parameters", parameters},
+          {"combine", p.grid ? "grid" : "zip"},
+          {"jobs", jobs},
+          {"counts", counts},
+          {"summary", summary},
+          {"progress", r.empty() ? 1.0 : progress / static_cast<double>(r.size())},
+          {"finished", finished},
+          {"results",
+           {{"json", base + "/results.json"}, {"csv", base + "/results.csv"}, {"figure", base + "/figure.svg"}}}};
+}
+
+void StudyManager::cancel(const StudyRecord& study) {
+  // the queued ones first, from the last: a worker freed by the running one's end finds nothing
+  for (auto id = study.jobs.rbegin(); id != study.jobs.rend(); ++id) {
+    const std::optional<JobRecord> job = jobs_.get(*id);
+    if (job && job->state == JobState::Queued) jobs_.cancel(*id);
+  }
+  for (std::int64_t id : study.jobs) {
+    const std::optional<JobRecord> job = jobs_.get(id);
+    if (job && !is_final(job->state)) jobs_.cancel(id);
+  }
+}
+
+void StudyManager::resume(const StudyRecord& study) {
+  for (std::int64_t id : study.jobs) {
+    const std::optional<JobRecord> job = jobs_.get(id);
+    if (job && job->state == JobState::Interrupted) jobs_.resume(id);
+  }
+}
+
+}  // namespace dem::server

@@ -1,0 +1,142 @@
+// Parameter studies on the real server (/api/studies): one request queues a job per run; the study
+// shows their states, gives the results table (JSON, CSV) and the figure from the jobs' results;
+// cancel and resume act on all its jobs; a bad study or a bad run is refused whole, by name; the
+// studies outlive a restart. And a job's record carries its results, as dem run's results.json.
+#include "support/command.hpp"
+#include "support/server_test.hpp"
+
+namespace dem::test {
+namespace {
+
+class ServerStudies : public ServerTest {
+ protected:
+  nlohmann::json study_of(const std::string& base, const std::string& path, const nlohmann::json& values) {
+    return {{"name", "radius study"},
+            {"base", nlohmann::json::parse(base)},
+            {"parameters", {{{"path", path}, {"values", values}}}}};
+  }
+  client::Response post(const nlohmann::json& study) {
+    return client_->request("POST", "/api/studies", study.dump(), "application/json");
+  }
+  nlohmann::json get(const std::string& target) { return nlohmann::json::parse(client_->get(target).body); }
+  nlohmann::json wait_finished(long id, double seconds = 300) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    nlohmann::json s;
+    while (std::chrono::steady_clock::now() < end) {
+      s = get("/api/studies/" + std::to_string(id));
+      if (s.value("finished", false)) return s;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    ADD_FAILURE() << "study " << id << " did not finish: " << s.dump();
+    return s;
+  }
+};
+
+TEST_F(ServerStudies, AStudyIsOneRequestAndItsTableComesFromItsJobsResults) {
+  start_server();
+  const client::Response r = post(study_of(pouring_spec(0.015, 200, 100), "lattices[0].radius", {0.012, 0.015, 0.02}));
+  ASSERT_EQ(r.status, 201) << r.body;
+  const nlohmann::json created = nlohmann::json::parse(r.body);
+  const long id = created["id"];
+  EXPECT_EQ(r.header("location"), "/api/studies/" + std::to_string(id));
+  ASSERT_EQ(created["jobs"].size(), 3u);
+  const nlohmann::json done = wait_finished(id);
+  EXPECT_EQ(done["counts"]["succeeded"], 3) << done.dump();
+  EXPECT_EQ(done["progress"], 1.0);
+
+  // each job's record has its results; the table has them with the run's value
+  const nlohmann::json table = get("/api/studies/" + std::to_string(id) + "/results.json");
+  ASSERT_EQ(table["rows"].size(), 3u);
+  int previous = 1 << 30;
+  for (int k = 0; k < 3; ++k) {
+    const nlohmann::json& row = table["rows"][k];
+    const long job_id = row["job"];
+    const nlohmann::json job = this->job(job_id);
+    EXPECT_EQ(job["results"]["particles"], job["particles"]);
+    EXPECT_EQ(row["results"]["particles"], job["particles"]);
+    EXPECT_EQ(row["results"]["steps"], 200);
+    // larger spheres, fewer of them in the same box
+    const int particles = row["results"]["particles"];
+    EXPECT_LT(particles, previous);
+    previous = particles;
+    EXPECT_EQ(row["parameters"]["lattices[0].radius"], (std::vector<double>{0.012, 0.015, 0.02})[k]);
+  }
+  const client::Response csv = client_->get("/api/studies/" + std::to_string(id) + "/results.csv");
+  ASSERT_EQ(csv.status, 200);
+  EXPECT_EQ(csv.header("content-type"), "text/csv; charset=utf-8");
+  EXPECT_EQ(csv.body.substr(0, 34), "run,job,lattices[0].radius,state,e");
+  const client::Response svg = client_->get("/api/studies/" + std::to_string(id) + "/figure.svg");
+  ASSERT_EQ(svg.status, 200);
+  EXPECT_EQ(svg.header("content-type"), "image/svg+xml");
+  EXPECT_EQ(svg.body.rfind("<svg", 0), 0u);
+
+  // the same run locally gives the same results as the job
+  const fs::path local =
+      dem_run(replaced(pouring_spec(0.015, 200, 100), "\"radius\": 0.015", "\"radius\": 0.012"), "local");
+  const nlohmann::json here = nlohmann::json::parse(read_bytes(local / "results.json"));
+  EXPECT_EQ(here["motion"], table["rows"][0]["results"]["motion"]);
+  EXPECT_EQ(here["energy"], table["rows"][0]["results"]["energy"]);
+
+  // the studies and their results outlive a restart
+  server_.reset();
+  start_server();
+  const nlohmann::json after = get("/api/studies/" + std::to_string(id));
+  EXPECT_EQ(after["counts"]["succeeded"], 3) << after.dump();
+  EXPECT_EQ(get("/api/studies/" + std::to_string(id) + "/results.json"), table);
+  EXPECT_EQ(get("/api/studies")["studies"].size(), 1u);
+}
+
+TEST_F(ServerStudies, CancelStopsEveryJobOfTheStudy) {
+  start_server();
+  const client::Response r = post(study_of(pouring_spec(0.012, 2000000, 1000), "numerics.threads", {1, 1, 1}));
+  ASSERT_EQ(r.status, 201) << r.body;
+  const long id = nlohmann::json::parse(r.body)["id"];
+  const client::Response cancel = client_->request("POST", "/api/studies/" + std::to_string(id) + "/cancel", "", "");
+  ASSERT_EQ(cancel.status, 200) << cancel.body;
+  const nlohmann::json s = wait_finished(id, 60);
+  EXPECT_EQ(s["counts"]["cancelled"], 3) << s.dump();
+  EXPECT_EQ(client_->request("POST", "/api/studies/" + std::to_string(id) + "/resume", "", "").status, 200);
+}
+
+TEST_F(ServerStudies, ABadStudyOrABadRunIsRefusedWholeAndByName) {
+  start_server();
+  client::Response r = post(study_of(pouring_spec(0.015, 200, 100), "lattices[3].radius", {0.01}));
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(r.body.find("parameters[0].path: \\\"lattices[3].radius\\\""), std::string::npos) << r.body;
+  // the second value is bad: no job is queued
+  r = post(study_of(pouring_spec(0.015, 200, 100), "lattices[0].radius", {0.015, -0.01}));
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(r.body.find("run 2 (lattices[0].radius=-0.01)"), std::string::npos) << r.body;
+  EXPECT_EQ(get("/api/jobs")["jobs"].size(), 0u);
+  EXPECT_EQ(get("/api/studies")["studies"].size(), 0u);
+  // a base by file name: the server reads no files of the client's
+  nlohmann::json by_file = study_of(pouring_spec(0.015, 200, 100), "lattices[0].radius", {0.01});
+  by_file["base"] = "spec.json";
+  r = post(by_file);
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(r.body.find("base: the server takes the base spec inline"), std::string::npos) << r.body;
+  EXPECT_EQ(client_->request("POST", "/api/studies", "{", "application/json").status, 400);
+  EXPECT_EQ(client_->request("POST", "/api/studies", "{}", "text/plain").status, 415);
+  EXPECT_EQ(client_->get("/api/studies/7").status, 404);
+  EXPECT_EQ(client_->get("/api/studies/x/results.csv").status, 404);
+  EXPECT_EQ(client_->get("/api/studies/1/other").status, 404);
+  EXPECT_EQ(client_->request("DELETE", "/api/studies", "", "").status, 405);
+}
+
+TEST_F(ServerStudies, DemStudySubmitRunsTheStudyOnTheServerAndDownloadsItsTable) {
+  start_server();
+  write_text(dir_ / "base.json", pouring_spec(0.015, 200, 100));
+  write_text(dir_ / "study.json",
+             R"({"base": "base.json", "parameters": [{"path": "lattices[0].velocity.x", "values": [0, 0.3]}]})");
+  const CommandResult r = run_command(shell_quoted(kDem) + " study " + shell_quoted(dir_ / "study.json") +
+                                      " --submit --server " + server_->url() + " --out " + shell_quoted(dir_ / "out"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("submitted study 1: 2 jobs"), std::string::npos) << r.output;
+  const nlohmann::json table = nlohmann::json::parse(read_bytes(dir_ / "out" / "study.json"));
+  EXPECT_EQ(table["rows"].size(), 2u);
+  EXPECT_EQ(table["rows"][1]["state"], "succeeded");
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "study.svg"));
+}
+
+}  // namespace
+}  // namespace dem::test

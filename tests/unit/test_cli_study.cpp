@@ -1,0 +1,132 @@
+// dem study, run here: one command and one file give the runs, the table and the figure; a study
+// run again keeps what it ran; a bad study or a bad value is refused before anything runs, by name.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "support/command.hpp"
+
+namespace dem::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CliStudy : public DemCommandTest {
+ protected:
+  CommandResult dem(const std::string& args) { return run_command(shell_quoted(kDem) + " " + args); }
+  std::string read(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+};
+
+// Two spheres closing on each other: the faster they come, the more they overlap.
+const char* kBase = R"({
+  "name": "collision",
+  "materials": [{"name": "glass", "density": 2500, "normalStiffness": 1e5}],
+  "interactions": [{"a": "glass", "b": "glass", "restitution": 0.5, "friction": 0.3}],
+  "contact": {"normal": "LINEAR"},
+  "particles": [
+    {"position": {"x": 0}, "radius": 0.01, "material": "glass", "velocity": {"x": 1}},
+    {"position": {"x": 0.0201}, "radius": 0.01, "material": "glass", "velocity": {"x": -1}}
+  ],
+  "time": {"steps": 40},
+  "outputs": {"everySteps": 20}
+})";
+
+const char* kStudy = R"({
+  "name": "closing speed",
+  "base": "base.json",
+  "parameters": [{"path": "particles[0].velocity.x", "values": [0.5, 1, 2]}],
+  "plot": ["energy.start", "energy.dissipated"]
+})";
+
+TEST_F(CliStudy, OneCommandRunsEveryValueAndWritesTheTableAndTheFigure) {
+  write_spec("base.json", kBase);
+  const fs::path study = write_spec("study.json", kStudy);
+  const fs::path out = dir_ / "out";
+  const CommandResult r = dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("run 3 (particles[0].velocity.x=2): succeeded; energy.start = "), std::string::npos)
+      << r.output;
+  for (const char* run : {"run-001", "run-002", "run-003"}) {
+    EXPECT_TRUE(fs::exists(out / run / "results.json")) << run;
+    EXPECT_TRUE(fs::exists(out / run / "ANIMATION_3D.dat")) << run;
+  }
+  const nlohmann::json table = nlohmann::json::parse(read(out / "study.json"));
+  ASSERT_EQ(table["rows"].size(), 3u);
+  // the kinetic energy at the start, (1/2) m (v0^2 + 1)
+  const double m = 2500 * 4.0 / 3 * 3.141592653589793 * 1e-6;
+  for (int k = 0; k < 3; ++k) {
+    const double v0 = table["rows"][k]["parameters"]["particles[0].velocity.x"];
+    EXPECT_NEAR(table["rows"][k]["results"]["energy"]["start"].get<double>(), 0.5 * m * (v0 * v0 + 1), 1e-12);
+    EXPECT_EQ(table["rows"][k]["state"], "succeeded");
+  }
+  const std::string csv = read(out / "study.csv");
+  EXPECT_EQ(csv.substr(0, csv.find(',', 4)), "run,particles[0].velocity.x");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  const std::string svg = read(out / "study.svg");
+  EXPECT_NE(svg.find(">energy.dissipated<"), std::string::npos);
+
+  // run again: the three runs are kept, not run anew
+  const CommandResult again = dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(again.output.find("into"), std::string::npos) << again.output;
+  EXPECT_NE(again.output.find("(done before, kept)"), std::string::npos) << again.output;
+}
+
+TEST_F(CliStudy, PlanListsTheRunsWithoutRunningThem) {
+  write_spec("base.json", kBase);
+  const fs::path study = write_spec("study.json", kStudy);
+  const CommandResult r = dem("study " + shell_quoted(study) + " --plan");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("study \"closing speed\": 3 runs (grid), every spec valid"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("run 2: particles[0].velocity.x=1"), std::string::npos) << r.output;
+}
+
+TEST_F(CliStudy, ABadStudyOrABadValueIsRefusedByNameBeforeAnythingRuns) {
+  write_spec("base.json", kBase);
+  const fs::path out = dir_ / "out";
+  const fs::path bad_path = write_spec(
+      "bad_path.json", R"({"base": "base.json", "parameters": [{"path": "bonds.tensileStrength", "values": [1]}]})");
+  CommandResult r = dem("study " + shell_quoted(bad_path) + " --out " + shell_quoted(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("parameters[0].path: \"bonds.tensileStrength\": the base spec has no \"/bonds\""),
+            std::string::npos)
+      << r.output;
+  // the third value is bad: nothing runs, the problem names the run, its value and the field
+  const fs::path bad_value = write_spec(
+      "bad_value.json",
+      R"({"base": "base.json", "parameters": [{"path": "particles[1].radius", "values": [0.01, 0.011, -1]}]})");
+  r = dem("study " + shell_quoted(bad_value) + " --out " + shell_quoted(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("run 3 (particles[1].radius=-1): particles[1].radius"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  const fs::path missing = write_spec("missing.json", R"({"base": "nothere.json", "parameters": []})");
+  r = dem("study " + shell_quoted(missing) + " --out " + shell_quoted(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("nothere.json: cannot open the base spec"), std::string::npos) << r.output;
+  const fs::path not_json = write_spec("not_json.json", "{");
+  r = dem("study " + shell_quoted(not_json) + " --out " + shell_quoted(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("not_json.json: the study file is not JSON"), std::string::npos) << r.output;
+  EXPECT_EQ(dem("study").exit_code, 2);
+  EXPECT_EQ(dem("study " + shell_quoted(bad_path)).exit_code, 2);  // no --out
+}
+
+TEST_F(CliStudy, DemRunEndsWithItsResults) {
+  const fs::path spec = write_spec("spec.json", kBase);
+  const fs::path out = dir_ / "run";
+  const CommandResult r = dem("run " + shell_quoted(spec) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("results: " + (out / "results.json").string()), std::string::npos) << r.output;
+  const nlohmann::json results = nlohmann::json::parse(read(out / "results.json"));
+  EXPECT_EQ(results["status"], "completed");
+  EXPECT_EQ(results["steps"], 40);
+  EXPECT_EQ(results["particles"], 2);
+  EXPECT_TRUE(results.contains("motion"));
+  EXPECT_FALSE(results.contains("fragments"));  // no bonds
+}
+
+}  // namespace
+}  // namespace dem::test

@@ -1,0 +1,175 @@
+// Parameter studies (study/): the runs a study makes (grid and zip), the fields they set, every
+// problem of a study named by its field, and the table and figure made from the runs' results.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "study/study_table.hpp"
+
+namespace dem::study {
+namespace {
+
+using json = nlohmann::json;
+
+const json kBase = json::parse(R"({
+  "name": "base",
+  "bonds": {"tensileStrength": 1e6, "seed": 7},
+  "packings": [{"seed": 3}, {"seed": 4}],
+  "time": {"duration": 1}
+})");
+
+json study_with(const json& parameters, const std::string& combine = "grid") {
+  return {{"name", "s"}, {"base", kBase}, {"parameters", parameters}, {"combine", combine}};
+}
+
+std::vector<std::string> problems_of(const json& study) {
+  try {
+    plan_study(study, json());
+  } catch (const StudyError& e) {
+    return e.problems();
+  }
+  return {};
+}
+
+bool has_problem(const json& study, const std::string& text) {
+  const std::vector<std::string> p = problems_of(study);
+  return std::any_of(p.begin(), p.end(), [&](const std::string& s) { return s.find(text) != std::string::npos; });
+}
+
+TEST(StudyPlan, AGridRunsEveryCombinationTheLastParameterTurningFastest) {
+  const StudyPlan plan = plan_study(study_with({{{"path", "bonds.tensileStrength"}, {"values", {0, 4e6, 8e6}}},
+                                                {{"path", "/packings/1/seed"}, {"values", {1, 2}}}}),
+                                    json());
+  ASSERT_EQ(plan.runs.size(), 6u);
+  EXPECT_EQ(plan.runs[0].spec["bonds"]["tensileStrength"], 0);
+  EXPECT_EQ(plan.runs[0].spec["packings"][1]["seed"], 1);
+  EXPECT_EQ(plan.runs[1].spec["packings"][1]["seed"], 2);
+  EXPECT_EQ(plan.runs[5].spec["bonds"]["tensileStrength"], 8e6);
+  EXPECT_EQ(plan.runs[5].spec["packings"][1]["seed"], 2);
+  EXPECT_EQ(plan.runs[5].spec["packings"][0]["seed"], 3);  // the rest of the base as it was
+  EXPECT_EQ(plan.runs[5].spec["bonds"]["seed"], 7);
+  EXPECT_EQ(plan.runs[3].spec["name"], "s #4 (bonds.tensileStrength=4000000.0, /packings/1/seed=2)");
+  EXPECT_EQ(plan.runs[3].index, 4);
+}
+
+TEST(StudyPlan, AZipTakesTheKthValueOfEach) {
+  const StudyPlan plan = plan_study(study_with({{{"path", "bonds.tensileStrength"}, {"values", {1, 2, 3}}},
+                                                {{"path", "bonds.seed"}, {"values", {4, 5, 6}}}},
+                                               "zip"),
+                                    json());
+  ASSERT_EQ(plan.runs.size(), 3u);
+  EXPECT_EQ(plan.runs[2].spec["bonds"]["tensileStrength"], 3);
+  EXPECT_EQ(plan.runs[2].spec["bonds"]["seed"], 6);
+  EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.tensileStrength"}, {"values", {1, 2, 3}}},
+                                      {{"path", "bonds.seed"}, {"values", {4, 5}}}},
+                                     "zip"),
+                          "bonds.seed has 2"));
+}
+
+TEST(StudyPlan, AFieldTheBaseDoesNotHaveIsAddedWhenItsParentIsThere) {
+  const StudyPlan plan = plan_study(study_with({{{"path", "bonds.shearStrength"}, {"values", {5}}}}), json());
+  EXPECT_EQ(plan.runs[0].spec["bonds"]["shearStrength"], 5);
+}
+
+TEST(StudyPlan, EveryProblemIsNamedByItsField) {
+  EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.x.y"}, {"values", {1}}}}), "parameters[0].path"));
+  EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.x.y"}, {"values", {1}}}}), "has no \"/bonds/x\""));
+  EXPECT_TRUE(has_problem(study_with({{{"path", "packings[5]"}, {"values", {1}}}}), "has 2 entries"));
+  EXPECT_TRUE(has_problem(study_with({{{"path", "packings[5].seed"}, {"values", {1}}}}), "has no \"/packings/5\""));
+  EXPECT_TRUE(has_problem(study_with({{{"path", "time.duration.x"}, {"values", {1}}}}), "is a value"));
+  EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.seed"}, {"values", json::array()}}}), "parameters[0].values"));
+  EXPECT_TRUE(
+      has_problem(study_with({{{"path", "bonds.seed"}, {"values", {1}}}, {{"path", "/bonds/seed"}, {"values", {2}}}}),
+                  "varied twice"));
+  EXPECT_TRUE(
+      has_problem(study_with({{{"path", "bonds.seed"}, {"value", {1}}}}), "parameters[0].value: unknown field"));
+  EXPECT_TRUE(has_problem(study_with({{{"path", "a[x]"}, {"values", {1}}}}), "parameters[0].path: not a field's path"));
+  EXPECT_TRUE(has_problem(study_with(json::array()), "parameters: a non-empty list"));
+  EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.seed"}, {"values", {1}}}}, "cross"), "combine:"));
+  json no_base = study_with({{{"path", "bonds.seed"}, {"values", {1}}}});
+  no_base.erase("base");
+  EXPECT_TRUE(has_problem(no_base, "base: missing"));
+  json typo = study_with({{{"path", "bonds.seed"}, {"values", {1}}}});
+  typo["parameter"] = 1;
+  EXPECT_TRUE(has_problem(typo, "parameter: unknown field"));
+  // a grid too large to run
+  json big = study_with({{{"path", "bonds.seed"}, {"values", json(std::vector<int>(200, 1))}},
+                         {{"path", "bonds.tensileStrength"}, {"values", json(std::vector<int>(200, 1))}}});
+  EXPECT_TRUE(has_problem(big, "40000 runs, more than a study may have (10000)"));
+  EXPECT_TRUE(has_problem(json::array(), "a study is a JSON object"));
+}
+
+TEST(StudyPlan, DottedPathsAreJsonPointers) {
+  EXPECT_EQ(to_pointer("bonds.tensileStrength"), "/bonds/tensileStrength");
+  EXPECT_EQ(to_pointer("packings[0].seed"), "/packings/0/seed");
+  EXPECT_EQ(to_pointer("walls[2].load.fMax"), "/walls/2/load/fMax");
+  EXPECT_EQ(to_pointer("/a/0/b"), "/a/0/b");
+  EXPECT_THROW(to_pointer("a..b"), std::invalid_argument);
+  EXPECT_THROW(to_pointer("a[]"), std::invalid_argument);
+  EXPECT_THROW(to_pointer("a."), std::invalid_argument);
+  EXPECT_THROW(to_pointer(""), std::invalid_argument);
+}
+
+json results(double runout, int fragments) {
+  return {{"status", "completed"},
+          {"motion", {{"runout", {{"length", runout}}}, {"centreOfMass", {{"end", {1, 2, 3}}}}}},
+          {"fragments", {{"count", fragments}, {"sizes", {{{"fragments", 1}}}}}},
+          {"loadedWalls", {{{"wall", "sleeper"}, {"permanentSettlement", 0.01}, {"cycles", {{{"cycle", 1}}}}}}}};
+}
+
+TEST(StudyTable, OneRowPerRunWithItsValuesAndItsResults) {
+  const StudyPlan plan = plan_study(study_with({{{"path", "bonds.tensileStrength"}, {"values", {1, 2}}},
+                                                {{"path", "bonds.seed"}, {"values", {"a,b", "c"}}}}),
+                                    json());
+  std::vector<StudyRow> rows;
+  for (const StudyRun& run : plan.runs) rows.push_back(row_of(run));
+  rows[0].state = "succeeded";
+  rows[0].results = results(10, 3);
+  rows[1].state = "failed";
+  rows[1].error = "unstable";
+  const std::string csv = table_csv(plan, rows);
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_EQ(header.substr(0, 49), "run,bonds.tensileStrength,bonds.seed,state,error,");
+  EXPECT_NE(header.find("motion.runout.length"), std::string::npos) << header;
+  EXPECT_NE(header.find("motion.centreOfMass.end.2"), std::string::npos) << header;
+  EXPECT_NE(header.find("loadedWalls.0.permanentSettlement"), std::string::npos) << header;
+  EXPECT_EQ(header.find("cycles"), std::string::npos) << header;  // left to the JSON table
+  EXPECT_EQ(header.find("sizes"), std::string::npos) << header;
+  EXPECT_NE(csv.find("\n1,1,\"a,b\",succeeded,,"), std::string::npos) << csv;  // a comma quoted
+  EXPECT_NE(csv.find("\n2,1,c,failed,unstable"), std::string::npos) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
+
+  const json table = table_json(plan, rows);
+  EXPECT_EQ(table["rows"].size(), 4u);
+  EXPECT_EQ(table["rows"][0]["parameters"]["bonds.seed"], "a,b");
+  EXPECT_EQ(table["rows"][0]["results"]["fragments"]["count"], 3);
+  EXPECT_EQ(table["rows"][3]["state"], "not run");
+  EXPECT_EQ(table["plot"], json({"motion.runout.length", "fragments.count", "loadedWalls.0.permanentSettlement"}));
+}
+
+TEST(StudyTable, TheFigureHasAPanelPerResultAndAPointPerRun) {
+  const StudyPlan plan = plan_study(study_with({{{"path", "bonds.tensileStrength"}, {"values", {0, 4, 8}}},
+                                                {{"path", "bonds.seed"}, {"values", {1, 2}}}}),
+                                    json());
+  std::vector<StudyRow> rows;
+  for (const StudyRun& run : plan.runs) {
+    rows.push_back(row_of(run));
+    rows.back().results = results(10 - run.values[0].get<double>(), run.index);
+  }
+  rows[5].results = nullptr;  // not done yet
+  const std::string svg = figure_svg(plan, rows);
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  // three panels (runout, fragments, settlement), five runs with results in each
+  auto count = [&](const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("<circle"), 15u);
+  EXPECT_EQ(count("<polyline"), 3u);
+  EXPECT_NE(svg.find(">motion.runout.length<"), std::string::npos);
+  EXPECT_NE(svg.find(">bonds.tensileStrength<"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dem::study
