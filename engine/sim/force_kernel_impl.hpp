@@ -497,7 +497,10 @@ class ForceKernelImpl final : public ForceKernel {
       const Wall& wall = s.walls[wc.wall[e]];
       Vec3 normal;
       double delta;
-      if (p.inv_mass[i] == 0 || !wall.contact(p.x[i], ri, normal, delta)) {
+      // a held particle and a wall at rest cannot change each other; a moving wall pushing on a held
+      // particle must be stopped by it (its reaction goes to the wall, BoundaryLoad)
+      const bool held_against_still_wall = p.inv_mass[i] == 0 && !wall.pose.moving();
+      if (held_against_still_wall || !wall.contact(p.x[i], ri, normal, delta)) {
         const bool parted = wc.touching[e] && p.inv_mass[i] != 0;
         wc.touching[e] = 0;
         wc.fn[e] = wc.ft[e] = wc.kn[e] = wc.cn[e] = 0;

@@ -95,6 +95,25 @@ TEST(RunResults, APlateOnASphereSettlesItsStaticCompressionAtEachMinimumOfItsCyc
   EXPECT_DOUBLE_EQ(w.start_time, 0);
 }
 
+// A held sphere (fixed in place) under the loaded plate: the plate rests on it, at F / 2 kn at each
+// minimum of its load. It fell through the sphere before: a held particle's contacts with walls
+// were skipped, moving walls' too (found while writing the test above).
+TEST(RunResults, ALoadedPlateRestsOnAHeldSphere) {
+  Scene s = plate_on_sphere(2);
+  s.walls.pop_back();  // no floor: the sphere is held
+  s.particles[0].fixed = true;
+  Simulation sim(s);
+  const RunResults r = run_with_recorder(sim, track_path("held"), false);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.loaded_walls.size(), 1u);
+  ASSERT_EQ(r.loaded_walls[0].cycles.size(), 2u);
+  const double k = 2 * kKn, weight = kPlateMass * kG;
+  for (const LoadCycle& c : r.loaded_walls[0].cycles) {
+    EXPECT_NEAR(c.displacement, (kFMin + weight) / k, 0.01 * (kFMin + weight) / k) << "cycle " << c.cycle;
+    EXPECT_NEAR(c.peak_displacement, (kFMax + weight) / k, 0.01 * (kFMax + weight) / k) << "cycle " << c.cycle;
+  }
+}
+
 TEST(RunResults, ARunContinuedFromASavedStateGivesTheCyclesOfOneRunStraightThrough) {
   const Scene scene = plate_on_sphere(3);
   Simulation whole(scene);
