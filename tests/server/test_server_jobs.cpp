@@ -184,7 +184,8 @@ TEST_F(ServerJobs, HealthAndTheOpenApiDescriptionAreServed) {
   const nlohmann::json description = nlohmann::json::parse(api.body);
   EXPECT_EQ(description["openapi"].get<std::string>().substr(0, 2), "3.");
   for (const char* path : {"/api/jobs", "/api/jobs/{id}", "/api/jobs/{id}/cancel", "/api/jobs/{id}/artifacts/{name}",
-                           "/api/jobs/{id}/frames", "/api/health"})
+                           "/api/jobs/{id}/frames", "/api/health", "/api/studies", "/api/studies/{id}",
+                           "/api/studies/{id}/cancel", "/api/studies/{id}/results.csv", "/api/studies/{id}/figure.svg"})
     EXPECT_TRUE(description["paths"].contains(path)) << path;
 }
 
