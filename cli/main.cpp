@@ -27,6 +27,11 @@ const char* kUsage =
     "  dem study STUDY.json --out DIR --submit [--detach]      the same study on a dem-server (its jobs run\n"
     "                                   there); waits for them and downloads the table and figure into DIR\n"
     "  dem study --id ID --out DIR                            follow a study on the server to its end\n"
+    "  dem plot FILE --x COLUMN --y COLUMN [--y ...] --out FIGURE.svg [--title T]\n"
+    "                                   a figure of a run's columns (Force_Displacement.dat: --x 2 --y 3)\n"
+    "  dem plot results.json --rows LIST --x KEY --y KEY [--y ...] --out FIGURE.svg\n"
+    "                                   a figure of a list's rows (--rows loadedWalls[0].cycles --x cycle\n"
+    "                                   --y settlement)\n"
     "\n"
     "  dem submit SPEC.json [--wait] [--idempotency-key K] [--quiet]\n"
     "                                   send a job spec to dem-server (mesh files go inline) and print the\n"
@@ -59,6 +64,7 @@ int main(int argc, char** argv) {
   if (verb == "validate") return dem::cli::validate_command(args);
   if (verb == "import") return dem::cli::import_command(args);
   if (verb == "study") return dem::cli::study_command(args);
+  if (verb == "plot") return dem::cli::plot_command(args);
   if (verb == "submit") return dem::cli::submit_command(args);
   if (verb == "status") return dem::cli::status_command(args);
   if (verb == "list") return dem::cli::list_command(args);

@@ -1,0 +1,161 @@
+// dem plot: a figure (SVG) of a run's columns (Force_Displacement.dat, Energy.dat, ...) or of the
+// rows of a list in a JSON file (a results.json's load cycles), one panel per y.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "study/study_plan.hpp"
+#include "study/svg_chart.hpp"
+
+namespace dem::cli {
+namespace {
+
+using json = nlohmann::json;
+
+const char* kUsage =
+    "usage: dem plot FILE --x COLUMN --y COLUMN [--y COLUMN ...] --out FIGURE.svg [--title T]\n"
+    "         FILE: columns of numbers (lines that are not are skipped); COLUMN: 1, 2, ..., or 2:NAME\n"
+    "       dem plot FILE.json --rows LIST --x KEY --y KEY [--y KEY ...] --out FIGURE.svg [--title T]\n"
+    "         LIST: the path of a list of objects in the JSON file (loadedWalls[0].cycles); KEY: their fields\n";
+
+int usage(const std::string& problem) {
+  std::fprintf(stderr, "dem plot: %s\n%s", problem.c_str(), kUsage);
+  return 2;
+}
+
+// The rows of numbers of a text file: every line whose words are all numbers, with at least `need` of them.
+std::vector<std::vector<double>> numeric_rows(const std::string& path, std::size_t need) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open it");
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::vector<double> row;
+    std::string word;
+    bool numbers = true;
+    while (words >> word) {
+      char* end = nullptr;
+      const double v = std::strtod(word.c_str(), &end);
+      if (end == word.c_str() || *end != '\0') {
+        numbers = false;
+        break;
+      }
+      row.push_back(v);
+    }
+    if (numbers && row.size() >= need) rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+}  // namespace
+
+int plot_command(const std::vector<std::string>& args) {
+  std::string file, out, title, rows_path, x;
+  std::vector<std::string> ys;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    const bool takes_value = a == "--x" || a == "--y" || a == "--out" || a == "--title" || a == "--rows";
+    if (takes_value) {
+      if (k + 1 >= args.size()) return usage(a + " needs a value");
+      const std::string& v = args[++k];
+      if (a == "--x")
+        x = v;
+      else if (a == "--y")
+        ys.push_back(v);
+      else if (a == "--out")
+        out = v;
+      else if (a == "--title")
+        title = v;
+      else
+        rows_path = v;
+    } else if (!a.empty() && a[0] == '-') {
+      return usage("unknown option " + a);
+    } else if (file.empty()) {
+      file = a;
+    } else {
+      return usage("one file only (got \"" + file + "\" and \"" + a + "\")");
+    }
+  }
+  if (file.empty()) return usage("missing the file to plot");
+  if (x.empty() || ys.empty()) return usage("--x and at least one --y");
+  if (out.empty()) return usage("--out FIGURE.svg");
+  if (title.empty()) title = std::filesystem::path(file).filename().string();
+  try {
+    std::vector<study::Panel> panels(ys.size());
+    if (!rows_path.empty()) {
+      std::ifstream in(file);
+      if (!in) throw std::runtime_error(file + ": cannot open it");
+      const json doc = json::parse(in, nullptr, false);
+      if (doc.is_discarded()) throw std::runtime_error(file + ": not JSON");
+      const json::json_pointer pointer(study::to_pointer(rows_path));
+      if (!doc.contains(pointer) || !doc.at(pointer).is_array())
+        throw std::runtime_error(file + ": " + rows_path + " is not a list in it");
+      const json& rows = doc.at(pointer);
+      for (std::size_t k = 0; k < ys.size(); ++k) {
+        study::Series series{{}, true, true};
+        for (const json& row : rows) {
+          if (!row.is_object() || !row.contains(x) || !row.contains(ys[k]) || !row[x].is_number() ||
+              !row[ys[k]].is_number())
+            throw std::runtime_error(file + ": a row of " + rows_path + " has no number " +
+                                     (row.is_object() && row.contains(x) && row[x].is_number() ? ys[k] : x));
+          series.points.emplace_back(row[x].get<double>(), row[ys[k]].get<double>());
+        }
+        panels[k] = {ys[k], x, "", {series}, {}};
+      }
+    } else {
+      // "3" or "3:force (N)": a column and its label
+      auto label = [](const std::string& text) {
+        const std::size_t colon = text.find(':');
+        return colon == std::string::npos ? "column " + text : text.substr(colon + 1);
+      };
+      auto column = [&](std::string text) {
+        text = text.substr(0, text.find(':'));
+        std::size_t used = 0;
+        int c = 0;
+        try {
+          c = std::stoi(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != text.size() || c < 1) throw std::invalid_argument("a column is 1, 2, ... (got \"" + text + "\")");
+        return static_cast<std::size_t>(c);
+      };
+      const std::size_t cx = column(x);
+      std::size_t need = cx;
+      std::vector<std::size_t> cy;
+      for (const std::string& y : ys) {
+        cy.push_back(column(y));
+        need = std::max(need, cy.back());
+      }
+      const std::vector<std::vector<double>> rows = numeric_rows(file, need);
+      if (rows.empty()) throw std::runtime_error(file + ": no line of at least " + std::to_string(need) + " numbers");
+      for (std::size_t k = 0; k < cy.size(); ++k) {
+        study::Series series{{}, true, false};
+        for (const std::vector<double>& row : rows) series.points.emplace_back(row[cx - 1], row[cy[k] - 1]);
+        panels[k] = {label(ys[k]), label(x), "", {series}, {}};
+      }
+    }
+    std::ofstream o(out, std::ios::binary);
+    o << study::chart_svg(title, panels);
+    o.flush();
+    if (!o) throw std::runtime_error("cannot write " + out);
+    std::printf("%s\n", out.c_str());
+    return 0;
+  } catch (const std::invalid_argument& e) {
+    return usage(e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dem plot: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace dem::cli

@@ -1,0 +1,31 @@
+// A small SVG chart: panels side by side, each with its title, axes with round ticks, and series of
+// points (markers, a joining line, or both). Studies' figures and `dem plot` draw with it.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace dem::study {
+
+struct Series {
+  std::vector<std::pair<double, double>> points;
+  bool line = true;      // joined in the given order
+  bool markers = false;  // a dot at each point
+};
+
+struct Panel {
+  std::string title;
+  std::string x_label, y_label;
+  std::vector<Series> series;
+  // x tick labels in place of numbers (a study's non-numeric values): the label of x = k is labels[k]
+  std::vector<std::string> x_categories;
+};
+
+// The chart, up to three panels a row; a panel without points says so. Non-finite points are left out.
+std::string chart_svg(const std::string& title, const std::vector<Panel>& panels);
+
+// Text for SVG: <, >, & and " escaped.
+std::string xml_escaped(const std::string& text);
+
+}  // namespace dem::study
