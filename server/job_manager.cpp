@@ -218,6 +218,29 @@ JobManager::StoreHealth JobManager::store_health() const {
   return h;
 }
 
+JobRecord JobManager::check(const api::JobSpec& spec) const {
+  std::vector<std::string> files = spec::file_references(spec);
+  if (!files.empty()) {
+    for (std::string& f : files)
+      f += ": the server reads no files of the client's; give its content inline (`dem submit` inlines the files a "
+           "spec names)";
+    throw spec::SpecError(files);
+  }
+  JobRecord job;
+  spec::SpecLimits limits;
+  limits.max_memory_bytes = options_.max_job_memory_bytes;
+  limits.memory_limit_name = "this server's limit for one job (--max-job-memory-mb)";
+  // the checks of `dem validate`, the time step's included
+  const Simulation sim(spec::to_scene(spec, "", limits));
+  job.name = spec.name();
+  job.length_unit = spec.outputs().length_unit().empty() ? "m" : spec.outputs().length_unit();
+  job.particles = static_cast<std::int64_t>(sim.particles().size());
+  job.total_steps = sim.total_steps();
+  job.time_step = sim.dt();
+  refuse_outputs_past_limit(sim);
+  return job;
+}
+
 JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::string& idempotency_key) {
   const std::string bytes = spec.SerializeAsString();
   auto replay = [&]() -> std::optional<Submitted> {
@@ -232,27 +255,7 @@ JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::st
     std::lock_guard lock(mutex_);
     if (auto earlier = replay()) return *earlier;
   }
-  std::vector<std::string> files = spec::file_references(spec);
-  if (!files.empty()) {
-    for (std::string& f : files)
-      f += ": the server reads no files of the client's; give its content inline (`dem submit` inlines the files a "
-           "spec names)";
-    throw spec::SpecError(files);
-  }
-  JobRecord job;
-  {
-    spec::SpecLimits limits;
-    limits.max_memory_bytes = options_.max_job_memory_bytes;
-    limits.memory_limit_name = "this server's limit for one job (--max-job-memory-mb)";
-    // the checks of `dem validate`, the time step's included
-    const Simulation sim(spec::to_scene(spec, "", limits));
-    job.name = spec.name();
-    job.length_unit = spec.outputs().length_unit().empty() ? "m" : spec.outputs().length_unit();
-    job.particles = static_cast<std::int64_t>(sim.particles().size());
-    job.total_steps = sim.total_steps();
-    job.time_step = sim.dt();
-    refuse_outputs_past_limit(sim);
-  }
+  JobRecord job = check(spec);
   job.created_at = utc_now();
   job.idempotency_key = idempotency_key;
 

@@ -65,6 +65,10 @@ class JobManager {
     bool conflict = false;
   };
   Submitted submit(const api::JobSpec& spec, const std::string& idempotency_key);
+  // The checks of submit, queueing nothing: no file named (the server reads no files of the
+  // client's), dem validate's checks, this server's limits. Throws as submit does; returns the
+  // record the job would have.
+  JobRecord check(const api::JobSpec& spec) const;
 
   std::optional<JobRecord> get(std::int64_t id) const;
   std::vector<JobRecord> list() const;

@@ -60,7 +60,7 @@ StudyRecord StudyManager::create(const json& posted) {
         "run " + std::to_string(run.index) + " (" + study::describe_values(plan.parameters, run.values) + "): ";
     try {
       specs.push_back(spec::parse_json(run.spec.dump()));
-      spec::to_scene(specs.back());  // as a submission is checked; the server reads no files
+      jobs_.check(specs.back());  // as a submission is checked: no file is read
     } catch (const spec::SpecError& e) {
       for (const std::string& p : e.problems()) problems.push_back(where + p);
     } catch (const SceneError& e) {

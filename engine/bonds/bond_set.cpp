@@ -88,7 +88,7 @@ BondCounts BondSet::counts() const {
   return c;
 }
 
-std::vector<int> BondSet::fragments(const std::vector<int>& id) const {
+std::vector<int> BondSet::fragments(const std::vector<int>& id, const std::vector<int>& body) const {
   const int n = static_cast<int>(id.size());
   std::vector<int> root(n);
   std::iota(root.begin(), root.end(), 0);
@@ -101,6 +101,19 @@ std::vector<int> BondSet::fragments(const std::vector<int>& id) const {
       const int a = find(b.i), c = find(b.j);
       if (a != c) root[std::max(a, c)] = std::min(a, c);
     }
+  // a rigid clump's members are one piece, whatever bonds say
+  std::vector<int> first_of_body;
+  for (int i = 0; i < static_cast<int>(body.size()) && i < n; ++i) {
+    if (body[i] < 0) continue;
+    if (static_cast<int>(first_of_body.size()) <= body[i]) first_of_body.resize(body[i] + 1, -1);
+    int& first = first_of_body[body[i]];
+    if (first < 0) {
+      first = i;
+      continue;
+    }
+    const int a = find(first), c = find(i);
+    if (a != c) root[std::max(a, c)] = std::min(a, c);
+  }
   // number the fragments by their lowest particle id, so that the numbers do not depend on the order
   std::vector<int> lowest(n, -1);
   for (int i = 0; i < n; ++i) {

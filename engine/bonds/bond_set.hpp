@@ -39,8 +39,9 @@ class BondSet {
   double elastic_energy() const;
 
   // Fragment of each particle (by particle index): particles joined by intact bonds share one;
-  // fragments are numbered from 1 in the order of their lowest particle id (`id`).
-  std::vector<int> fragments(const std::vector<int>& id) const;
+  // fragments are numbered from 1 in the order of their lowest particle id (`id`). `body`: each
+  // particle's rigid clump (-1: none; empty: no clumps), whose members are one piece.
+  std::vector<int> fragments(const std::vector<int>& id, const std::vector<int>& body = {}) const;
 
  private:
   std::vector<Bond> bonds_;

@@ -26,6 +26,20 @@ Vec3 up_of(const Scene& scene) {
 
 Vec3 horizontal(const Vec3& v, const Vec3& up) { return v - v.dot(up) * up; }
 
+// Each particle's share of the mass: its own, or its clump's divided among the clump's members (a
+// member's Particles::mass is its whole clump's, which the contacts' damping wants).
+std::vector<double> mass_shares(const Simulation& sim) {
+  const Particles& p = sim.particles();
+  std::vector<double> share = p.mass;
+  if (p.body.empty()) return share;
+  std::vector<int> members(sim.state().bodies.mass.size(), 0);
+  for (int b : p.body)
+    if (b >= 0) ++members[b];
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body[i] >= 0) share[i] = sim.state().bodies.mass[p.body[i]] / members[p.body[i]];
+  return share;
+}
+
 int last_stage(const Scene& scene) { return scene.stages.empty() ? 0 : static_cast<int>(scene.stages.size()) - 1; }
 
 std::string number(double v) {
@@ -208,14 +222,15 @@ MotionResults ResultsRecorder::motion(const Simulation& sim) const {
   m.reference_stage = ref.stage;
 
   // the centre of mass of the moving particles there at both instants
+  const std::vector<double> share = mass_shares(sim);
   double mass = 0;
   Vec3 start = Vec3::Zero(), end = Vec3::Zero();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const auto then = ref.position.find(p.id[i]);
     if (!moves(p, i) || then == ref.position.end()) continue;
-    mass += p.mass[i];
-    start += p.mass[i] * then->second;
-    end += p.mass[i] * p.x[i];
+    mass += share[i];
+    start += share[i] * then->second;
+    end += share[i] * p.x[i];
   }
   if (mass > 0) {
     m.com_start = start / mass;
@@ -298,14 +313,15 @@ MotionResults ResultsRecorder::motion(const Simulation& sim) const {
 FragmentResults ResultsRecorder::fragment_results(const Simulation& sim) const {
   const Particles& p = sim.particles();
   const std::vector<int> label = sim.fragments();
+  const std::vector<double> share = mass_shares(sim);
   FragmentResults r;
   std::map<int, std::pair<int, double>> pieces;  // label: particles, mass
   double total = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     auto& [n, mass] = pieces[label[i]];
     ++n;
-    mass += p.mass[i];
-    total += p.mass[i];
+    mass += share[i];
+    total += share[i];
   }
   r.count = static_cast<int>(pieces.size());
   double largest = 0;
@@ -337,7 +353,7 @@ FragmentResults ResultsRecorder::fragment_results(const Simulation& sim) const {
   for (std::size_t i = 0; i < p.size(); ++i) {
     const auto then = reference_->fragment.find(p.id[i]);
     if (then == reference_->fragment.end() || size_then[then->second] < 2) continue;
-    parts[then->second][label[i]] += p.mass[i];
+    parts[then->second][label[i]] += share[i];
   }
   double pieced = 0;
   for (const auto& [piece, now] : parts) {

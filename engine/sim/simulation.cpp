@@ -859,7 +859,8 @@ std::vector<int> Simulation::contact_counts() const {
 
 std::vector<int> Simulation::fragments() const {
   const Particles& p = state_.particles;
-  std::vector<int> part = state_.bonds.empty() ? std::vector<int>(p.size(), 0) : state_.bonds.fragments(p.id);
+  if (!state_.bonds.empty()) return state_.bonds.fragments(p.id, p.body);  // a clump is one piece among them
+  std::vector<int> part(p.size(), 0);
   if (!p.body.empty())  // a clump's members are its part: the clump's number from 1
     for (std::size_t i = 0; i < p.size(); ++i)
       if (p.body[i] >= 0) part[i] = p.body[i] + 1;

@@ -125,8 +125,9 @@ class Simulation {
   std::vector<int> contact_counts() const;  // per particle index: touching pairs and walls
   std::vector<PairContact> pair_contacts() const;
   std::vector<WallContact> wall_contacts() const;  // touching ones, by particle then wall
-  // Per particle index: its fragment (particles held together by intact bonds), numbered from 1
-  // by lowest id; all 0 in a scene without bonds.
+  // Per particle index: its fragment (particles held together by intact bonds, a rigid clump's
+  // members one piece among them), numbered from 1 by lowest id. Without bonds: a clump member's
+  // clump number from 1, a free sphere 0.
   std::vector<int> fragments() const;
   const BondSet& bonds() const { return state_.bonds; }
   // Particles entering during the run (Scene::sources): the scene's own come first (ids below

@@ -123,6 +123,22 @@ TEST_F(ServerStudies, ABadStudyOrABadRunIsRefusedWholeAndByName) {
   EXPECT_EQ(client_->request("DELETE", "/api/studies", "", "").status, 405);
 }
 
+// A base naming a file (a mesh, a clump template) is refused before the server opens it: it opened
+// and parsed it, and its error showed the file's first word (an independent tester read a 0600
+// file and /proc/self/environ that way, and /dev/zero took 3 GB).
+TEST_F(ServerStudies, AFileNamedByTheBaseIsNeverOpened) {
+  start_server();
+  write_text(dir_ / "secret.txt", "hunter2 s3cr3t\n");
+  nlohmann::json study = study_of(pouring_spec(0.015, 200, 100), "lattices[0].radius", {0.015});
+  study["base"]["walls"][0] = {
+      {"name", "floor"}, {"material", "steel"}, {"mesh", {{"file", (dir_ / "secret.txt").string()}}}};
+  const client::Response r = post(study);
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(r.body.find("the server reads no files of the client's"), std::string::npos) << r.body;
+  EXPECT_EQ(r.body.find("hunter2"), std::string::npos) << r.body;
+  EXPECT_EQ(get("/api/jobs")["jobs"].size(), 0u);
+}
+
 TEST_F(ServerStudies, DemStudySubmitRunsTheStudyOnTheServerAndDownloadsItsTable) {
   start_server();
   write_text(dir_ / "base.json", pouring_spec(0.015, 200, 100));

@@ -237,6 +237,50 @@ TEST(RunResults, ABondedPairPulledApartIsTwoFragmentsWithHalfItsMassBrokenOff) {
   EXPECT_NEAR(f.sizes[0].mass, 3 * m, 1e-12);
 }
 
+// Bonds and rigid clumps in one scene: a clump is one piece among the bonded ones. A bonded pair
+// and two clumps far apart were counted as two pieces (the pair and the first clump both "1": an
+// independent tester).
+TEST(RunResults, AClumpIsOnePieceBesideBondedPieces) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.5, 0.5, 1e5);
+  const double r = 0.01;
+  s.particles.push_back(sphere({0, 0, 0}, r));
+  s.particles.push_back(sphere({2 * r, 0, 0}, r));
+  for (int c = 0; c < 2; ++c) {
+    const Vec3 at(2.0 * c, 0, 1);
+    ParticleInit a = sphere(at - Vec3(0.5 * r, 0, 0), r), b = sphere(at + Vec3(0.5 * r, 0, 0), r);
+    a.clump = b.clump = c;
+    s.particles.push_back(a);
+    s.particles.push_back(b);
+    ClumpInit clump;
+    clump.first = 2 + 2 * c;
+    clump.count = 2;
+    clump.mass = 2 * sphere_mass(2600, r);
+    clump.moments = Vec3(1e-6, 2e-6, 2e-6);
+    clump.position = at;
+    s.clumps.push_back(clump);
+  }
+  BondSettings bonds;
+  bonds.youngs_modulus = 1e7;
+  bonds.tensile_strength = 1e9;
+  bonds.shear_strength = 1e9;
+  s.bonds = bonds;
+  s.time.dt = 1e-6;
+  s.time.steps = 10;
+  Simulation sim(s);
+  const RunResults res = run_with_recorder(sim, track_path("clumps"), false);
+  ASSERT_TRUE(res.fragments.has_value());
+  EXPECT_EQ(res.fragments->bonds_initial, 1);  // the pair's; clump members are never bonded
+  EXPECT_EQ(res.fragments->initial_count, 3);
+  EXPECT_EQ(res.fragments->count, 3);
+  // each piece weighs 2 m (a clump: the mass its spec gives), counted once
+  EXPECT_NEAR(res.fragments->largest_mass_fraction, 1.0 / 3, 1e-12);
+  ASSERT_EQ(res.fragments->sizes.size(), 1u);  // three pieces of two
+  EXPECT_NEAR(res.fragments->sizes[0].mass, 6 * sphere_mass(2600, r), 1e-12);
+  std::vector<int> by_id(6);
+  for (std::size_t i = 0; i < 6; ++i) by_id[sim.particles().id[i]] = sim.fragments()[i];
+  EXPECT_EQ(by_id, (std::vector<int>{1, 1, 2, 2, 3, 3}));
+}
+
 // A track file that is not one is refused by name, not read as nothing.
 TEST(RunResults, ADamagedTrackFileIsRefusedByName) {
   const std::string track = track_path("damaged");
