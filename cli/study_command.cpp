@@ -1,5 +1,6 @@
 // dem study: a parameter study (study/study_plan.hpp) run here, one job after another, or on a
 // dem-server (--submit), ending with its table (study.csv, study.json) and figure (study.svg).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -31,6 +32,9 @@ const Verb kVerb{"study",
                  1};
 
 json read_json(const fs::path& path, const std::string& what) {
+  std::error_code error;
+  if (fs::is_directory(path, error))
+    throw std::runtime_error(path.string() + ": the " + what + " is a folder, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path.string() + ": cannot open the " + what);
   std::stringstream text;
@@ -89,15 +93,29 @@ std::string row_line(const study::StudyPlan& plan, const study::StudyRow& row) {
 }
 
 // Every run's spec checked as `dem validate` checks it, before any runs: a typo in the tenth value
-// is found now, not after nine runs.
-std::vector<Scene> check_runs(const study::StudyPlan& plan, const std::string& base_dir) {
-  std::vector<std::string> problems;
+// is found now, not after nine runs. Each run's spec as its folder keeps it: standing alone, the
+// files it names (meshes) inline, so that the folder runs again as it is and a changed mesh is a
+// changed spec.
+struct CheckedRuns {
   std::vector<Scene> scenes;
+  std::vector<json> specs;
+};
+
+CheckedRuns check_runs(const study::StudyPlan& plan, const std::string& base_dir) {
+  std::vector<std::string> problems;
+  CheckedRuns checked;
   for (const study::StudyRun& run : plan.runs) {
     const std::string where =
         "run " + std::to_string(run.index) + " (" + study::describe_values(plan.parameters, run.values) + "): ";
     try {
-      scenes.push_back(spec::to_scene(spec::parse_json(run.spec.dump()), base_dir));
+      api::JobSpec spec = spec::parse_json(run.spec.dump());
+      checked.scenes.push_back(spec::to_scene(spec, base_dir));
+      if (spec::file_references(spec).empty()) {
+        checked.specs.push_back(run.spec);
+      } else {
+        spec::inline_files(spec, base_dir);
+        checked.specs.push_back(json::parse(spec::to_json_text(spec)));
+      }
     } catch (const spec::SpecError& e) {
       for (const std::string& p : e.problems()) problems.push_back(where + p);
     } catch (const SceneError& e) {
@@ -105,11 +123,25 @@ std::vector<Scene> check_runs(const study::StudyPlan& plan, const std::string& b
     }
   }
   if (!problems.empty()) throw study::StudyError(problems);
-  return scenes;
+  return checked;
+}
+
+// The results of a run done before with this very spec, or null (none, another spec, not
+// completed, or a file that cannot be read: the run is done again).
+json done_before(const fs::path& folder, const json& spec) {
+  const fs::path results = folder / results::kResultsName, spec_file = folder / "spec.json";
+  std::error_code error;
+  if (!fs::is_regular_file(results, error) || !fs::is_regular_file(spec_file, error)) return nullptr;
+  const json kept_spec = json::parse(std::ifstream(spec_file), nullptr, false);
+  const json done = json::parse(std::ifstream(results), nullptr, false);
+  if (kept_spec.is_discarded() || done.is_discarded() || kept_spec != spec || !done.is_object() ||
+      done.value("status", json()) != "completed")
+    return nullptr;
+  return done;
 }
 
 int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path& out, int threads, bool quiet) {
-  std::vector<Scene> scenes = check_runs(plan, in.base_dir);
+  CheckedRuns checked = check_runs(plan, in.base_dir);
   fs::create_directories(out);
   std::vector<study::StudyRow> rows;
   for (const study::StudyRun& run : plan.runs) rows.push_back(study::row_of(run));
@@ -123,34 +155,42 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
     const fs::path folder = out / name;
     // a run done before with this very spec is kept: a study stopped half-way goes on where it stopped
     const fs::path results = folder / results::kResultsName, spec_file = folder / "spec.json";
-    if (fs::exists(results) && fs::exists(spec_file)) {
-      const json done = read_json(results, "results file");
-      const json spec = json::parse(std::ifstream(spec_file), nullptr, false);
-      if (spec == run.spec && done.value("status", "") == "completed") {
-        row.state = "succeeded";
-        row.results = done;
-        std::printf("%s (done before, kept)\n", row_line(plan, row).c_str());
-        continue;
-      }
+    if (const json done = done_before(folder, checked.specs[k]); !done.is_null()) {
+      row.state = "succeeded";
+      row.results = done;
+      std::printf("%s (done before, kept)\n", row_line(plan, row).c_str());
+      continue;
     }
     fs::create_directories(folder);
     fs::remove(results);
-    write_text(spec_file, run.spec.dump(2) + "\n");
+    write_text(spec_file, checked.specs[k].dump(2) + "\n");
     std::printf("run %d of %zu (%s) into %s\n", run.index, plan.runs.size(),
                 study::describe_values(plan.parameters, run.values).c_str(), folder.c_str());
     std::fflush(stdout);
     int status = 1;
     try {
-      status = run_scene(std::move(scenes[k]), spec_file.string(), folder.string(), threads, quiet, "");
+      status = run_scene(std::move(checked.scenes[k]), spec_file.string(), folder.string(), threads, quiet, "");
     } catch (const std::exception& e) {
       row.error = e.what();
     }
-    if (fs::exists(results)) row.results = read_json(results, "results file");
+    if (fs::exists(results)) row.results = json::parse(std::ifstream(results), nullptr, false);
+    if (row.results.is_discarded()) row.results = nullptr;
     row.state = status == 0 ? "succeeded" : "failed";
     if (status != 0 && row.error.empty() && row.results.is_object()) row.error = row.results.value("error", "");
     failed += status != 0;
     std::printf("%s\n", row_line(plan, row).c_str());
     write_table(out, plan, rows);
+  }
+  for (const std::string& key : plan.plot) {
+    const bool any = std::any_of(rows.begin(), rows.end(), [&](const study::StudyRow& row) {
+      if (!row.results.is_object()) return false;
+      for (const auto& [name, value] : study::flatten(row.results))
+        if (name == key && value.is_number()) return true;
+      return false;
+    });
+    if (!any)
+      std::printf("plot: no run has a number \"%s\" (results.json's dotted names: see study.csv's columns)\n",
+                  key.c_str());
   }
   std::printf("study \"%s\": %zu runs, %d failed; table %s, figure %s\n", plan.name.c_str(), plan.runs.size(), failed,
               (out / "study.csv").c_str(), (out / "study.svg").c_str());

@@ -61,6 +61,8 @@ std::string to_pointer(const std::string& path) {
   if (path.empty()) throw std::invalid_argument("an empty path");
   if (path[0] == '/') {
     (void)json::json_pointer(path);  // throws on a bad escape
+    if (path.back() == '/' || path.find("//") != std::string::npos)
+      throw std::invalid_argument("an empty name in \"" + path + "\"");
     return path;
   }
   // dotted: names split by '.', list entries as [k]

@@ -75,6 +75,50 @@ TEST_F(CliStudy, OneCommandRunsEveryValueAndWritesTheTableAndTheFigure) {
   EXPECT_NE(again.output.find("(done before, kept)"), std::string::npos) << again.output;
 }
 
+// A run's folder keeps its spec standing alone, the mesh it names inline: it runs again from there,
+// and a mesh changed since is a changed spec, run anew (it was kept: an independent tester). A
+// results.json that cannot be read is a run to do again, not a study that cannot go on.
+TEST_F(CliStudy, ARunsFolderStandsAloneAndAChangedMeshOrADamagedResultIsRunAgain) {
+  const std::string mesh = "4 2\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n1 2 3\n1 3 4\n";
+  fs::create_directories(dir_ / "meshes");
+  write_spec("meshes/floor.dat", mesh);
+  write_spec("base.json", R"({
+  "materials": [{"name": "glass", "density": 2500, "normalStiffness": 1e5}, {"name": "steel", "rigid": true}],
+  "interactions": [{"a": "glass", "b": "glass", "restitution": 0.5, "friction": 0.3},
+                   {"a": "glass", "b": "steel", "restitution": 0.5, "friction": 0.3}],
+  "contact": {"normal": "LINEAR"},
+  "particles": [{"position": {"z": 0.02}, "radius": 0.01, "material": "glass"}],
+  "walls": [{"name": "floor", "material": "steel", "mesh": {"file": "meshes/floor.dat"}}],
+  "gravity": {"z": -9.81},
+  "time": {"steps": 200}
+})");
+  const fs::path study =
+      write_spec("study.json",
+                 R"({"base": "base.json", "parameters": [{"path": "particles[0].radius", "values": [0.01, 0.012]}]})");
+  const fs::path out = dir_ / "out";
+  const std::string command = "study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet";
+  ASSERT_EQ(dem(command).exit_code, 0);
+  // the run's folder runs again on its own, from anywhere
+  const CommandResult alone =
+      run_command("cd / && " + shell_quoted(kDem) + " run " + shell_quoted(out / "run-001" / "spec.json") + " --out " +
+                  shell_quoted(dir_ / "again") + " --quiet");
+  EXPECT_EQ(alone.exit_code, 0) << alone.output;
+  // the same: kept; the mesh moved: run again
+  EXPECT_NE(dem(command).output.find("(done before, kept)"), std::string::npos);
+  write_spec("meshes/floor.dat", "4 2\n-1 -1 -0.01\n1 -1 -0.01\n1 1 -0.01\n-1 1 -0.01\n1 2 3\n1 3 4\n");
+  CommandResult moved = dem(command);
+  ASSERT_EQ(moved.exit_code, 0) << moved.output;
+  EXPECT_EQ(moved.output.find("(done before, kept)"), std::string::npos) << moved.output;
+  // a damaged results.json: that run again, the other kept
+  write_spec("out/run-002/results.json", "garbage");
+  const CommandResult damaged = dem(command);
+  ASSERT_EQ(damaged.exit_code, 0) << damaged.output;
+  EXPECT_NE(damaged.output.find("run 1 (particles[0].radius=0.01): succeeded"), std::string::npos) << damaged.output;
+  EXPECT_NE(damaged.output.find("run 2 of 2"), std::string::npos) << damaged.output;
+  const std::string csv = read(out / "study.csv");
+  EXPECT_EQ(csv.find("not run"), std::string::npos) << csv;
+}
+
 TEST_F(CliStudy, PlanListsTheRunsWithoutRunningThem) {
   write_spec("base.json", kBase);
   const fs::path study = write_spec("study.json", kStudy);

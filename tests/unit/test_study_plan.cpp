@@ -108,6 +108,9 @@ TEST(StudyPlan, DottedPathsAreJsonPointers) {
   EXPECT_THROW(to_pointer("a[]"), std::invalid_argument);
   EXPECT_THROW(to_pointer("a."), std::invalid_argument);
   EXPECT_THROW(to_pointer(""), std::invalid_argument);
+  EXPECT_THROW(to_pointer("/"),
+               std::invalid_argument);  // the field "" (the spec then said "Proto fields must have a name")
+  EXPECT_THROW(to_pointer("/a//b"), std::invalid_argument);
 }
 
 json results(double runout, int fragments) {
