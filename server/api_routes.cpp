@@ -114,10 +114,20 @@ Response create_study(const Request& req, ApiContext& ctx) {
   const nlohmann::json study = nlohmann::json::parse(req.body(), nullptr, false);
   if (study.is_discarded())
     return error_response(req, http::status::bad_request, "the study is not JSON (docs/api.md, \"Studies\")");
+  const std::string key(req["Idempotency-Key"]);
+  if (key.size() > 200 || !std::all_of(key.begin(), key.end(), [](unsigned char c) { return c >= 0x20 && c < 0x7f; }))
+    return error_response(req, http::status::bad_request,
+                          "Idempotency-Key must be printable ASCII of at most 200 characters");
   try {
-    const StudyRecord created = ctx.studies.create(study);
-    Response res = json_response(req, http::status::created, ctx.studies.describe(created));
-    res.set(http::field::location, "/api/studies/" + std::to_string(created.id));
+    const StudyManager::Created made = ctx.studies.create(study, key);
+    if (made.conflict)
+      return error_response(req, http::status::unprocessable_entity,
+                            "Idempotency-Key \"" + key + "\" was used for study " + std::to_string(made.study.id) +
+                                " with another study: use a new key for a new study");
+    Response res =
+        json_response(req, made.created ? http::status::created : http::status::ok, ctx.studies.describe(made.study));
+    res.set(http::field::location, "/api/studies/" + std::to_string(made.study.id));
+    if (!made.created) res.set("Idempotent-Replayed", "true");
     return res;
   } catch (const study::StudyError& e) {
     return error_response(req, http::status::bad_request, "invalid study", e.problems());

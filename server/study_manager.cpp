@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
+#include <cstdio>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -16,7 +17,17 @@ using json = nlohmann::json;
 namespace {
 
 json record_json(const StudyRecord& s) {
-  return {{"id", s.id}, {"name", s.name}, {"createdAt", s.created_at}, {"jobs", s.jobs}, {"study", s.study}};
+  return {{"id", s.id},
+          {"name", s.name},
+          {"createdAt", s.created_at},
+          {"jobs", s.jobs},
+          {"study", s.study},
+          {"idempotencyKey", s.idempotency_key},
+          {"complete", s.complete}};
+}
+
+std::string run_key(std::int64_t study, int run) {
+  return "study " + std::to_string(study) + " run " + std::to_string(run);
 }
 
 }  // namespace
@@ -25,42 +36,80 @@ StudyManager::StudyManager(const fs::path& data, JobManager& jobs) : folder_(dat
   fs::create_directories(folder_);
   for (const fs::directory_entry& e : fs::directory_iterator(folder_)) {
     if (!e.is_regular_file() || e.path().extension() != ".json") continue;  // a .part of a write cut short
-    std::ifstream in(e.path(), std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    const json j = json::parse(text.str(), nullptr, false);
     StudyRecord s;
     try {
-      if (j.is_discarded()) throw std::runtime_error("not JSON");
+      std::ifstream in(e.path(), std::ios::binary);
+      std::stringstream text;
+      text << in.rdbuf();
+      const json j = json::parse(text.str(), nullptr, false);
+      if (!j.is_object()) throw std::runtime_error("not a JSON object");
       s.id = j.at("id").get<std::int64_t>();
+      if (e.path().filename() != std::to_string(s.id) + ".json")
+        throw std::runtime_error("its name is not its id's (" + std::to_string(s.id) + ".json)");
       s.name = j.at("name").get<std::string>();
       s.created_at = j.at("createdAt").get<std::string>();
       s.jobs = j.at("jobs").get<std::vector<std::int64_t>>();
       s.study = j.at("study");
+      s.idempotency_key = j.value("idempotencyKey", "");
+      s.complete = j.value("complete", true);
     } catch (const std::exception& error) {
-      throw std::runtime_error("the study record " + e.path().string() + " cannot be read (" + error.what() +
-                               "): move it out of the data folder");
+      // one damaged record does not keep the server and the other studies down
+      std::fprintf(stderr, "dem-server: the study record %s cannot be read (%s): left out\n", e.path().c_str(),
+                   error.what());
+      continue;
     }
     next_id_ = std::max(next_id_, s.id + 1);
+    if (!s.complete) {  // the server died while it queued the runs: queue the rest
+      try {
+        queue_runs(s);
+        s.complete = true;
+        save(s);
+      } catch (const std::exception& error) {
+        std::fprintf(stderr, "dem-server: study %lld: its runs cannot be queued (%s)\n", static_cast<long long>(s.id),
+                     error.what());
+      }
+    }
     studies_.push_back(std::move(s));
   }
   std::sort(studies_.begin(), studies_.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
 }
 
-StudyRecord StudyManager::create(const json& posted) {
+void StudyManager::save(const StudyRecord& study) const {
+  write_file_durably(folder_ / (std::to_string(study.id) + ".json"), record_json(study).dump());
+}
+
+void StudyManager::queue_runs(StudyRecord& study) const {
+  const study::StudyPlan p = plan(study);
+  study.jobs.resize(p.runs.size(), -1);
+  for (std::size_t k = 0; k < p.runs.size(); ++k) {
+    if (study.jobs[k] >= 0) continue;
+    try {
+      study.jobs[k] = jobs_.submit(spec::parse_json(p.runs[k].spec.dump()), run_key(study.id, p.runs[k].index)).job.id;
+    } catch (const spec::SpecError&) {
+      study.jobs[k] = -1;  // checked when the study was made: the server's limits changed since
+    } catch (const SceneError&) {
+      study.jobs[k] = -1;
+    }
+  }
+}
+
+StudyManager::Created StudyManager::create(const json& posted, const std::string& idempotency_key) {
+  if (!idempotency_key.empty()) {
+    std::lock_guard lock(mutex_);
+    for (const StudyRecord& s : studies_)
+      if (s.idempotency_key == idempotency_key) return {s, false, s.study != posted};
+  }
   if (posted.is_object() && posted.contains("base") && !posted["base"].is_object())
     throw study::StudyError(
         {"base: the server takes the base spec inline, with its files (meshes) in it "
          "(dem study --submit inlines them)"});
   study::StudyPlan plan = study::plan_study(posted, json());
   std::vector<std::string> problems;
-  std::vector<api::JobSpec> specs;
   for (const study::StudyRun& run : plan.runs) {
     const std::string where =
         "run " + std::to_string(run.index) + " (" + study::describe_values(plan.parameters, run.values) + "): ";
     try {
-      specs.push_back(spec::parse_json(run.spec.dump()));
-      jobs_.check(specs.back());  // as a submission is checked: no file is read
+      jobs_.check(spec::parse_json(run.spec.dump()));  // as a submission is checked: no file is read
     } catch (const spec::SpecError& e) {
       for (const std::string& p : e.problems()) problems.push_back(where + p);
     } catch (const SceneError& e) {
@@ -74,22 +123,18 @@ StudyRecord StudyManager::create(const json& posted) {
   record.name = plan.name;
   record.created_at = utc_now();
   record.study = posted;
-  try {
-    for (const api::JobSpec& spec : specs) record.jobs.push_back(jobs_.submit(spec, "").job.id);
-  } catch (...) {
-    for (std::int64_t id : record.jobs) jobs_.cancel(id);
-    throw;
+  record.idempotency_key = idempotency_key;
+  {
+    std::lock_guard lock(mutex_);
+    record.id = next_id_++;
   }
+  save(record);  // first, incomplete: a server that dies while it queues queues the rest at its start
+  queue_runs(record);
+  record.complete = true;
+  save(record);
   std::lock_guard lock(mutex_);
-  record.id = next_id_++;
-  try {
-    write_file_durably(folder_ / (std::to_string(record.id) + ".json"), record_json(record).dump());
-  } catch (...) {
-    for (std::int64_t id : record.jobs) jobs_.cancel(id);
-    throw;
-  }
   studies_.push_back(record);
-  return record;
+  return {record, true, false};
 }
 
 std::vector<StudyRecord> StudyManager::list() const {
@@ -112,7 +157,9 @@ std::vector<study::StudyRow> StudyManager::rows(const StudyRecord& study, const 
     study::StudyRow row = study::row_of(plan.runs[k]);
     if (k < study.jobs.size()) {
       row.job = study.jobs[k];
-      if (const std::optional<JobRecord> job = jobs_.get(row.job)) {
+      if (row.job < 0) {
+        row.state = "not queued";
+      } else if (const std::optional<JobRecord> job = jobs_.get(row.job)) {
         row.state = to_string(job->state);
         row.error = job->error;
         row.results = job->results;

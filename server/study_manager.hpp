@@ -21,8 +21,12 @@ struct StudyRecord {
   std::int64_t id = 0;
   std::string name;
   std::string created_at;
-  nlohmann::json study;  // as posted (its base inline)
-  std::vector<std::int64_t> jobs;
+  nlohmann::json study;            // as posted (its base inline)
+  std::vector<std::int64_t> jobs;  // per run; -1: a run that could not be queued when a crash was mended
+  std::string idempotency_key;
+  // false from the record's first write until every run is queued: a server that died in between
+  // queues the rest when it starts again (each run's job has the key "study ID run K")
+  bool complete = false;
 };
 
 class StudyManager {
@@ -30,10 +34,16 @@ class StudyManager {
   // Reads the studies of the data folder; throws std::runtime_error naming a record it cannot read.
   StudyManager(const std::filesystem::path& data, JobManager& jobs);
 
-  // Plans the study, checks every run's spec as a submission is checked, then queues them all (or,
-  // when one cannot be queued, none: those queued already are cancelled). Throws study::StudyError
-  // listing every problem, each naming the run and its values.
-  StudyRecord create(const nlohmann::json& study);
+  // Plans the study, checks every run's spec as a submission is checked, then queues them all.
+  // Throws study::StudyError listing every problem, each naming the run and its values; nothing is
+  // queued then. With an idempotency key already used, returns that study (created = false), or,
+  // when it was another study, says so (conflict = true).
+  struct Created {
+    StudyRecord study;
+    bool created = true;
+    bool conflict = false;
+  };
+  Created create(const nlohmann::json& study, const std::string& idempotency_key = "");
   std::vector<StudyRecord> list() const;
   std::optional<StudyRecord> get(std::int64_t id) const;
 
@@ -51,6 +61,9 @@ class StudyManager {
   std::filesystem::path folder_;  // DATA/studies
   JobManager& jobs_;
   mutable std::mutex mutex_;
+  void save(const StudyRecord& study) const;  // written whole, durably
+  void queue_runs(StudyRecord& study) const;  // queues each run not queued yet (idempotent per run)
+
   std::vector<StudyRecord> studies_;
   std::int64_t next_id_ = 1;
 };
