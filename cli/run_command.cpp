@@ -133,6 +133,7 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, int
   const RunOutcome outcome = run(sim, observers, options);
   writers.clear();  // closes the files
   results::write_results_file(recorder->results(), out);
+  for (const std::string& note : recorder->results().notes) std::fprintf(stderr, "dem run: note: %s\n", note.c_str());
   if (!outcome.ok) {
     std::fprintf(stderr, "dem run: %s\n(the files in %s hold every frame written before the stop)\n",
                  outcome.error.c_str(), out.c_str());

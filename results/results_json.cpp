@@ -91,6 +91,7 @@ nlohmann::json to_json(const RunResults& r) {
         {"kineticEnd", r.kinetic_end}}},
   };
   if (!r.ok) j["error"] = r.error;
+  if (!r.notes.empty()) j["notes"] = r.notes;
   if (r.motion) j["motion"] = motion_json(*r.motion);
   if (r.fragments) j["fragments"] = fragments_json(*r.fragments);
   if (!r.loaded_walls.empty()) {

@@ -53,6 +53,12 @@ std::string number(double v) {
 ResultsRecorder::ResultsRecorder(const Simulation& sim, std::string track, bool append) {
   if (append) read_track(track, sim.step_count(), static_cast<int>(sim.scene().walls.size()));
   const bool fresh = !append || !std::ifstream(track).good();
+  if (append && fresh)
+    notes_.push_back(ResultsRecorder::kTrackName +
+                     std::string(" was not in the run's folder: the results count from the "
+                                 "continuation at step ") +
+                     std::to_string(sim.step_count()) +
+                     " (where the particles were then, the load cycles from then on), not from the run's start");
   track_ = OutputFile(track, !fresh);
   if (fresh) write_line(kTrackMagic);
 }
@@ -99,6 +105,22 @@ void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_ste
         r.fragment[id] = fragment;
       }
       if (r.step <= up_to_step) reference_ = std::move(r);
+    } else if (kind == "entered") {
+      std::int64_t step = 0;
+      std::size_t n = 0;
+      if (!(words >> step >> n)) bad("an entered line is not STEP N");
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!std::getline(in, line)) bad("the entered particles end early");
+        std::istringstream pw(line);
+        std::string tag;
+        int id = 0, fragment = 0;
+        Vec3 x;
+        if (!(pw >> tag >> id >> x.x() >> x.y() >> x.z() >> fragment) || tag != "p")
+          bad("an entered particle is not p ID X Y Z FRAGMENT");
+        if (step > up_to_step || !reference_) continue;
+        reference_->position.emplace(id, x);
+        reference_->fragment.emplace(id, fragment);
+      }
     } else if (kind == "load") {
       int wall = 0;
       std::int64_t step = 0;
@@ -118,6 +140,8 @@ void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_ste
       auto found = walls_.find(wall);
       if (c.end_step > up_to_step || found == walls_.end() || found->second.start_time != start) continue;
       std::vector<LoadCycle>& cycles = found->second.cycles;
+      if (c.cycle < 1 || c.cycle > static_cast<int>(cycles.size()) + 1)  // one after another, or one again
+        bad("cycle " + std::to_string(c.cycle) + " after " + std::to_string(cycles.size()) + " cycles");
       cycles.resize(static_cast<std::size_t>(std::max<int>(c.cycle - 1, 0)));  // a later line for cycle K wins
       cycles.push_back(c);
     } else if (!kind.empty()) {
@@ -127,33 +151,77 @@ void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_ste
 }
 
 void ResultsRecorder::frame(const Simulation& sim) {
-  if (!reference_ && sim.stage() == last_stage(sim.scene())) take_reference(sim);
+  if (!reference_ && !pending_ && sim.stage() == last_stage(sim.scene())) {
+    take_positions(sim);  // the run's start (a run without stages, or with one)
+    complete_reference(sim);
+  }
 }
 
+// The reference is where the particles are when the last stage begins: at the end of the stage
+// before it. Its pieces are those after the last stage's first step, whose start glues the bonds a
+// stage asks for (the key block's bonds, glued as it is released).
 void ResultsRecorder::step(const Simulation& sim) {
-  if (!reference_ && sim.stage() == last_stage(sim.scene())) take_reference(sim);
+  if (!reference_) {
+    const int last = last_stage(sim.scene());
+    if (pending_) {
+      complete_reference(sim);
+    } else if (last > 0 && sim.stage() == last - 1 && sim.step_count() == sim.stage_end_step()) {
+      take_positions(sim);
+    } else if (sim.stage() == last) {  // a run continued inside its last stage without a track file
+      take_positions(sim);
+      complete_reference(sim);
+    }
+  } else if (sim.particles().size() > reference_->position.size()) {
+    add_entered(sim);
+  }
   track_loads(sim);
 }
 
-void ResultsRecorder::take_reference(const Simulation& sim) {
+void ResultsRecorder::take_positions(const Simulation& sim) {
   Reference r;
   r.step = sim.step_count();
   r.time = sim.time();
+  const Particles& p = sim.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) r.position[p.id[i]] = p.x[i];
+  pending_ = std::move(r);
+}
+
+void ResultsRecorder::complete_reference(const Simulation& sim) {
+  Reference r = std::move(*pending_);
+  pending_.reset();
   r.stage = sim.stage_name();
   r.bonds_intact = sim.bonds().counts().intact;
   const Particles& p = sim.particles();
   const std::vector<int> fragment = sim.fragments();
   std::string lines;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    r.position[p.id[i]] = p.x[i];
+    // a particle that entered in the stage's first step counts from where it is now
+    const Vec3 x = r.position.emplace(p.id[i], p.x[i]).first->second;
     r.fragment[p.id[i]] = fragment[i];
-    lines += "p " + std::to_string(p.id[i]) + ' ' + number(p.x[i].x()) + ' ' + number(p.x[i].y()) + ' ' +
-             number(p.x[i].z()) + ' ' + std::to_string(fragment[i]) + '\n';
+    lines += "p " + std::to_string(p.id[i]) + ' ' + number(x.x()) + ' ' + number(x.y()) + ' ' + number(x.z()) + ' ' +
+             std::to_string(fragment[i]) + '\n';
   }
   write_line("reference " + std::to_string(r.step) + ' ' + number(r.time) + ' ' + std::to_string(r.bonds_intact) + ' ' +
              std::to_string(p.size()) + ' ' + r.stage + (lines.empty() ? "" : "\n") +
              lines.substr(0, lines.empty() ? 0 : lines.size() - 1));
   reference_ = std::move(r);
+}
+
+// Particles a source inserted after the reference count from where they entered (their travel and
+// the source's top): a fed scene's centre of mass is the particles', wherever they came from.
+void ResultsRecorder::add_entered(const Simulation& sim) {
+  const Particles& p = sim.particles();
+  const std::vector<int> fragment = sim.fragments();
+  std::string lines;
+  std::size_t added = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!reference_->position.emplace(p.id[i], p.x[i]).second) continue;
+    reference_->fragment[p.id[i]] = fragment[i];
+    lines += "\np " + std::to_string(p.id[i]) + ' ' + number(p.x[i].x()) + ' ' + number(p.x[i].y()) + ' ' +
+             number(p.x[i].z()) + ' ' + std::to_string(fragment[i]);
+    ++added;
+  }
+  write_line("entered " + std::to_string(sim.step_count()) + ' ' + std::to_string(added) + lines);
 }
 
 // Per loaded wall: the cycles of a cyclic load close at each minimum of the load (its clock a whole
@@ -371,6 +439,7 @@ FragmentResults ResultsRecorder::fragment_results(const Simulation& sim) const {
 
 void ResultsRecorder::finish(const Simulation& sim, const RunOutcome& outcome) {
   RunResults& r = results_;
+  r.notes = notes_;
   r.ok = outcome.ok;
   r.error = outcome.error;
   r.particles = sim.particles().size();

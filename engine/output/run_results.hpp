@@ -93,6 +93,7 @@ struct RunResults {
   // Energy balance, J: the mechanical energy at the start and the end, the work fed in, and what
   // damping and friction took out (start + input - end).
   double energy_start = 0, energy_end = 0, energy_input = 0, energy_dissipated = 0, kinetic_end = 0;
+  std::vector<std::string> notes;            // what the numbers do not cover (a continuation without its track file)
   std::optional<MotionResults> motion;       // none before the reference or without free particles
   std::optional<FragmentResults> fragments;  // with bonds
   std::vector<LoadedWallResults> loaded_walls;
@@ -137,7 +138,9 @@ class ResultsRecorder final : public Observer {
     bool open = false;  // a cycle's numbers are being gathered
   };
 
-  void take_reference(const Simulation& sim);
+  void take_positions(const Simulation& sim);      // the reference's positions (pending_)
+  void complete_reference(const Simulation& sim);  // its pieces: reference_ from pending_
+  void add_entered(const Simulation& sim);         // particles a source inserted since
   void track_loads(const Simulation& sim);
   void read_track(const std::string& path, std::int64_t up_to_step, int walls);
   void write_line(const std::string& line);
@@ -146,6 +149,8 @@ class ResultsRecorder final : public Observer {
 
   OutputFile track_;
   std::optional<Reference> reference_;
+  std::optional<Reference> pending_;  // positions taken, pieces not yet
+  std::vector<std::string> notes_;
   std::map<int, WallTrack> walls_;  // by scene wall
   RunResults results_;
 };

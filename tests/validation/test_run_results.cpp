@@ -281,6 +281,81 @@ TEST(RunResults, AClumpIsOnePieceBesideBondedPieces) {
   EXPECT_EQ(by_id, (std::vector<int>{1, 1, 2, 2, 3, 3}));
 }
 
+// A staged run's reference is where the particles are as its last stage begins: free flight through
+// that stage travels v T exactly (it was one step late: 0.19999 of 0.2, an independent tester).
+TEST(RunResults, TheReferenceIsTheLastStagesStart) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.5, 0.5, 1e5);
+  s.particles.push_back(sphere({0, 0, 0}, 0.01, {1, 0, 0}));
+  s.time.dt = 1e-3;
+  s.time.allow_unstable_dt = true;  // nothing touches
+  Stage first, second;
+  first.name = "before";
+  first.steps = 100;
+  second.name = "after";
+  second.steps = 200;
+  s.stages = {first, second};
+  Simulation sim(s);
+  const RunResults r = run_with_recorder(sim, track_path("stages"), false);
+  ASSERT_TRUE(r.motion.has_value());
+  EXPECT_EQ(r.motion->reference_step, 100);
+  EXPECT_NEAR(r.motion->reference_time, 0.1, 1e-12);
+  EXPECT_EQ(r.motion->reference_stage, "after");
+  EXPECT_NEAR(r.motion->com_travel, 0.2, 1e-12);
+}
+
+// Particles a source inserts after the reference count from where they entered: spheres entering
+// at 0.3 m and falling to a floor drop, and the crown is the top of the entry region, not 0 (the
+// centre of mass read 0 -> 0 and H/L was negative: an independent tester).
+TEST(RunResults, ParticlesASourceInsertsCountFromWhereTheyEntered) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.3, 0.5, 1e5);
+  s.walls.push_back(plane(Vec3::Zero(), Vec3::UnitZ(), "floor"));
+  ParticleSource source;
+  source.name = "hopper";
+  source.box = {Vec3(-0.05, -0.05, 0.28), Vec3(0.05, 0.05, 0.32)};
+  source.sizes.mean = 0.01;
+  source.count_rate = 200;
+  source.end = 0.05;
+  s.sources.push_back(source);
+  s.gravity = Vec3(0, 0, -kG);
+  s.time.dt = 2e-5;
+  s.time.steps = 20000;  // 0.4 s: all have landed
+  Simulation sim(s);
+  const RunResults r = run_with_recorder(sim, track_path("source"), false);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_GT(r.particles, 5u);
+  ASSERT_TRUE(r.motion.has_value());
+  EXPECT_GT(r.motion->com_start.z(), 0.28);
+  EXPECT_LT(r.motion->com_end.z(), 0.05);
+  EXPECT_GT(r.motion->com_drop, 0.23);
+  EXPECT_GT(r.motion->fall_height, 0.25);
+}
+
+// A run continued without its track file says its results count from the continuation (they were
+// silently from there: a settlement of the wrong sign, an independent tester).
+TEST(RunResults, AContinuationWithoutItsTrackFileSaysSo) {
+  const Scene scene = plate_on_sphere(2);
+  Simulation first(scene);
+  {
+    ResultsRecorder recorder(first, track_path("first"), false);
+    RunOptions options;
+    std::atomic<bool> stop{false};
+    options.cancel = &stop;
+    options.after_step = [&](const Simulation& sim, bool) { stop = sim.time() >= 0.3; };
+    run(first, {&recorder}, options);
+  }
+  std::stringstream saved;
+  StateIO::write(first, saved);
+  Simulation second(scene);
+  StateIO::read(second, saved);
+  const std::string elsewhere = track_path("elsewhere");
+  std::filesystem::remove(elsewhere);
+  const RunResults r = run_with_recorder(second, elsewhere, true);
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_NE(r.notes[0].find("results_track.dat was not in the run's folder: the results count from the continuation"),
+            std::string::npos)
+      << r.notes[0];
+}
+
 // A track file that is not one is refused by name, not read as nothing.
 TEST(RunResults, ADamagedTrackFileIsRefusedByName) {
   const std::string track = track_path("damaged");
@@ -295,6 +370,17 @@ TEST(RunResults, ADamagedTrackFileIsRefusedByName) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(track), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("no such wall"), std::string::npos) << e.what();
+  }
+  // a cycle number out of order (a million once took 1.8 GB of empty cycles)
+  {
+    std::ofstream out(track);
+    out << "DEM-RESULTS-TRACK 1\nload 0 0 0 0 1\ncycle 0 0 1000000 0 0.1 0 0 0 0\n";
+  }
+  try {
+    ResultsRecorder recorder(sim, track, true);
+    FAIL() << "read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cycle 1000000 after 0 cycles"), std::string::npos) << e.what();
   }
 }
 
