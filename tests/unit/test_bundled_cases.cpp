@@ -39,3 +39,23 @@ TEST(BundledCases, EveryCaseIsAValidSpecWithATitledReadme) {
 
 }  // namespace
 }  // namespace dem::test
+
+namespace dem::test {
+namespace {
+
+// A case's study (cases/NAME/study.json) plans, and every run's spec is valid: dem study --plan.
+TEST(BundledCases, EveryCasesStudyPlansWithValidSpecs) {
+  int studies = 0;
+  for (const std::filesystem::directory_entry& e :
+       std::filesystem::directory_iterator(std::filesystem::path(DEM_SOURCE_DIR) / "cases")) {
+    const std::filesystem::path study = e.path() / "study.json";
+    if (!std::filesystem::exists(study)) continue;
+    ++studies;
+    const std::string command = "'" DEM_BINARY_DIR "/dem' study '" + study.string() + "' --plan > /dev/null 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  }
+  EXPECT_GE(studies, 1);
+}
+
+}  // namespace
+}  // namespace dem::test
