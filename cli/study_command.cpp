@@ -96,8 +96,8 @@ std::string row_line(const study::StudyPlan& plan, const study::StudyRow& row) {
 // is found now, not after nine runs. Each run's spec as its folder keeps it: standing alone, the
 // files it names (meshes) inline, so that the folder runs again as it is and a changed mesh is a
 // changed spec.
+// (The scenes are made again to run: a study of many large scenes would not fit in memory at once.)
 struct CheckedRuns {
-  std::vector<Scene> scenes;
   std::vector<json> specs;
 };
 
@@ -109,7 +109,7 @@ CheckedRuns check_runs(const study::StudyPlan& plan, const std::string& base_dir
         "run " + std::to_string(run.index) + " (" + study::describe_values(plan.parameters, run.values) + "): ";
     try {
       api::JobSpec spec = spec::parse_json(run.spec.dump());
-      checked.scenes.push_back(spec::to_scene(spec, base_dir));
+      (void)spec::to_scene(spec, base_dir);
       if (spec::file_references(spec).empty()) {
         checked.specs.push_back(run.spec);
       } else {
@@ -169,7 +169,8 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
     std::fflush(stdout);
     int status = 1;
     try {
-      status = run_scene(std::move(checked.scenes[k]), spec_file.string(), folder.string(), threads, quiet, "");
+      status = run_scene(spec::to_scene(spec::parse_json(checked.specs[k].dump()), in.base_dir), spec_file.string(),
+                         folder.string(), threads, quiet, "");
     } catch (const std::exception& e) {
       row.error = e.what();
     }

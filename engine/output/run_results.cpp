@@ -315,8 +315,6 @@ MotionResults ResultsRecorder::motion(const Simulation& sim) const {
   const Vec3 across = up.cross(m.direction);
 
   // the source's top (its highest particle at the reference) and its front then
-  std::map<int, double> radius;
-  for (std::size_t i = 0; i < p.size(); ++i) radius[p.id[i]] = p.radius[i];
   bool any_start = false;
   Vec3 crown = Vec3::Zero();
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -358,8 +356,10 @@ MotionResults ResultsRecorder::motion(const Simulation& sim) const {
     // footprints on cells of one mean diameter: a cell counts when its centre lies under a particle
     // (or it holds a particle's centre)
     const double cell = m.deposit_cell;
-    std::unordered_set<std::int64_t> covered;
-    auto key = [](std::int64_t i, std::int64_t j) { return (i << 32) ^ (j & 0xffffffff); };
+    std::unordered_set<std::uint64_t> covered;
+    auto key = [](std::int64_t i, std::int64_t j) {
+      return (static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffU);
+    };
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (!moves(p, i)) continue;
       const double a = p.x[i].dot(m.direction) / cell, c = p.x[i].dot(across) / cell, r = p.radius[i] / cell;
