@@ -88,39 +88,38 @@ void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_ste
     std::istringstream words(line);
     std::string kind;
     words >> kind;
+    // N lines "p ID X Y Z FRAGMENT" after a reference or entered line, each passed to `take`
+    auto particles = [&](std::size_t n, const char* whose, auto&& take) {
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!std::getline(in, line)) bad(std::string("the ") + whose + " particles end early");
+        std::istringstream pw(line);
+        std::string tag;
+        int id = 0, fragment = 0;
+        Vec3 x;
+        if (!(pw >> tag >> id >> x.x() >> x.y() >> x.z() >> fragment) || tag != "p")
+          bad(std::string("a particle of the ") + whose + " is not p ID X Y Z FRAGMENT");
+        take(id, x, fragment);
+      }
+    };
     if (kind == "reference") {
       Reference r;
       std::size_t n = 0;
       if (!(words >> r.step >> r.time >> r.bonds_intact >> n)) bad("a reference line is not STEP TIME BONDS N STAGE");
       std::getline(words >> std::ws, r.stage);
-      for (std::size_t k = 0; k < n; ++k) {
-        if (!std::getline(in, line)) bad("the reference's particles end early");
-        std::istringstream pw(line);
-        std::string tag;
-        int id = 0, fragment = 0;
-        Vec3 x;
-        if (!(pw >> tag >> id >> x.x() >> x.y() >> x.z() >> fragment) || tag != "p")
-          bad("a reference particle is not p ID X Y Z FRAGMENT");
+      particles(n, "reference's", [&](int id, const Vec3& x, int fragment) {
         r.position[id] = x;
         r.fragment[id] = fragment;
-      }
+      });
       if (r.step <= up_to_step) reference_ = std::move(r);
     } else if (kind == "entered") {
       std::int64_t step = 0;
       std::size_t n = 0;
       if (!(words >> step >> n)) bad("an entered line is not STEP N");
-      for (std::size_t k = 0; k < n; ++k) {
-        if (!std::getline(in, line)) bad("the entered particles end early");
-        std::istringstream pw(line);
-        std::string tag;
-        int id = 0, fragment = 0;
-        Vec3 x;
-        if (!(pw >> tag >> id >> x.x() >> x.y() >> x.z() >> fragment) || tag != "p")
-          bad("an entered particle is not p ID X Y Z FRAGMENT");
-        if (step > up_to_step || !reference_) continue;
+      particles(n, "entered", [&](int id, const Vec3& x, int fragment) {
+        if (step > up_to_step || !reference_) return;
         reference_->position.emplace(id, x);
         reference_->fragment.emplace(id, fragment);
-      }
+      });
     } else if (kind == "load") {
       int wall = 0;
       std::int64_t step = 0;

@@ -61,6 +61,14 @@ class DemCommandTest : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
+  // Runs `dem ARGS` (the built binary) through the shell.
+  CommandResult run_dem(const std::string& args) { return run_command(shell_quoted(kDem) + " " + args); }
+
+  static std::string read(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+
   // Writes `text` to DIR/name and returns its path.
   std::filesystem::path write_spec(const std::string& name, const std::string& text) {
     const std::filesystem::path path = dir_ / name;

@@ -11,11 +11,6 @@ namespace fs = std::filesystem;
 
 class CliPlot : public DemCommandTest {
  protected:
-  CommandResult dem(const std::string& args) { return run_command(shell_quoted(kDem) + " " + args); }
-  std::string read(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }
   static std::size_t count(const std::string& text, const std::string& what) {
     std::size_t n = 0;
     for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
@@ -27,8 +22,8 @@ TEST_F(CliPlot, ColumnsOfARunsFileOnePanelPerY) {
   const fs::path data =
       write_spec("Force_Displacement.dat", "# a header line is skipped\n0 0 0\n0.1 1.5 200\n0.2 3.0 410\n");
   const fs::path out = dir_ / "fd.svg";
-  const CommandResult ok = dem("plot " + shell_quoted(data) +
-                               " --x '2:press travel (mm)' --y '3:force (N)' --y 1 --out " + shell_quoted(out));
+  const CommandResult ok = run_dem("plot " + shell_quoted(data) +
+                                   " --x '2:press travel (mm)' --y '3:force (N)' --y 1 --out " + shell_quoted(out));
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   const std::string svg = read(out);
   EXPECT_EQ(count(svg, "<polyline"), 2u);
@@ -46,33 +41,34 @@ TEST_F(CliPlot, RowsOfAJsonList) {
       "results.json",
       R"({"loadedWalls": [{"cycles": [{"cycle": 1, "settlement": 0.01}, {"cycle": 2, "settlement": 0.012}]}]})");
   const fs::path out = dir_ / "cycles.svg";
-  const CommandResult r = dem("plot " + shell_quoted(data) +
-                              " --rows 'loadedWalls[0].cycles' --x cycle --y settlement --out " + shell_quoted(out));
+  const CommandResult r =
+      run_dem("plot " + shell_quoted(data) + " --rows 'loadedWalls[0].cycles' --x cycle --y settlement --out " +
+              shell_quoted(out));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(count(read(out), "<circle"), 2u);
-  const CommandResult missing = dem("plot " + shell_quoted(data) +
-                                    " --rows 'loadedWalls[0].cycles' --x cycle --y peak --out " + shell_quoted(out));
+  const CommandResult missing = run_dem(
+      "plot " + shell_quoted(data) + " --rows 'loadedWalls[0].cycles' --x cycle --y peak --out " + shell_quoted(out));
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_NE(missing.output.find("has no number peak"), std::string::npos) << missing.output;
   const CommandResult not_list =
-      dem("plot " + shell_quoted(data) + " --rows loadedWalls[1] --x cycle --y peak --out " + shell_quoted(out));
+      run_dem("plot " + shell_quoted(data) + " --rows loadedWalls[1] --x cycle --y peak --out " + shell_quoted(out));
   EXPECT_EQ(not_list.exit_code, 1);
   EXPECT_NE(not_list.output.find("is not a list in it"), std::string::npos) << not_list.output;
 }
 
 TEST_F(CliPlot, BadArgumentsAreNamed) {
   const fs::path data = write_spec("a.dat", "1 2\n3 4\n");
-  EXPECT_EQ(dem("plot").exit_code, 2);
-  CommandResult r = dem("plot " + shell_quoted(data) + " --x 0 --y 2 --out x.svg");
+  EXPECT_EQ(run_dem("plot").exit_code, 2);
+  CommandResult r = run_dem("plot " + shell_quoted(data) + " --x 0 --y 2 --out x.svg");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("a column is 1, 2, ... (got \"0\")"), std::string::npos) << r.output;
-  r = dem("plot " + shell_quoted(data) + " --x 1 --y 5 --out " + shell_quoted(dir_ / "x.svg"));
+  r = run_dem("plot " + shell_quoted(data) + " --x 1 --y 5 --out " + shell_quoted(dir_ / "x.svg"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("no line of at least 5 numbers"), std::string::npos) << r.output;
-  r = dem("plot " + shell_quoted(data) + " --x 1 --y 2");
+  r = run_dem("plot " + shell_quoted(data) + " --x 1 --y 2");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
-  r = dem("plot " + shell_quoted(dir_ / "none.dat") + " --x 1 --y 2 --out " + shell_quoted(dir_ / "x.svg"));
+  r = run_dem("plot " + shell_quoted(dir_ / "none.dat") + " --x 1 --y 2 --out " + shell_quoted(dir_ / "x.svg"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("none.dat: cannot open it"), std::string::npos) << r.output;
 }

@@ -11,14 +11,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CliStudy : public DemCommandTest {
- protected:
-  CommandResult dem(const std::string& args) { return run_command(shell_quoted(kDem) + " " + args); }
-  std::string read(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }
-};
+class CliStudy : public DemCommandTest {};
 
 // Two spheres closing on each other: the faster they come, the more they overlap.
 const char* kBase = R"({
@@ -45,7 +38,7 @@ TEST_F(CliStudy, OneCommandRunsEveryValueAndWritesTheTableAndTheFigure) {
   write_spec("base.json", kBase);
   const fs::path study = write_spec("study.json", kStudy);
   const fs::path out = dir_ / "out";
-  const CommandResult r = dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet");
+  const CommandResult r = run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("run 3 (particles[0].velocity.x=2): succeeded; energy.start = "), std::string::npos)
       << r.output;
@@ -69,7 +62,7 @@ TEST_F(CliStudy, OneCommandRunsEveryValueAndWritesTheTableAndTheFigure) {
   EXPECT_NE(svg.find(">energy.dissipated<"), std::string::npos);
 
   // run again: the three runs are kept, not run anew
-  const CommandResult again = dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet");
+  const CommandResult again = run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet");
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(again.output.find("into"), std::string::npos) << again.output;
   EXPECT_NE(again.output.find("(done before, kept)"), std::string::npos) << again.output;
@@ -97,21 +90,21 @@ TEST_F(CliStudy, ARunsFolderStandsAloneAndAChangedMeshOrADamagedResultIsRunAgain
                  R"({"base": "base.json", "parameters": [{"path": "particles[0].radius", "values": [0.01, 0.012]}]})");
   const fs::path out = dir_ / "out";
   const std::string command = "study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet";
-  ASSERT_EQ(dem(command).exit_code, 0);
+  ASSERT_EQ(run_dem(command).exit_code, 0);
   // the run's folder runs again on its own, from anywhere
   const CommandResult alone =
       run_command("cd / && " + shell_quoted(kDem) + " run " + shell_quoted(out / "run-001" / "spec.json") + " --out " +
                   shell_quoted(dir_ / "again") + " --quiet");
   EXPECT_EQ(alone.exit_code, 0) << alone.output;
   // the same: kept; the mesh moved: run again
-  EXPECT_NE(dem(command).output.find("(done before, kept)"), std::string::npos);
+  EXPECT_NE(run_dem(command).output.find("(done before, kept)"), std::string::npos);
   write_spec("meshes/floor.dat", "4 2\n-1 -1 -0.01\n1 -1 -0.01\n1 1 -0.01\n-1 1 -0.01\n1 2 3\n1 3 4\n");
-  CommandResult moved = dem(command);
+  CommandResult moved = run_dem(command);
   ASSERT_EQ(moved.exit_code, 0) << moved.output;
   EXPECT_EQ(moved.output.find("(done before, kept)"), std::string::npos) << moved.output;
   // a damaged results.json: that run again, the other kept
   write_spec("out/run-002/results.json", "garbage");
-  const CommandResult damaged = dem(command);
+  const CommandResult damaged = run_dem(command);
   ASSERT_EQ(damaged.exit_code, 0) << damaged.output;
   EXPECT_NE(damaged.output.find("run 1 (particles[0].radius=0.01): succeeded"), std::string::npos) << damaged.output;
   EXPECT_NE(damaged.output.find("run 2 of 2"), std::string::npos) << damaged.output;
@@ -122,7 +115,7 @@ TEST_F(CliStudy, ARunsFolderStandsAloneAndAChangedMeshOrADamagedResultIsRunAgain
 TEST_F(CliStudy, PlanListsTheRunsWithoutRunningThem) {
   write_spec("base.json", kBase);
   const fs::path study = write_spec("study.json", kStudy);
-  const CommandResult r = dem("study " + shell_quoted(study) + " --plan");
+  const CommandResult r = run_dem("study " + shell_quoted(study) + " --plan");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("study \"closing speed\": 3 runs (grid), every spec valid"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("run 2: particles[0].velocity.x=1"), std::string::npos) << r.output;
@@ -133,7 +126,7 @@ TEST_F(CliStudy, ABadStudyOrABadValueIsRefusedByNameBeforeAnythingRuns) {
   const fs::path out = dir_ / "out";
   const fs::path bad_path = write_spec(
       "bad_path.json", R"({"base": "base.json", "parameters": [{"path": "bonds.tensileStrength", "values": [1]}]})");
-  CommandResult r = dem("study " + shell_quoted(bad_path) + " --out " + shell_quoted(out));
+  CommandResult r = run_dem("study " + shell_quoted(bad_path) + " --out " + shell_quoted(out));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("parameters[0].path: \"bonds.tensileStrength\": the base spec has no \"/bonds\""),
             std::string::npos)
@@ -142,26 +135,26 @@ TEST_F(CliStudy, ABadStudyOrABadValueIsRefusedByNameBeforeAnythingRuns) {
   const fs::path bad_value = write_spec(
       "bad_value.json",
       R"({"base": "base.json", "parameters": [{"path": "particles[1].radius", "values": [0.01, 0.011, -1]}]})");
-  r = dem("study " + shell_quoted(bad_value) + " --out " + shell_quoted(out));
+  r = run_dem("study " + shell_quoted(bad_value) + " --out " + shell_quoted(out));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("run 3 (particles[1].radius=-1): particles[1].radius"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
   const fs::path missing = write_spec("missing.json", R"({"base": "nothere.json", "parameters": []})");
-  r = dem("study " + shell_quoted(missing) + " --out " + shell_quoted(out));
+  r = run_dem("study " + shell_quoted(missing) + " --out " + shell_quoted(out));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("nothere.json: cannot open the base spec"), std::string::npos) << r.output;
   const fs::path not_json = write_spec("not_json.json", "{");
-  r = dem("study " + shell_quoted(not_json) + " --out " + shell_quoted(out));
+  r = run_dem("study " + shell_quoted(not_json) + " --out " + shell_quoted(out));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("not_json.json: the study file is not JSON"), std::string::npos) << r.output;
-  EXPECT_EQ(dem("study").exit_code, 2);
-  EXPECT_EQ(dem("study " + shell_quoted(bad_path)).exit_code, 2);  // no --out
+  EXPECT_EQ(run_dem("study").exit_code, 2);
+  EXPECT_EQ(run_dem("study " + shell_quoted(bad_path)).exit_code, 2);  // no --out
 }
 
 TEST_F(CliStudy, DemRunEndsWithItsResults) {
   const fs::path spec = write_spec("spec.json", kBase);
   const fs::path out = dir_ / "run";
-  const CommandResult r = dem("run " + shell_quoted(spec) + " --out " + shell_quoted(out) + " --quiet");
+  const CommandResult r = run_dem("run " + shell_quoted(spec) + " --out " + shell_quoted(out) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("results: " + (out / "results.json").string()), std::string::npos) << r.output;
   const nlohmann::json results = nlohmann::json::parse(read(out / "results.json"));

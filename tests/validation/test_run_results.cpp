@@ -61,6 +61,16 @@ Scene plate_on_sphere(int cycles) {
   return s;
 }
 
+// Runs `sim` with a recorder on `track` until its time reaches `until` (a run stopped there).
+void run_until(Simulation& sim, const std::string& track, double until) {
+  ResultsRecorder recorder(sim, track, false);
+  RunOptions options;
+  std::atomic<bool> stop{false};
+  options.cancel = &stop;
+  options.after_step = [&](const Simulation& s, bool) { stop = s.time() >= until; };
+  run(sim, {&recorder}, options);
+}
+
 RunResults run_with_recorder(Simulation& sim, const std::string& track, bool append) {
   ResultsRecorder recorder(sim, track, append);
   run(sim, {&recorder});
@@ -121,15 +131,7 @@ TEST(RunResults, ARunContinuedFromASavedStateGivesTheCyclesOfOneRunStraightThrou
 
   const std::string track = track_path("parts");
   Simulation first(scene);
-  {
-    ResultsRecorder recorder(first, track, false);
-    std::vector<Observer*> observers{&recorder};
-    RunOptions options;
-    std::atomic<bool> stop{false};
-    options.cancel = &stop;
-    options.after_step = [&](const Simulation& s, bool) { stop = s.time() >= 0.5; };  // the middle of cycle 2
-    run(first, observers, options);
-  }
+  run_until(first, track, 0.5);  // the middle of cycle 2
   std::stringstream saved;
   StateIO::write(first, saved);
   Simulation second(scene);
@@ -335,14 +337,7 @@ TEST(RunResults, ParticlesASourceInsertsCountFromWhereTheyEntered) {
 TEST(RunResults, AContinuationWithoutItsTrackFileSaysSo) {
   const Scene scene = plate_on_sphere(2);
   Simulation first(scene);
-  {
-    ResultsRecorder recorder(first, track_path("first"), false);
-    RunOptions options;
-    std::atomic<bool> stop{false};
-    options.cancel = &stop;
-    options.after_step = [&](const Simulation& sim, bool) { stop = sim.time() >= 0.3; };
-    run(first, {&recorder}, options);
-  }
+  run_until(first, track_path("first"), 0.3);
   std::stringstream saved;
   StateIO::write(first, saved);
   Simulation second(scene);
