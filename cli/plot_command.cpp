@@ -28,12 +28,33 @@ int usage(const std::string& problem) {
 }
 
 // The rows of numbers of a text file: every line whose words are all numbers, with at least `need` of them.
-std::vector<std::vector<double>> numeric_rows(const std::string& path, std::size_t need) {
-  std::ifstream in(path);
+// A file to read: a regular file (not a folder, nor /dev/zero), opened.
+std::ifstream open_file(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw std::runtime_error(path + ": a folder, not a file");
+  if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error))
+    throw std::runtime_error(path + ": not a regular file");
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot open it");
+  return in;
+}
+
+// The next line of `in`, at most 1 MB (a file of one endless line is refused, not read whole).
+bool next_line(std::istream& in, std::string& line, const std::string& path) {
+  line.clear();
+  for (int c; (c = in.get()) != EOF;) {
+    if (c == '\n') return true;
+    if (line.size() >= (1U << 20)) throw std::runtime_error(path + ": a line longer than 1 MB");
+    line.push_back(static_cast<char>(c));
+  }
+  return !line.empty();
+}
+
+std::vector<std::vector<double>> numeric_rows(const std::string& path, std::size_t need) {
+  std::ifstream in = open_file(path);
   std::vector<std::vector<double>> rows;
   std::string line;
-  while (std::getline(in, line)) {
+  while (next_line(in, line, path)) {
     std::istringstream words(line);
     std::vector<double> row;
     std::string word;
@@ -92,13 +113,16 @@ int plot_command(const std::vector<std::string>& args) {
   try {
     std::vector<study::Panel> panels(ys.size());
     if (!rows_path.empty()) {
-      std::ifstream in(file);
-      if (!in) throw std::runtime_error(file + ": cannot open it");
+      std::ifstream in = open_file(file);
       const json doc = json::parse(in, nullptr, false);
       if (doc.is_discarded()) throw std::runtime_error(file + ": not JSON");
       const json::json_pointer pointer(study::to_pointer(rows_path));
-      if (!doc.contains(pointer) || !doc.at(pointer).is_array())
-        throw std::runtime_error(file + ": " + rows_path + " is not a list in it");
+      bool list = false;
+      try {
+        list = doc.contains(pointer) && doc.at(pointer).is_array();
+      } catch (const json::exception&) {  // an index past what a number holds
+      }
+      if (!list) throw std::runtime_error(file + ": " + rows_path + " is not a list in it");
       const json& rows = doc.at(pointer);
       for (std::size_t k = 0; k < ys.size(); ++k) {
         study::Series series{{}, true, true};

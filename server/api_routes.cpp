@@ -91,6 +91,10 @@ Response submit(const Request& req, ApiContext& ctx) {
     if (key.size() > 200 || !std::all_of(key.begin(), key.end(), [](unsigned char c) { return c >= 0x20 && c < 0x7f; }))
       return error_response(req, http::status::bad_request,
                             "Idempotency-Key must be printable ASCII of at most 200 characters");
+    if (key.rfind(StudyManager::kRunKeyPrefix, 0) == 0)  // a job planted under a study's key would be its run
+      return error_response(req, http::status::bad_request,
+                            "Idempotency-Key \"" + key + "\": keys beginning \"" + StudyManager::kRunKeyPrefix +
+                                "\" are the server's own (a study's runs)");
     const JobManager::Submitted s = ctx.jobs.submit(spec, key);
     if (s.conflict)
       return error_response(req, http::status::unprocessable_entity,

@@ -27,7 +27,7 @@ json record_json(const StudyRecord& s) {
 }
 
 std::string run_key(std::int64_t study, int run) {
-  return "study " + std::to_string(study) + " run " + std::to_string(run);
+  return StudyManager::kRunKeyPrefix + std::to_string(study) + " run " + std::to_string(run);
 }
 
 }  // namespace
@@ -35,7 +35,11 @@ std::string run_key(std::int64_t study, int run) {
 StudyManager::StudyManager(const fs::path& data, JobManager& jobs) : folder_(data / "studies"), jobs_(jobs) {
   fs::create_directories(folder_);
   for (const fs::directory_entry& e : fs::directory_iterator(folder_)) {
-    if (!e.is_regular_file() || e.path().extension() != ".json") continue;  // a .part of a write cut short
+    if (e.path().extension() != ".json") continue;  // a .part of a write cut short
+    if (!e.is_regular_file()) {
+      std::fprintf(stderr, "dem-server: %s is not a file: left out of the studies\n", e.path().c_str());
+      continue;
+    }
     StudyRecord s;
     try {
       std::ifstream in(e.path(), std::ios::binary);
@@ -84,7 +88,9 @@ void StudyManager::queue_runs(StudyRecord& study) const {
   for (std::size_t k = 0; k < p.runs.size(); ++k) {
     if (study.jobs[k] >= 0) continue;
     try {
-      study.jobs[k] = jobs_.submit(spec::parse_json(p.runs[k].spec.dump()), run_key(study.id, p.runs[k].index)).job.id;
+      const JobManager::Submitted s =
+          jobs_.submit(spec::parse_json(p.runs[k].spec.dump()), run_key(study.id, p.runs[k].index));
+      study.jobs[k] = s.conflict ? -1 : s.job.id;  // a job of another spec under the run's key is not the run
     } catch (const spec::SpecError&) {
       study.jobs[k] = -1;  // checked when the study was made: the server's limits changed since
     } catch (const SceneError&) {

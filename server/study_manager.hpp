@@ -31,6 +31,9 @@ struct StudyRecord {
 
 class StudyManager {
  public:
+  // The idempotency keys of a study's runs ("study ID run K") begin so; clients may not use them.
+  static constexpr const char* kRunKeyPrefix = "study ";
+
   // Reads the studies of the data folder; throws std::runtime_error naming a record it cannot read.
   StudyManager(const std::filesystem::path& data, JobManager& jobs);
 

@@ -18,6 +18,14 @@ void for_each_mesh(api::JobSpec& spec, const std::function<void(api::Mesh&, cons
   for (int k = 0; k < spec.packings_size(); ++k)
     if (spec.packings(k).has_inside())
       visit(*spec.mutable_packings(k)->mutable_inside(), "packings[" + std::to_string(k) + "].inside");
+  for (int k = 0; k < spec.lattices_size(); ++k)
+    if (spec.lattices(k).has_inside())
+      visit(*spec.mutable_lattices(k)->mutable_inside(), "lattices[" + std::to_string(k) + "].inside");
+  for (int k = 0; k < spec.stages_size(); ++k)
+    for (int j = 0; j < spec.stages(k).add_walls_size(); ++j)
+      if (spec.stages(k).add_walls(j).has_mesh())
+        visit(*spec.mutable_stages(k)->mutable_add_walls(j)->mutable_mesh(),
+              "stages[" + std::to_string(k) + "].addWalls[" + std::to_string(j) + "].mesh");
 }
 
 }  // namespace

@@ -7,6 +7,9 @@
 namespace dem::study {
 namespace {
 
+// A point the chart can place: finite and not so large that the axes' spans overflow.
+bool placeable(double x, double y) { return std::abs(x) <= 1e300 && std::abs(y) <= 1e300; }
+
 std::string fmt(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.4g", v);
@@ -71,7 +74,7 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
     double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
     for (const Series& s : panel.series)
       for (const auto& [x, y] : s.points) {
-        if (!std::isfinite(x) || !std::isfinite(y)) continue;
+        if (!placeable(x, y)) continue;
         x0 = any ? std::min(x0, x) : x, x1 = any ? std::max(x1, x) : x;
         y0 = any ? std::min(y0, y) : y, y1 = any ? std::max(y1, y) : y;
         any = true;
@@ -113,7 +116,7 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
       if (series.line) {
         std::string line;
         for (const auto& [x, y] : series.points) {
-          if (!std::isfinite(x) || !std::isfinite(y)) continue;
+          if (!placeable(x, y)) continue;
           if (!line.empty()) line += ' ';
           line += fmt(sx(x)) + "," + fmt(sy(y));
         }
@@ -121,7 +124,7 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
       }
       if (series.markers)
         for (const auto& [x, y] : series.points)
-          if (std::isfinite(x) && std::isfinite(y))
+          if (placeable(x, y))
             svg += "<circle cx=\"" + fmt(sx(x)) + "\" cy=\"" + fmt(sy(y)) + "\" r=\"3.5\" fill=\"" + colour +
                    "\" fill-opacity=\"0.8\"/>\n";
     }

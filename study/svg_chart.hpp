@@ -22,7 +22,8 @@ struct Panel {
   std::vector<std::string> x_categories;
 };
 
-// The chart, up to three panels a row; a panel without points says so. Non-finite points are left out.
+// The chart, up to three panels a row; a panel without points says so. Points that are not finite or
+// beyond 1e300 (whose spans would overflow) are left out.
 std::string chart_svg(const std::string& title, const std::vector<Panel>& panels);
 
 // Text for SVG: <, >, & and " escaped.

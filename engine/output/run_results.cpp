@@ -51,16 +51,26 @@ std::string number(double v) {
 }  // namespace
 
 ResultsRecorder::ResultsRecorder(const Simulation& sim, std::string track, bool append) {
-  if (append) read_track(track, sim.step_count(), static_cast<int>(sim.scene().walls.size()));
+  if (append) read_track(track, sim.step_count(), static_cast<int>(sim.scene().walls.size()), sim.particles().size());
   const bool fresh = !append || !std::ifstream(track).good();
-  if (append && fresh)
-    notes_.push_back(ResultsRecorder::kTrackName +
-                     std::string(" was not in the run's folder: the results count from the "
-                                 "continuation at step ") +
-                     std::to_string(sim.step_count()) +
-                     " (where the particles were then, the load cycles from then on), not from the run's start");
+  // a continuation past the reference without it (no track file, or one that never got so far)
+  // counts the motion from here; without the file, the load cycles too
+  const bool reference_passed = sim.stage() == last_stage(sim.scene()) && sim.step_count() > sim.stage_start_step();
+  const bool no_reference = append && reference_passed && !reference_;
+  if (append && (fresh || no_reference)) {
+    const std::string what = fresh && no_reference ? "the motion and the load cycles"
+                             : fresh               ? "the load cycles"
+                                                   : "the motion";
+    notes_.push_back(std::string(kTrackName) + (fresh ? " was not in the run's folder" : " holds no reference") + ": " +
+                     what + " count from the continuation at step " + std::to_string(sim.step_count()) +
+                     ", not from the run's start");
+  }
   track_ = OutputFile(track, !fresh);
   if (fresh) write_line(kTrackMagic);
+  if (no_reference) {
+    take_positions(sim);
+    complete_reference(sim);
+  }
 }
 
 void ResultsRecorder::write_line(const std::string& line) {
@@ -75,7 +85,7 @@ void ResultsRecorder::write_line(const std::string& line) {
 //   cycle WALL START-TIME K END-STEP END-TIME DISPLACEMENT PEAK F-MIN F-MAX
 // Lines of steps past `up_to_step` (a run that went on past its saved state) are left out; a later
 // line for the same thing wins.
-void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_step, int walls) {
+void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_step, int walls, std::size_t particles) {
   std::ifstream in(path);
   if (!in) return;
   std::string line;
@@ -89,7 +99,7 @@ void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_ste
     std::string kind;
     words >> kind;
     // N lines "p ID X Y Z FRAGMENT" after a reference or entered line, each passed to `take`
-    auto particles = [&](std::size_t n, const char* whose, auto&& take) {
+    auto read_particles = [&](std::size_t n, const char* whose, auto&& take) {
       for (std::size_t k = 0; k < n; ++k) {
         if (!std::getline(in, line)) bad(std::string("the ") + whose + " particles end early");
         std::istringstream pw(line);
@@ -97,7 +107,9 @@ void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_ste
         int id = 0, fragment = 0;
         Vec3 x;
         if (!(pw >> tag >> id >> x.x() >> x.y() >> x.z() >> fragment) || tag != "p")
-          bad(std::string("a particle of the ") + whose + " is not p ID X Y Z FRAGMENT");
+          bad(std::string("a particle of the ") + whose + " is not p ID X Y Z FRAGMENT (or there are fewer)");
+        if (id < 0 || static_cast<std::size_t>(id) >= particles)
+          bad("no particle " + std::to_string(id) + " in the run");
         take(id, x, fragment);
       }
     };
@@ -105,8 +117,10 @@ void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_ste
       Reference r;
       std::size_t n = 0;
       if (!(words >> r.step >> r.time >> r.bonds_intact >> n)) bad("a reference line is not STEP TIME BONDS N STAGE");
+      if (r.step < 0 || n > particles) bad("a reference at a step below 0, or of more particles than the run has");
+      if (reference_) bad("a second reference");
       std::getline(words >> std::ws, r.stage);
-      particles(n, "reference's", [&](int id, const Vec3& x, int fragment) {
+      read_particles(n, "reference's", [&](int id, const Vec3& x, int fragment) {
         r.position[id] = x;
         r.fragment[id] = fragment;
       });
@@ -115,7 +129,9 @@ void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_ste
       std::int64_t step = 0;
       std::size_t n = 0;
       if (!(words >> step >> n)) bad("an entered line is not STEP N");
-      particles(n, "entered", [&](int id, const Vec3& x, int fragment) {
+      if (!reference_ && step <= up_to_step) bad("particles entered before the reference");
+      if (n > particles) bad("more particles entered than the run has");
+      read_particles(n, "entered", [&](int id, const Vec3& x, int fragment) {
         if (step > up_to_step || !reference_) return;
         reference_->position.emplace(id, x);
         reference_->fragment.emplace(id, fragment);
@@ -137,7 +153,8 @@ void ResultsRecorder::read_track(const std::string& path, std::int64_t up_to_ste
         bad("a cycle line is not WALL T0 K STEP TIME X PEAK F-MIN F-MAX");
       c.resilient = c.peak_displacement - c.displacement;
       auto found = walls_.find(wall);
-      if (c.end_step > up_to_step || found == walls_.end() || found->second.start_time != start) continue;
+      if (c.end_step > up_to_step) continue;
+      if (found == walls_.end() || found->second.start_time != start) bad("a cycle of a load that never began");
       std::vector<LoadCycle>& cycles = found->second.cycles;
       if (c.cycle < 1 || c.cycle > static_cast<int>(cycles.size()) + 1)  // one after another, or one again
         bad("cycle " + std::to_string(c.cycle) + " after " + std::to_string(cycles.size()) + " cycles");

@@ -142,7 +142,7 @@ class ResultsRecorder final : public Observer {
   void complete_reference(const Simulation& sim);  // its pieces: reference_ from pending_
   void add_entered(const Simulation& sim);         // particles a source inserted since
   void track_loads(const Simulation& sim);
-  void read_track(const std::string& path, std::int64_t up_to_step, int walls);
+  void read_track(const std::string& path, std::int64_t up_to_step, int walls, std::size_t particles);
   void write_line(const std::string& line);
   MotionResults motion(const Simulation& sim) const;
   FragmentResults fragment_results(const Simulation& sim) const;

@@ -183,6 +183,36 @@ TEST_F(ServerStudies, AStudyCutShortByACrashIsQueuedWhole) {
   EXPECT_EQ(get("/api/studies")["studies"].size(), 2u);
 }
 
+// A job cannot be planted under the key of a future study's run (it became that run: an
+// independent tester); and no field that names a file is read, for jobs and studies alike.
+TEST_F(ServerStudies, AStudysRunKeysAreTheServersOwnAndNoNamedFileIsRead) {
+  start_server();
+  const client::Response planted = client_->request("POST", "/api/jobs", pouring_spec(0.015, 200, 100),
+                                                    "application/json", {{"Idempotency-Key", "study 1 run 1"}});
+  EXPECT_EQ(planted.status, 400) << planted.body;
+  EXPECT_NE(planted.body.find("are the server's own"), std::string::npos) << planted.body;
+  write_text(dir_ / "secret.dat", "hunter2\n");
+  const std::string secret = (dir_ / "secret.dat").string();
+  nlohmann::json lattice = nlohmann::json::parse(pouring_spec(0.015, 200, 100));
+  lattice["lattices"][0]["inside"] = {{"file", secret}};
+  nlohmann::json staged = nlohmann::json::parse(pouring_spec(0.015, 200, 100));
+  staged["stages"] = {{{"name", "one"}, {"steps", 100}},
+                      {{"name", "two"},
+                       {"steps", 100},
+                       {"addWalls", {{{"name", "m"}, {"material", "steel"}, {"mesh", {{"file", secret}}}}}}}};
+  staged["time"].erase("steps");
+  for (const nlohmann::json& spec : {lattice, staged}) {
+    const client::Response job = client_->request("POST", "/api/jobs", spec.dump(), "application/json");
+    EXPECT_EQ(job.status, 400) << job.body;
+    EXPECT_NE(job.body.find("the server reads no files of the client's"), std::string::npos) << job.body;
+    EXPECT_EQ(job.body.find("hunter2"), std::string::npos) << job.body;
+    nlohmann::json study = study_of(spec.dump(), "numerics.threads", {1});
+    const client::Response r = post(study);
+    EXPECT_EQ(r.status, 400) << r.body;
+    EXPECT_EQ(r.body.find("hunter2"), std::string::npos) << r.body;
+  }
+}
+
 TEST_F(ServerStudies, DemStudySubmitRunsTheStudyOnTheServerAndDownloadsItsTable) {
   start_server();
   write_text(dir_ / "base.json", pouring_spec(0.015, 200, 100));

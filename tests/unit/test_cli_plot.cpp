@@ -68,6 +68,18 @@ TEST_F(CliPlot, BadArgumentsAreNamed) {
   r = run_dem("plot " + shell_quoted(data) + " --x 1 --y 2");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
+  // not files to read whole: /dev/zero (an endless line: 8 GB once), a folder
+  r = run_dem("plot /dev/zero --x 1 --y 2 --out " + shell_quoted(dir_ / "x.svg"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("/dev/zero: not a regular file"), std::string::npos) << r.output;
+  r = run_dem("plot " + shell_quoted(dir_) + " --x 1 --y 2 --out " + shell_quoted(dir_ / "x.svg"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("a folder, not a file"), std::string::npos) << r.output;
+  // values so large that the axis' span overflows are left out, not drawn at nan
+  const fs::path huge = write_spec("huge.dat", "0 1e308\n1 -1e308\n2 5\n3 6\n");
+  r = run_dem("plot " + shell_quoted(huge) + " --x 1 --y 2 --out " + shell_quoted(dir_ / "huge.svg"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read(dir_ / "huge.svg").find("nan"), std::string::npos);
   r = run_dem("plot " + shell_quoted(dir_ / "none.dat") + " --x 1 --y 2 --out " + shell_quoted(dir_ / "x.svg"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("none.dat: cannot open it"), std::string::npos) << r.output;

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 
 #include "bonds/bond_models.hpp"
 #include "contact/models.hpp"
+#include "spec/referenced_files.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::spec {
@@ -725,3 +727,27 @@ TEST(SpecLoader, GrowthIsCheckedAndRead) {
 
 }  // namespace
 }  // namespace dem::spec
+
+namespace dem::test {
+namespace {
+
+// Every field that names a file is listed (the server refuses them all, the client inlines them
+// all): a lattice's inside and a stage's added mesh were not, and the server opened them (an
+// independent tester read /proc/self/environ through a lattice's inside).
+TEST(SpecFiles, EveryFieldThatNamesAFileIsListed) {
+  const api::JobSpec spec = spec::parse_json(R"({
+    "walls": [{"name": "w", "mesh": {"file": "a.dat"}}],
+    "packings": [{"inside": {"file": "b.dat"}}],
+    "lattices": [{"inside": {"file": "c.dat"}}],
+    "stages": [{"name": "s", "addWalls": [{"name": "x", "mesh": {"file": "d.dat"}}]}],
+    "clumpShapes": [{"name": "t", "file": "e.txt"}]
+  })");
+  std::vector<std::string> files = spec::file_references(spec);
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files,
+            (std::vector<std::string>{"clumpShapes[0].file", "lattices[0].inside.file", "packings[0].inside.file",
+                                      "stages[0].addWalls[0].mesh.file", "walls[0].mesh.file"}));
+}
+
+}  // namespace
+}  // namespace dem::test

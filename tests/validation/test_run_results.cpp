@@ -346,9 +346,25 @@ TEST(RunResults, AContinuationWithoutItsTrackFileSaysSo) {
   std::filesystem::remove(elsewhere);
   const RunResults r = run_with_recorder(second, elsewhere, true);
   ASSERT_EQ(r.notes.size(), 1u);
-  EXPECT_NE(r.notes[0].find("results_track.dat was not in the run's folder: the results count from the continuation"),
-            std::string::npos)
-      << r.notes[0];
+  EXPECT_EQ(r.notes[0],
+            "results_track.dat was not in the run's folder: the motion and the load cycles count from the "
+            "continuation at step 15000, not from the run's start");
+  ASSERT_TRUE(r.motion.has_value());
+  EXPECT_EQ(r.motion->reference_step, 15000);  // where it says (it was a step later)
+  // a track file of its magic line alone: the motion from the continuation, and said so
+  Simulation third(scene);
+  saved.clear();
+  saved.seekg(0);
+  StateIO::read(third, saved);
+  {
+    std::ofstream header(elsewhere);
+    header << "DEM-RESULTS-TRACK 1\n";
+  }
+  const RunResults h = run_with_recorder(third, elsewhere, true);
+  ASSERT_EQ(h.notes.size(), 1u);
+  EXPECT_EQ(h.notes[0],
+            "results_track.dat holds no reference: the motion count from the continuation at step 15000, "
+            "not from the run's start");
 }
 
 // A track file that is not one is refused by name, not read as nothing.
@@ -366,16 +382,26 @@ TEST(RunResults, ADamagedTrackFileIsRefusedByName) {
     EXPECT_NE(std::string(e.what()).find(track), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("no such wall"), std::string::npos) << e.what();
   }
-  // a cycle number out of order (a million once took 1.8 GB of empty cycles)
-  {
-    std::ofstream out(track);
-    out << "DEM-RESULTS-TRACK 1\nload 0 0 0 0 1\ncycle 0 0 1000000 0 0.1 0 0 0 0\n";
-  }
-  try {
-    ResultsRecorder recorder(sim, track, true);
-    FAIL() << "read";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("cycle 1000000 after 0 cycles"), std::string::npos) << e.what();
+  // a cycle number out of order (a million once took 1.8 GB of empty cycles), and other impossible lines
+  const std::pair<const char*, const char*> damaged[] = {
+      {"load 0 0 0 0 1\ncycle 0 0 1000000 0 0.1 0 0 0 0\n", "cycle 1000000 after 0 cycles"},
+      {"cycle 0 0 1 0 0.1 0 0 0 0\n", "a cycle of a load that never began"},
+      {"reference 0 0 0 1 \np 5 0 0 0 1\n", "no particle 5 in the run"},
+      {"reference 0 0 0 1 \np 0 0 0 0 1\nreference 0 0 0 0 \n", "a second reference"},
+      {"reference -100 0 0 0 \n", "a reference at a step below 0"},
+      {"entered 0 1\np 0 0 0 0 1\n", "particles entered before the reference"},
+  };
+  for (const auto& [lines, why] : damaged) {
+    {
+      std::ofstream out(track);
+      out << "DEM-RESULTS-TRACK 1\n" << lines;
+    }
+    try {
+      ResultsRecorder recorder(sim, track, true);
+      ADD_FAILURE() << "read: " << lines;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
   }
 }
 
