@@ -50,7 +50,7 @@ std::string number(double v) {
 
 }  // namespace
 
-ResultsRecorder::ResultsRecorder(const Simulation& sim, std::string track, bool append) {
+ResultsRecorder::ResultsRecorder(const Simulation& sim, const std::string& track, bool append) {
   if (append) read_track(track, sim.step_count(), static_cast<int>(sim.scene().walls.size()), sim.particles().size());
   const bool fresh = !append || !std::ifstream(track).good();
   // a continuation past the reference without it (no track file, or one that never got so far)

@@ -106,7 +106,7 @@ struct RunResults {
 class ResultsRecorder final : public Observer {
  public:
   // `track`: the track file's path; `append`: a continued run (reads the file, then adds to it).
-  ResultsRecorder(const Simulation& sim, std::string track, bool append);
+  ResultsRecorder(const Simulation& sim, const std::string& track, bool append);
   void frame(const Simulation& sim) override;
   bool wants_steps() const override { return true; }
   void step(const Simulation& sim) override;
