@@ -82,13 +82,10 @@ void write_table(const fs::path& out, const study::StudyPlan& plan, const std::v
 }
 
 std::string row_line(const study::StudyPlan& plan, const study::StudyRow& row) {
-  std::string line = "run " + std::to_string(row.index) + " (" + study::describe_values(plan.parameters, row.values) +
-                     "): " + row.state;
+  std::string line = study::run_label(plan, row.index, row.values) + ": " + row.state;
   if (!row.error.empty()) line += ": " + row.error;
-  if (row.results.is_object())
-    for (const std::string& key : study::plot_keys(plan, {row}))
-      for (const auto& [name, value] : study::flatten(row.results))
-        if (name == key) line += "; " + key + " = " + value.dump();
+  for (const std::string& key : study::plot_keys(plan, {row}))
+    if (const std::optional<json> value = study::result_at(row, key)) line += "; " + key + " = " + value->dump();
   return line;
 }
 
@@ -97,24 +94,19 @@ std::string row_line(const study::StudyPlan& plan, const study::StudyRow& row) {
 // files it names (meshes) inline, so that the folder runs again as it is and a changed mesh is a
 // changed spec.
 // (The scenes are made again to run: a study of many large scenes would not fit in memory at once.)
-struct CheckedRuns {
-  std::vector<json> specs;
-};
-
-CheckedRuns check_runs(const study::StudyPlan& plan, const std::string& base_dir) {
+std::vector<json> check_runs(const study::StudyPlan& plan, const std::string& base_dir) {
   std::vector<std::string> problems;
-  CheckedRuns checked;
+  std::vector<json> specs;
   for (const study::StudyRun& run : plan.runs) {
-    const std::string where =
-        "run " + std::to_string(run.index) + " (" + study::describe_values(plan.parameters, run.values) + "): ";
+    const std::string where = study::run_label(plan, run.index, run.values) + ": ";
     try {
       api::JobSpec spec = spec::parse_json(run.spec.dump());
       (void)spec::to_scene(spec, base_dir);
       if (spec::file_references(spec).empty()) {
-        checked.specs.push_back(run.spec);
+        specs.push_back(run.spec);
       } else {
         spec::inline_files(spec, base_dir);
-        checked.specs.push_back(json::parse(spec::to_json_text(spec)));
+        specs.push_back(json::parse(spec::to_json_text(spec)));
       }
     } catch (const spec::SpecError& e) {
       for (const std::string& p : e.problems()) problems.push_back(where + p);
@@ -123,7 +115,7 @@ CheckedRuns check_runs(const study::StudyPlan& plan, const std::string& base_dir
     }
   }
   if (!problems.empty()) throw study::StudyError(problems);
-  return checked;
+  return specs;
 }
 
 // The results of a run done before with this very spec, or null (none, another spec, not
@@ -141,7 +133,7 @@ json done_before(const fs::path& folder, const json& spec) {
 }
 
 int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path& out, int threads, bool quiet) {
-  CheckedRuns checked = check_runs(plan, in.base_dir);
+  const std::vector<json> specs = check_runs(plan, in.base_dir);
   fs::create_directories(out);
   std::vector<study::StudyRow> rows;
   for (const study::StudyRun& run : plan.runs) rows.push_back(study::row_of(run));
@@ -155,7 +147,7 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
     const fs::path folder = out / name;
     // a run done before with this very spec is kept: a study stopped half-way goes on where it stopped
     const fs::path results = folder / results::kResultsName, spec_file = folder / "spec.json";
-    if (const json done = done_before(folder, checked.specs[k]); !done.is_null()) {
+    if (const json done = done_before(folder, specs[k]); !done.is_null()) {
       row.state = "succeeded";
       row.results = done;
       std::printf("%s (done before, kept)\n", row_line(plan, row).c_str());
@@ -163,13 +155,13 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
     }
     fs::create_directories(folder);
     fs::remove(results);
-    write_text(spec_file, checked.specs[k].dump(2) + "\n");
+    write_text(spec_file, specs[k].dump(2) + "\n");
     std::printf("run %d of %zu (%s) into %s\n", run.index, plan.runs.size(),
                 study::describe_values(plan.parameters, run.values).c_str(), folder.c_str());
     std::fflush(stdout);
     int status = 1;
     try {
-      status = run_scene(spec::to_scene(spec::parse_json(checked.specs[k].dump()), in.base_dir), spec_file.string(),
+      status = run_scene(spec::to_scene(spec::parse_json(specs[k].dump()), in.base_dir), spec_file.string(),
                          folder.string(), threads, quiet, "");
     } catch (const std::exception& e) {
       row.error = e.what();
@@ -183,12 +175,8 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
     write_table(out, plan, rows);
   }
   for (const std::string& key : plan.plot) {
-    const bool any = std::any_of(rows.begin(), rows.end(), [&](const study::StudyRow& row) {
-      if (!row.results.is_object()) return false;
-      for (const auto& [name, value] : study::flatten(row.results))
-        if (name == key && value.is_number()) return true;
-      return false;
-    });
+    const bool any = std::any_of(rows.begin(), rows.end(),
+                                 [&](const study::StudyRow& row) { return study::number_at(row, key).has_value(); });
     if (!any)
       std::printf("plot: no run has a number \"%s\" (results.json's dotted names: see study.csv's columns)\n",
                   key.c_str());

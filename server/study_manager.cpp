@@ -112,8 +112,7 @@ StudyManager::Created StudyManager::create(const json& posted, const std::string
   study::StudyPlan plan = study::plan_study(posted, json());
   std::vector<std::string> problems;
   for (const study::StudyRun& run : plan.runs) {
-    const std::string where =
-        "run " + std::to_string(run.index) + " (" + study::describe_values(plan.parameters, run.values) + "): ";
+    const std::string where = study::run_label(plan, run.index, run.values) + ": ";
     try {
       jobs_.check(spec::parse_json(run.spec.dump()));  // as a submission is checked: no file is read
     } catch (const spec::SpecError& e) {

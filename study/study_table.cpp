@@ -38,15 +38,24 @@ std::string csv_value(const json& v) {
   return csv_field(v.dump());
 }
 
-// A result of a row by dotted name, when it is a number.
-std::optional<double> number_at(const StudyRow& row, const std::string& key) {
-  if (row.results.is_null()) return std::nullopt;
-  for (const auto& [name, value] : flatten(row.results))
-    if (name == key && value.is_number()) return value.get<double>();
+}  // namespace
+
+std::optional<json> result_at(const StudyRow& row, const std::string& key) {
+  if (!row.results.is_object()) return std::nullopt;
+  for (auto& [name, value] : flatten(row.results))
+    if (name == key) return std::move(value);
   return std::nullopt;
 }
 
-}  // namespace
+std::optional<double> number_at(const StudyRow& row, const std::string& key) {
+  const std::optional<json> value = result_at(row, key);
+  if (!value || !value->is_number()) return std::nullopt;
+  return value->get<double>();
+}
+
+std::string run_label(const StudyPlan& plan, int index, const std::vector<json>& values) {
+  return "run " + std::to_string(index) + " (" + describe_values(plan.parameters, values) + ")";
+}
 
 StudyRow row_of(const StudyRun& run) {
   StudyRow row;

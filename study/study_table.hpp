@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,13 @@ StudyRow row_of(const StudyRun& run);
 // in the order results.json has them; lists of objects other than loadedWalls (the cycles, the
 // fragment sizes) stay in the JSON table.
 std::vector<std::pair<std::string, nlohmann::json>> flatten(const nlohmann::json& results);
+
+// A row's result by its dotted name (as flatten names it), or none; and the same when it is a number.
+std::optional<nlohmann::json> result_at(const StudyRow& row, const std::string& key);
+std::optional<double> number_at(const StudyRow& row, const std::string& key);
+
+// "run 3 (bonds.tensileStrength=1000000.0)": a run as messages and lines name it.
+std::string run_label(const StudyPlan& plan, int index, const std::vector<nlohmann::json>& values);
 
 // The results the figure shows: the study's `plot`, else those of a set list the runs have
 // (runout, deposit area, fragments, crushed mass, settlement, resilient displacement), else run time.
