@@ -151,6 +151,16 @@ void expect_finite(const std::vector<T>& values, const char* what) {
   }
 }
 
+// A pose places a wall's or a mesh's every point: a non-finite one, or a "rotation" that stretches,
+// would put the wall nowhere (and the triangle grid's cells at NaN).
+void expect_pose(const WallPose& pose, const std::string& what) {
+  const bool finite = pose.center0.allFinite() && pose.displacement.allFinite() && pose.rotation.allFinite() &&
+                      pose.velocity.allFinite() && pose.angular_velocity.allFinite();
+  if (!finite) inconsistent(what + " is not finite");
+  if (!(pose.rotation.transpose() * pose.rotation).isIdentity(1e-9) || !(pose.rotation.determinant() > 0))
+    inconsistent(what + "'s rotation is not a rotation");
+}
+
 }  // namespace
 
 void StateIO::write(const Simulation& sim, std::ostream& out) {
@@ -521,11 +531,15 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(saved_walls, "the walls");
   expect_size(saved_walls, spec_walls.size(), "the planes and plates");
   for (std::size_t k = 0; k < spec_walls.size(); ++k) {
+    expect_pose(saved_walls[k].pose, "the pose of plane or plate " + std::to_string(k));
     s.walls[k] = spec_walls[k];
     s.walls[k].move_to(saved_walls[k].pose);
   }
   std::vector<WallPose> mesh_poses(s.meshes.size());
-  for (WallPose& pose : mesh_poses) r.get(pose, "the walls");
+  for (std::size_t m = 0; m < mesh_poses.size(); ++m) {
+    r.get(mesh_poses[m], "the walls");
+    expect_pose(mesh_poses[m], "the pose of mesh " + std::to_string(m));
+  }
   std::vector<WallDriver> saved_drivers;
   for (std::size_t k = 0; k < boundaries.drivers_.size(); ++k) {
     WallDriver::Record record;
@@ -555,6 +569,8 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(boundaries.pose_at_build_, "the walls");
   r.get(sim.boundary_loads_, "the walls");
   expect_size(boundaries.pose_at_build_, boundaries.drivers_.size(), "the walls' poses");
+  for (std::size_t k = 0; k < boundaries.pose_at_build_.size(); ++k)
+    expect_pose(boundaries.pose_at_build_[k], "the pose at the last build of wall " + std::to_string(k));
   expect_size(sim.boundary_loads_, boundaries.drivers_.size(), "the walls' loads");
   for (int k : loads_starting) {  // a load that starts now feels the particles' push from the start, as at t = 0
     boundaries.drivers_[k].end_step(sim.time(), 0, sim.boundary_loads_[k].force, sim.boundary_loads_[k].response);
