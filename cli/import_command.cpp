@@ -15,7 +15,7 @@
 namespace dem::cli {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kImportUsage =
     "usage: dem import INPT.inp [MESH ...] [--out SPEC.json] [--unit METRES] [--program pdem-egd|ballastdem]\n";
 
 struct ImportArgs {
@@ -30,7 +30,7 @@ bool parse(const std::vector<std::string>& args, ImportArgs& a) {
     const std::string& s = args[k];
     auto value = [&]() -> const std::string* {
       if (k + 1 >= args.size()) {
-        std::fprintf(stderr, "dem import: %s needs a value\n%s", s.c_str(), kUsage);
+        std::fprintf(stderr, "dem import: %s needs a value\n%s", s.c_str(), kImportUsage);
         return nullptr;
       }
       return &args[++k];
@@ -62,7 +62,7 @@ bool parse(const std::vector<std::string>& args, ImportArgs& a) {
         return false;
       }
     } else if (s.rfind("--", 0) == 0) {
-      std::fprintf(stderr, "dem import: unknown option %s\n%s", s.c_str(), kUsage);
+      std::fprintf(stderr, "dem import: unknown option %s\n%s", s.c_str(), kImportUsage);
       return false;
     } else if (a.inpt.empty()) {
       a.inpt = s;
@@ -71,7 +71,7 @@ bool parse(const std::vector<std::string>& args, ImportArgs& a) {
     }
   }
   if (a.inpt.empty()) {
-    std::fputs(kUsage, stderr);
+    std::fputs(kImportUsage, stderr);
     return false;
   }
   return true;

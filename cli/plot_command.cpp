@@ -16,14 +16,14 @@ namespace {
 
 using json = nlohmann::json;
 
-const char* kUsage =
+const char* kPlotUsage =
     "usage: dem plot FILE --x COLUMN --y COLUMN [--y COLUMN ...] --out FIGURE.svg [--title T]\n"
     "         FILE: columns of numbers (lines that are not are skipped); COLUMN: 1, 2, ..., or 2:NAME\n"
     "       dem plot FILE.json --rows LIST --x KEY --y KEY [--y KEY ...] --out FIGURE.svg [--title T]\n"
     "         LIST: the path of a list of objects in the JSON file (loadedWalls[0].cycles); KEY: their fields\n";
 
 int usage(const std::string& problem) {
-  std::fprintf(stderr, "dem plot: %s\n%s", problem.c_str(), kUsage);
+  std::fprintf(stderr, "dem plot: %s\n%s", problem.c_str(), kPlotUsage);
   return 2;
 }
 
@@ -81,7 +81,7 @@ int plot_command(const std::vector<std::string>& args) {
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
     if (a == "-h" || a == "--help") {
-      std::fputs(kUsage, stdout);
+      std::fputs(kPlotUsage, stdout);
       return 0;
     }
     const bool takes_value = a == "--x" || a == "--y" || a == "--out" || a == "--title" || a == "--rows";

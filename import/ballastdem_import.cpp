@@ -12,7 +12,7 @@
 namespace dem::import {
 namespace {
 
-const std::vector<LineFates::Expected> kLines = {{"restart", 1},
+const std::vector<LineFates::Expected> kBallastDemLines = {{"restart", 1},
                                                  {"pattern", 1},
                                                  {"nstep", 1},
                                                  {"Tgrowth, T_stable, iseeds", 3},
@@ -60,7 +60,7 @@ constexpr double kSeatSpeed = 0.5;  // m/s: the sleeper is lowered onto the bed 
 }  // namespace
 
 void import_ballastdem(const std::vector<legacy::InptLine>& lines, const ImportOptions& options, Imported& out) {
-  LineFates in(lines, kLines, "BallastDEM");
+  LineFates in(lines, kBallastDemLines, "BallastDEM");
   nlohmann::ordered_json& spec = out.spec;
   const double unit = options.length_unit;
   spec["name"] = "imported from BallastDEM's INPT.inp";

@@ -12,7 +12,7 @@
 namespace dem::import {
 namespace {
 
-const std::vector<LineFates::Expected> kLines = {{"restart", 1},
+const std::vector<LineFates::Expected> kPdemEgdLines = {{"restart", 1},
                                                  {"pattern", 1},
                                                  {"BOND_MODEL", 1},
                                                  {"nstep", 1},
@@ -55,7 +55,7 @@ void import_pdem_egd(const std::vector<legacy::InptLine>& lines, const ImportOpt
   if (options.meshes.size() > 2)
     throw legacy::InptError("PDEM-EGD takes at most two mesh files (the terrain, then the funnel): got " +
                             std::to_string(options.meshes.size()));
-  LineFates in(lines, kLines, "PDEM-EGD");
+  LineFates in(lines, kPdemEgdLines, "PDEM-EGD");
   nlohmann::ordered_json& spec = out.spec;
   const double unit = options.length_unit;
   const bool has_terrain = !options.meshes.empty(), has_funnel = options.meshes.size() >= 2;
