@@ -9,6 +9,20 @@ namespace {
 
 nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
+nlohmann::json pieces_json(const MotionResults& m) {
+  nlohmann::json quantiles = nlohmann::json::array();
+  for (std::size_t k = 0; k < m.piece_travel.size(); ++k)
+    quantiles.push_back({{"fraction", static_cast<double>(k) / static_cast<double>(m.piece_travel.size() - 1)},
+                         {"travel", m.piece_travel[k]}});
+  nlohmann::json j = {{"count", m.pieces}, {"travelMean", m.piece_travel_mean}, {"quantiles", quantiles}};
+  if (m.piece_travel.size() == MotionResults::kPieceQuantiles) {  // 0, 0.05, ..., 1
+    j["travelMedian"] = m.piece_travel[10];
+    j["travelP90"] = m.piece_travel[18];
+    j["travelMax"] = m.piece_travel[20];
+  }
+  return j;
+}
+
 nlohmann::json motion_json(const MotionResults& m) {
   return {
       {"reference", {{"step", m.reference_step}, {"time", m.reference_time}, {"stage", m.reference_stage}}},
@@ -23,6 +37,7 @@ nlohmann::json motion_json(const MotionResults& m) {
       {"runout", {{"length", m.runout_length}, {"height", m.fall_height}, {"heightOverLength", m.h_over_l}}},
       {"deposit",
        {{"length", m.deposit_length}, {"width", m.deposit_width}, {"area", m.deposit_area}, {"cell", m.deposit_cell}}},
+      {"pieces", pieces_json(m)},
   };
 }
 

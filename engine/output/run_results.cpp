@@ -296,6 +296,41 @@ void ResultsRecorder::track_loads(const Simulation& sim) {
   }
 }
 
+void ResultsRecorder::piece_travels(const Simulation& sim, const std::vector<double>& share, const Vec3& up,
+                                    MotionResults& m) const {
+  const Particles& p = sim.particles();
+  const std::vector<int> label = sim.fragments();
+  struct Piece {
+    double mass = 0;
+    Vec3 start = Vec3::Zero(), end = Vec3::Zero();
+  };
+  std::map<std::int64_t, Piece> pieces;  // without bonds a loose sphere's label is 0: it is its own piece
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto then = reference_->position.find(p.id[i]);
+    if (!moves(p, i) || then == reference_->position.end()) continue;
+    Piece& piece = pieces[label[i] > 0 ? label[i] : -1 - static_cast<std::int64_t>(i)];
+    piece.mass += share[i];
+    piece.start += share[i] * then->second;
+    piece.end += share[i] * p.x[i];
+  }
+  std::vector<double> travel;
+  for (const auto& [key, piece] : pieces)
+    if (piece.mass > 0) travel.push_back(horizontal((piece.end - piece.start) / piece.mass, up).norm());
+  m.pieces = static_cast<int>(travel.size());
+  if (travel.empty()) return;
+  std::sort(travel.begin(), travel.end());
+  double sum = 0;
+  for (double d : travel) sum += d;
+  m.piece_travel_mean = sum / static_cast<double>(travel.size());
+  // quantile q: linear between the sorted travels (numpy's and R's default, type 7)
+  for (int k = 0; k < MotionResults::kPieceQuantiles; ++k) {
+    const double at = static_cast<double>(travel.size() - 1) * k / (MotionResults::kPieceQuantiles - 1);
+    const auto below = static_cast<std::size_t>(std::floor(at));
+    const std::size_t above = std::min(below + 1, travel.size() - 1);
+    m.piece_travel.push_back(travel[below] + (at - static_cast<double>(below)) * (travel[above] - travel[below]));
+  }
+}
+
 MotionResults ResultsRecorder::motion(const Simulation& sim) const {
   const Reference& ref = *reference_;
   const Particles& p = sim.particles();
@@ -342,6 +377,8 @@ MotionResults ResultsRecorder::motion(const Simulation& sim) const {
     m.front_start = any_start ? std::max(m.front_start, front) : front;
     any_start = true;
   }
+
+  piece_travels(sim, share, up, m);
 
   // the deposit at the end: its front (the toe), extent and covered area
   const bool planar = sim.scene().plane.has_value();

@@ -38,6 +38,14 @@ struct MotionResults {
   // area its particles cover (their footprints rasterised on cells of one mean diameter); a 2D run
   // has no area (0).
   double deposit_length = 0, deposit_width = 0, deposit_area = 0, deposit_cell = 0;
+  // Each piece's travel: the horizontal distance its centre of mass moved from the reference to the
+  // end, a piece being what holds together at the end (a rock, a clump, a fragment, a loose
+  // sphere). A rockfall's runout distribution: its quantiles over the pieces (by count) at the
+  // fractions 0, 0.05, ..., 1 (kPieceQuantiles values, the first the least travel, the last the most).
+  static constexpr int kPieceQuantiles = 21;
+  int pieces = 0;
+  double piece_travel_mean = 0;
+  std::vector<double> piece_travel;  // kPieceQuantiles values, empty without pieces
 };
 
 // Fragments: particles held together by intact bonds (a rigid clump is one piece with its members).
@@ -145,6 +153,7 @@ class ResultsRecorder final : public Observer {
   void read_track(const std::string& path, std::int64_t up_to_step, int walls, std::size_t particles);
   void write_line(const std::string& line);
   MotionResults motion(const Simulation& sim) const;
+  void piece_travels(const Simulation& sim, const std::vector<double>& share, const Vec3& up, MotionResults& m) const;
   FragmentResults fragment_results(const Simulation& sim) const;
 
   OutputFile track_;

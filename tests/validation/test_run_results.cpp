@@ -283,6 +283,50 @@ TEST(RunResults, AClumpIsOnePieceBesideBondedPieces) {
   EXPECT_EQ(by_id, (std::vector<int>{1, 1, 2, 2, 3, 3}));
 }
 
+// Each piece's travel (a rockfall's runout distribution): five loose spheres in free flight, no
+// gravity, at 0.1 to 0.5 m/s in five horizontal directions, and a two-sphere clump at 1 m/s across
+// and 0.3 m/s up, for 1 s: six pieces (the clump one, each loose sphere its own) travelling 0.1, 0.2,
+// 0.3, 0.4, 0.5 and 1 m (only the horizontal counts); the quantiles linear between them.
+TEST(RunResults, EachPieceTravelsItsOwnVT) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.5, 0.5, 1e5);
+  const double r = 0.01;
+  for (int k = 0; k < 5; ++k) {
+    const double angle = 1.2 * k, speed = 0.1 * (k + 1);
+    s.particles.push_back(sphere({3.0 * k, 0, 0}, r, {speed * std::cos(angle), speed * std::sin(angle), 0}));
+  }
+  const Vec3 at(0, 5, 0), v(0.6, 0.8, 0.3);
+  ParticleInit a = sphere(at - Vec3(0.5 * r, 0, 0), r, v), b = sphere(at + Vec3(0.5 * r, 0, 0), r, v);
+  a.clump = b.clump = 0;
+  s.particles.push_back(a);
+  s.particles.push_back(b);
+  ClumpInit clump;
+  clump.first = 5;
+  clump.count = 2;
+  clump.mass = 2 * sphere_mass(2600, r);
+  clump.moments = Vec3(1e-6, 2e-6, 2e-6);
+  clump.position = at;
+  clump.velocity = v;
+  s.clumps.push_back(clump);
+  s.time.dt = 5e-5;
+  s.time.steps = 20000;
+  Simulation sim(s);
+  const RunResults res = run_with_recorder(sim, track_path("pieces"), false);
+  ASSERT_TRUE(res.motion.has_value());
+  const MotionResults& m = *res.motion;
+  EXPECT_EQ(m.pieces, 6);
+  EXPECT_NEAR(m.piece_travel_mean, 2.5 / 6, 1e-9);
+  ASSERT_EQ(m.piece_travel.size(), static_cast<std::size_t>(MotionResults::kPieceQuantiles));
+  const std::vector<double> sorted{0.1, 0.2, 0.3, 0.4, 0.5, 1.0};
+  for (int k = 0; k < MotionResults::kPieceQuantiles; ++k) {
+    const double at_sorted = 5.0 * k / (MotionResults::kPieceQuantiles - 1);
+    const auto below = static_cast<std::size_t>(at_sorted);
+    const double expected =
+        below >= 5 ? 1.0 : sorted[below] + (at_sorted - below) * (sorted[below + 1] - sorted[below]);
+    EXPECT_NEAR(m.piece_travel[k], expected, 1e-9) << "quantile " << k;
+  }
+  EXPECT_NEAR(m.piece_travel[10], 0.35, 1e-9);  // the median
+}
+
 // A staged run's reference is where the particles are as its last stage begins: free flight through
 // that stage travels v T exactly (it was one step late: 0.19999 of 0.2, an independent tester).
 TEST(RunResults, TheReferenceIsTheLastStagesStart) {
