@@ -20,7 +20,8 @@ const char* kPlotUsage =
     "usage: dem plot FILE --x COLUMN --y COLUMN [--y COLUMN ...] --out FIGURE.svg [--title T]\n"
     "         FILE: columns of numbers (lines that are not are skipped); COLUMN: 1, 2, ..., or 2:NAME\n"
     "       dem plot FILE.json --rows LIST --x KEY --y KEY [--y KEY ...] --out FIGURE.svg [--title T]\n"
-    "         LIST: the path of a list of objects in the JSON file (loadedWalls[0].cycles); KEY: their fields\n";
+    "         LIST: the path of a list of objects in the JSON file (loadedWalls[0].cycles); KEY: their fields,\n"
+    "         or KEY:NAME\n";
 
 int usage(const std::string& problem) {
   std::fprintf(stderr, "dem plot: %s\n%s", problem.c_str(), kPlotUsage);
@@ -124,16 +125,24 @@ int plot_command(const std::vector<std::string>& args) {
       }
       if (!list) throw std::runtime_error(file + ": " + rows_path + " is not a list in it");
       const json& rows = doc.at(pointer);
+      // "travel" or "travel:travel (m)": a key and its label
+      auto key = [](const std::string& text) { return text.substr(0, text.find(':')); };
+      auto label = [](const std::string& text) {
+        const std::size_t colon = text.find(':');
+        return colon == std::string::npos ? text : text.substr(colon + 1);
+      };
+      const std::string kx = key(x);
       for (std::size_t k = 0; k < ys.size(); ++k) {
+        const std::string ky = key(ys[k]);
         study::Series series{{}, true, true};
         for (const json& row : rows) {
-          if (!row.is_object() || !row.contains(x) || !row.contains(ys[k]) || !row[x].is_number() ||
-              !row[ys[k]].is_number())
+          if (!row.is_object() || !row.contains(kx) || !row.contains(ky) || !row[kx].is_number() ||
+              !row[ky].is_number())
             throw std::runtime_error(file + ": a row of " + rows_path + " has no number " +
-                                     (row.is_object() && row.contains(x) && row[x].is_number() ? ys[k] : x));
-          series.points.emplace_back(row[x].get<double>(), row[ys[k]].get<double>());
+                                     (row.is_object() && row.contains(kx) && row[kx].is_number() ? ky : kx));
+          series.points.emplace_back(row[kx].get<double>(), row[ky].get<double>());
         }
-        panels[k] = {ys[k], x, "", {series}, {}};
+        panels[k] = {label(ys[k]), label(x), "", {series}, {}};
       }
     } else {
       // "3" or "3:force (N)": a column and its label

@@ -55,7 +55,9 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
   const int panel_w = 360, panel_h = 260, margin_l = 70, margin_b = 50, margin_t = 40, gap = 30;
   const int columns = std::max(1, std::min<int>(3, static_cast<int>(panels.size())));
   const int panel_rows = std::max(1, (static_cast<int>(panels.size()) + columns - 1) / columns);
-  const int width = columns * (panel_w + gap) + gap, height = panel_rows * (panel_h + margin_t + gap) + 50;
+  // wide enough for the title too (16 px sans-serif: about 9 px a character), as one panel's is narrow
+  const int width = std::max(columns * (panel_w + gap) + gap, 2 * gap + 9 * static_cast<int>(title.size()));
+  const int height = panel_rows * (panel_h + margin_t + gap) + 50;
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) + "\" height=\"" +
                     std::to_string(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";

@@ -46,6 +46,14 @@ TEST_F(CliPlot, RowsOfAJsonList) {
               shell_quoted(out));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(count(read(out), "<circle"), 2u);
+  // KEY:NAME labels an axis, as COLUMN:NAME does
+  const CommandResult labelled = run_dem("plot " + shell_quoted(data) +
+                                         " --rows 'loadedWalls[0].cycles' --x 'cycle:load cycle' --y "
+                                         "'settlement:settlement (m)' --out " +
+                                         shell_quoted(out));
+  ASSERT_EQ(labelled.exit_code, 0) << labelled.output;
+  EXPECT_NE(read(out).find("settlement (m)"), std::string::npos);
+  EXPECT_NE(read(out).find("load cycle"), std::string::npos);
   const CommandResult missing = run_dem(
       "plot " + shell_quoted(data) + " --rows 'loadedWalls[0].cycles' --x cycle --y peak --out " + shell_quoted(out));
   EXPECT_EQ(missing.exit_code, 1);
