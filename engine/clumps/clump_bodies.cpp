@@ -108,7 +108,7 @@ double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& 
       [](double a, double b) { return std::max(a, b); });
 }
 
-void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt) {
+void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt, double local_damping) {
   // Each body's members in particle order (a counting sort: the order changes with every re-sort),
   // so that each body sums its members in that order: the same sums on any number of threads.
   const int n = static_cast<int>(p.size()), nb = static_cast<int>(bodies.size());
@@ -130,6 +130,13 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
         const Vec3 contact = p.f[i] - p.mass[i] * gravity;
         force += contact;
         torque += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
+      }
+      if (local_damping > 0 && dt != 0) {
+        const Vec3 w = angular_velocity(bodies.rotation[b], bodies.moments[b]);
+        for (int d = 0; d < 3; ++d) {
+          if (bodies.v[b][d] != 0) force[d] -= local_damping * std::abs(force[d]) * (bodies.v[b][d] > 0 ? 1 : -1);
+          if (w[d] != 0) torque[d] -= local_damping * std::abs(torque[d]) * (w[d] > 0 ? 1 : -1);
+        }
       }
       bodies.force[b] = force;
       bodies.torque[b] = torque;

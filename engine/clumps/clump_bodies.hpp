@@ -39,8 +39,10 @@ double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& 
 
 // Sums the members' forces and torques (the force kernel added gravity to each member as if it had
 // the body's mass: that is taken out and the body's weight put in once), then the second half
-// kick, then the members' velocities and spins. dt = 0 only sums.
-void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt);
+// kick, then the members' velocities and spins. dt = 0 only sums. local_damping (numerics.localDamping,
+// Cundall's): each component of the body's force and torque loses local_damping times its size
+// against the body's velocity and spin, as a sphere's does in the force kernel.
+void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt, double local_damping = 0);
 
 double bodies_kinetic_energy(const ClumpBodies& bodies);
 double bodies_rotational_energy(const ClumpBodies& bodies);

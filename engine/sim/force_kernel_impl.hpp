@@ -391,6 +391,7 @@ class ForceKernelImpl final : public ForceKernel {
       Vec3* __restrict v = p.v.data();
       Vec3* __restrict w = p.w.data();
       const Vec3* __restrict x = p.x.data();
+      const int* __restrict body = p.body.empty() ? nullptr : p.body.data();
       bool bad = false;
       for (int i = begin; i < end; ++i) {
         Vec3 f = as_vec3(sums[i].f), t = as_vec3(sums[i].t);
@@ -410,7 +411,10 @@ class ForceKernelImpl final : public ForceKernel {
         }
         f = f + mass[i] * g;
         if (!p.external.empty()) f = f + p.external[i];
-        if (alpha > 0) {  // local damping: each component loses alpha |F| against its velocity
+        // local damping: each component loses alpha |F| against its velocity. A clump member's is
+        // its body's, on the body's force and torque (kick_bodies): here it would take alpha of the
+        // body's weight once per member (a stone of four spheres at alpha 0.3 floated).
+        if (alpha > 0 && (body == nullptr || body[i] < 0)) {
           for (int d = 0; d < 3; ++d) {
             if (v[i][d] != 0) f[d] -= alpha * std::abs(f[d]) * (v[i][d] > 0 ? 1 : -1);
             if (w[i][d] != 0) t[d] -= alpha * std::abs(t[d]) * (w[i][d] > 0 ? 1 : -1);

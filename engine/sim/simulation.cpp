@@ -365,7 +365,8 @@ void Simulation::refuse_motion_off_the_plane() const {
 void Simulation::compute_forces_and_kick() {
   kernel_->compute_and_kick(state_);
   if (scene_.plane) hold_in_plane();
-  if (!state_.bodies.empty()) kick_bodies(state_.bodies, state_.particles, state_.gravity, state_.dt);
+  if (!state_.bodies.empty())
+    kick_bodies(state_.bodies, state_.particles, state_.gravity, state_.dt, state_.local_damping);
 }
 
 // The plane's reaction (a 2D run): the discs keep y = 0 and turn only about y. The kick has just added dt/2 f/m, so

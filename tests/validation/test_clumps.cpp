@@ -73,6 +73,27 @@ TEST(Clumps, ATwoSphereClumpDroppedFlatComesToRestWithoutDrifting) {
   EXPECT_NEAR((p.x[0] - p.x[1]).norm(), 0.012, 1e-12) << "the members keep their places";
 }
 
+// Local damping (numerics.localDamping, alpha) takes alpha of a falling body's weight, once: a
+// clump of three spheres falls as a sphere does, (1 - alpha) g t^2 / 2 in t. Each member took alpha
+// of the whole body's weight, so a clump of n members fell with (1 - n alpha) g: at alpha 0.3 a
+// ballast stone of four spheres floated up (the bed of the ballast-box case never settled).
+TEST(Clumps, LocalDampingTakesItsShareOfAFallingClumpsWeightOnce) {
+  const double alpha = 0.3, t = 0.2;
+  std::string json = clump_spec(
+      0.5, Vec3::UnitZ(),
+      R"({"shape": "odd", "material": "rock", "position": {"z": 1}, "rotationAxis": {"x": 1, "y": 2, "z": 0.5}, "rotationDegrees": 40})",
+      kG, t);
+  json.replace(json.find(R"("outputs")"), 0, R"("numerics": {"localDamping": 0.3}, )");
+  Simulation sim = simulation_of(json);
+  ASSERT_EQ(sim.particles().size(), 3u);
+  const double z0 = sim.state().bodies.x[0].z();
+  run_until(sim, t);
+  const double drop = z0 - sim.state().bodies.x[0].z();
+  EXPECT_NEAR(drop, (1 - alpha) * kG * sim.time() * sim.time() / 2, 1e-3 * drop);
+  // nothing turns it: no torque, no spin
+  EXPECT_LT(sim.particles().w[0].norm(), 1e-9);
+}
+
 TEST(Clumps, AFreeAsymmetricClumpKeepsItsEnergyAndItsShape) {
   // no gravity, far above the plane: torque-free motion of the "odd" clump
   Simulation sim = simulation_of(clump_spec(
