@@ -40,6 +40,91 @@ std::vector<double> mass_shares(const Simulation& sim) {
   return share;
 }
 
+// A rigid clump's centroid from its members' centres: x_i = X + R o_i with o_i the members' offsets
+// in the body frame, R the rotation that best fits the offsets to the centres (Kabsch 1976, by SVD).
+// Exact for a rigid body; the members' plain mean is not the centroid of a clump of unequal spheres.
+Vec3 centroid_from_members(const std::vector<Vec3>& offsets, const std::vector<Vec3>& centres) {
+  const double n = static_cast<double>(centres.size());
+  Vec3 mean_o = Vec3::Zero(), mean_x = Vec3::Zero();
+  for (std::size_t k = 0; k < centres.size(); ++k) {
+    mean_o += offsets[k] / n;
+    mean_x += centres[k] / n;
+  }
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  for (std::size_t k = 0; k < centres.size(); ++k) h += (offsets[k] - mean_o) * (centres[k] - mean_x).transpose();
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d fix = Eigen::Matrix3d::Identity();
+  fix(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1 : 1;
+  const Eigen::Matrix3d r = svd.matrixV() * fix * svd.matrixU().transpose();
+  return mean_x - r * mean_o;
+}
+
+// What moves as one mass at the reference and at the end: each loose particle, and each rigid clump
+// at its centroid (not its members: a clump of unequal spheres turning would seem to travel).
+struct MassPoint {
+  int particle = 0;  // a loose particle's index, or a clump's first member's
+  double mass = 0;
+  Vec3 start = Vec3::Zero(), end = Vec3::Zero();
+};
+
+std::vector<MassPoint> mass_points(const Simulation& sim, const std::map<int, Vec3>& reference) {
+  const Particles& p = sim.particles();
+  const ClumpBodies& bodies = sim.state().bodies;
+  std::vector<MassPoint> points;
+  std::vector<std::vector<int>> members(bodies.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto then = reference.find(p.id[i]);
+    if (!moves(p, i) || then == reference.end()) continue;
+    if (!p.body.empty() && p.body[i] >= 0)
+      members[p.body[i]].push_back(static_cast<int>(i));
+    else
+      points.push_back({static_cast<int>(i), p.mass[i], then->second, p.x[i]});
+  }
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (members[b].empty()) continue;
+    std::vector<Vec3> offsets, centres;
+    for (int i : members[b]) {
+      offsets.push_back(p.body_offset[i]);
+      centres.push_back(reference.at(p.id[i]));
+    }
+    points.push_back({members[b].front(), bodies.mass[b], centroid_from_members(offsets, centres), bodies.x[b]});
+  }
+  return points;
+}
+
+// Each piece's travel, their mean and quantiles (MotionResults::pieces).
+void piece_travels(const Simulation& sim, const std::vector<MassPoint>& points, const Vec3& up, MotionResults& m) {
+  const std::vector<int> label = sim.fragments();
+  struct Piece {
+    double mass = 0;
+    Vec3 start = Vec3::Zero(), end = Vec3::Zero();
+  };
+  std::map<std::int64_t, Piece> pieces;  // without bonds a loose sphere's label is 0: it is its own piece
+  for (const MassPoint& point : points) {
+    const int i = point.particle;
+    Piece& piece = pieces[label[i] > 0 ? label[i] : -1 - static_cast<std::int64_t>(i)];
+    piece.mass += point.mass;
+    piece.start += point.mass * point.start;
+    piece.end += point.mass * point.end;
+  }
+  std::vector<double> travel;
+  for (const auto& [key, piece] : pieces)
+    if (piece.mass > 0) travel.push_back(horizontal((piece.end - piece.start) / piece.mass, up).norm());
+  m.pieces = static_cast<int>(travel.size());
+  if (travel.empty()) return;
+  std::sort(travel.begin(), travel.end());
+  double sum = 0;
+  for (double d : travel) sum += d;
+  m.piece_travel_mean = sum / static_cast<double>(travel.size());
+  // quantile q: linear between the sorted travels (numpy's and R's default, type 7)
+  for (int k = 0; k < MotionResults::kPieceQuantiles; ++k) {
+    const double at = static_cast<double>(travel.size() - 1) * k / (MotionResults::kPieceQuantiles - 1);
+    const auto below = static_cast<std::size_t>(std::floor(at));
+    const std::size_t above = std::min(below + 1, travel.size() - 1);
+    m.piece_travel.push_back(travel[below] + (at - static_cast<double>(below)) * (travel[above] - travel[below]));
+  }
+}
+
 int last_stage(const Scene& scene) { return scene.stages.empty() ? 0 : static_cast<int>(scene.stages.size()) - 1; }
 
 std::string number(double v) {
@@ -296,41 +381,6 @@ void ResultsRecorder::track_loads(const Simulation& sim) {
   }
 }
 
-void ResultsRecorder::piece_travels(const Simulation& sim, const std::vector<double>& share, const Vec3& up,
-                                    MotionResults& m) const {
-  const Particles& p = sim.particles();
-  const std::vector<int> label = sim.fragments();
-  struct Piece {
-    double mass = 0;
-    Vec3 start = Vec3::Zero(), end = Vec3::Zero();
-  };
-  std::map<std::int64_t, Piece> pieces;  // without bonds a loose sphere's label is 0: it is its own piece
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const auto then = reference_->position.find(p.id[i]);
-    if (!moves(p, i) || then == reference_->position.end()) continue;
-    Piece& piece = pieces[label[i] > 0 ? label[i] : -1 - static_cast<std::int64_t>(i)];
-    piece.mass += share[i];
-    piece.start += share[i] * then->second;
-    piece.end += share[i] * p.x[i];
-  }
-  std::vector<double> travel;
-  for (const auto& [key, piece] : pieces)
-    if (piece.mass > 0) travel.push_back(horizontal((piece.end - piece.start) / piece.mass, up).norm());
-  m.pieces = static_cast<int>(travel.size());
-  if (travel.empty()) return;
-  std::sort(travel.begin(), travel.end());
-  double sum = 0;
-  for (double d : travel) sum += d;
-  m.piece_travel_mean = sum / static_cast<double>(travel.size());
-  // quantile q: linear between the sorted travels (numpy's and R's default, type 7)
-  for (int k = 0; k < MotionResults::kPieceQuantiles; ++k) {
-    const double at = static_cast<double>(travel.size() - 1) * k / (MotionResults::kPieceQuantiles - 1);
-    const auto below = static_cast<std::size_t>(std::floor(at));
-    const std::size_t above = std::min(below + 1, travel.size() - 1);
-    m.piece_travel.push_back(travel[below] + (at - static_cast<double>(below)) * (travel[above] - travel[below]));
-  }
-}
-
 MotionResults ResultsRecorder::motion(const Simulation& sim) const {
   const Reference& ref = *reference_;
   const Particles& p = sim.particles();
@@ -341,15 +391,13 @@ MotionResults ResultsRecorder::motion(const Simulation& sim) const {
   m.reference_stage = ref.stage;
 
   // the centre of mass of the moving particles there at both instants
-  const std::vector<double> share = mass_shares(sim);
+  const std::vector<MassPoint> points = mass_points(sim, ref.position);
   double mass = 0;
   Vec3 start = Vec3::Zero(), end = Vec3::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const auto then = ref.position.find(p.id[i]);
-    if (!moves(p, i) || then == ref.position.end()) continue;
-    mass += share[i];
-    start += share[i] * then->second;
-    end += share[i] * p.x[i];
+  for (const MassPoint& point : points) {
+    mass += point.mass;
+    start += point.mass * point.start;
+    end += point.mass * point.end;
   }
   if (mass > 0) {
     m.com_start = start / mass;
@@ -378,7 +426,7 @@ MotionResults ResultsRecorder::motion(const Simulation& sim) const {
     any_start = true;
   }
 
-  piece_travels(sim, share, up, m);
+  piece_travels(sim, points, up, m);
 
   // the deposit at the end: its front (the toe), extent and covered area
   const bool planar = sim.scene().plane.has_value();

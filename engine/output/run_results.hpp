@@ -153,7 +153,6 @@ class ResultsRecorder final : public Observer {
   void read_track(const std::string& path, std::int64_t up_to_step, int walls, std::size_t particles);
   void write_line(const std::string& line);
   MotionResults motion(const Simulation& sim) const;
-  void piece_travels(const Simulation& sim, const std::vector<double>& share, const Vec3& up, MotionResults& m) const;
   FragmentResults fragment_results(const Simulation& sim) const;
 
   OutputFile track_;

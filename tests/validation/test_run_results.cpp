@@ -327,6 +327,43 @@ TEST(RunResults, EachPieceTravelsItsOwnVT) {
   EXPECT_NEAR(m.piece_travel[10], 0.35, 1e-9);  // the median
 }
 
+// A clump of unequal spheres travelling and turning: its travel is its centroid's, not its members'
+// mean's. Two clumps of a sphere of radius 2r and one of r, their centroid 0.3 of the way from the
+// big one: one moving at 0.2 m/s and turning half a turn in 0.5 s, one turning in place. They
+// travelled 0.083 and 0.017 m for 0.1 and 0 (an independent tester), and the centre of mass too.
+TEST(RunResults, AClumpOfUnequalSpheresTravelsWithItsCentroid) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.5, 0.5, 1e5);
+  const double r = 0.01, t = 0.5, spin = std::numbers::pi / t;
+  const std::vector<Vec3> at{{0, 0, 0}, {1, 0, 0}};
+  const std::vector<Vec3> v{{0.2, 0, 0}, {0, 0, 0}};
+  for (int c = 0; c < 2; ++c) {
+    ParticleInit big = sphere(at[c] - Vec3(0.006, 0, 0), 2 * r, v[c]),
+                 small = sphere(at[c] + Vec3(0.014, 0, 0), r, v[c]);
+    big.clump = small.clump = c;
+    s.particles.push_back(big);
+    s.particles.push_back(small);
+    ClumpInit clump;
+    clump.first = 2 * c;
+    clump.count = 2;
+    clump.mass = 9 * sphere_mass(2600, r);
+    clump.moments = Vec3(1e-5, 2e-5, 2e-5);
+    clump.position = at[c];
+    clump.velocity = v[c];
+    clump.angular_velocity = Vec3(0, 0, spin);
+    s.clumps.push_back(clump);
+  }
+  s.time.dt = 5e-5;
+  s.time.steps = 10000;
+  Simulation sim(s);
+  const RunResults res = run_with_recorder(sim, track_path("unequal"), false);
+  ASSERT_TRUE(res.motion.has_value());
+  const MotionResults& m = *res.motion;
+  EXPECT_EQ(m.pieces, 2);
+  EXPECT_NEAR(m.piece_travel.front(), 0, 1e-9);
+  EXPECT_NEAR(m.piece_travel.back(), 0.2 * t, 1e-9);
+  EXPECT_NEAR(m.com_travel, 0.1 * t, 1e-9);  // the two clumps weigh the same
+}
+
 // A staged run's reference is where the particles are as its last stage begins: free flight through
 // that stage travels v T exactly (it was one step late: 0.19999 of 0.2, an independent tester).
 TEST(RunResults, TheReferenceIsTheLastStagesStart) {
