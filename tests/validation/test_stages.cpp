@@ -109,6 +109,25 @@ TEST(Stages, AFloorAddedAtAStageIsNotThereBeforeAndCatchesTheSphereAfter) {
   EXPECT_NEAR(sim.particles().v[0].z(), 0, 1e-4);
 }
 
+// A wall a stage adds through a particle stops the run at that stage's first step, and the error
+// says so: it named only "its contact with a wall" (a sleeper added below the top of a ballast bed
+// stopped a 5-minute settling with no word of the sleeper).
+TEST(Stages, AWallAddedThroughAParticleIsNamedInTheError) {
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0.25, 0.2, 0.3, 1e5);
+  s.particles.push_back(sphere({0, 0, 0.01}, 0.01));
+  s.walls.push_back(plane(Vec3::Zero(), Vec3::UnitZ(), "floor"));
+  s.walls.push_back(plane(Vec3(0, 0, 0.012), -Vec3::UnitZ(), "lid"));
+  s.walls[1].first_stage = 1;
+  s.gravity = {0, 0, -kG};
+  s.stages.push_back(stage_of("settle", 200));
+  s.stages.push_back(stage_of("close", 200));
+  Simulation sim(std::move(s));
+  const RunOutcome outcome = run(sim, {});
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_NE(outcome.error.find("first step of stage \"close\""), std::string::npos) << outcome.error;
+  EXPECT_NE(outcome.error.find("the wall it adds (\"lid\")"), std::string::npos) << outcome.error;
+}
+
 TEST(Stages, AMotionGivenAtAStageCountsItsTimeFromTheStageStart) {
   Scene s = lone_sphere({1, 1, 1});
   s.walls.push_back(
