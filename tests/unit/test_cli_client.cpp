@@ -14,6 +14,7 @@
 
 #include "support/command.hpp"
 
+namespace test_cli_client {
 namespace {
 
 using dem::test::kDem;
@@ -178,3 +179,4 @@ TEST_F(CliClient, SubmitOfAnUnknownFieldNamesIt) {
 }
 
 }  // namespace
+}  // namespace test_cli_client

@@ -11,7 +11,7 @@
 #include "support/report.hpp"
 #include "support/spec_problems.hpp"
 
-namespace dem::test {
+namespace dem::test::test_ballast_stones {
 namespace {
 
 std::string stones_spec(int count, std::uint32_t seed, double box) {
@@ -138,4 +138,4 @@ TEST(BallastStones, AnEmptyOrUndefinedMassDistributionIsRefused) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_ballast_stones

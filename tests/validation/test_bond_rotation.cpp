@@ -12,7 +12,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_bond_rotation {
 namespace {
 
 constexpr double kR = 0.01, kDensity = 2600, kOmega = 20;
@@ -183,4 +183,4 @@ TEST(BondRotation, SpheresRollingOnEachOtherKeepTheirEnergy) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_bond_rotation

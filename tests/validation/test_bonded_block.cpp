@@ -9,7 +9,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_bonded_block {
 namespace {
 
 constexpr double kR = 0.005;
@@ -74,4 +74,4 @@ TEST(BondedBlock, BreaksMoreTheWeakerItIs) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_bonded_block

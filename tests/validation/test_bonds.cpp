@@ -12,7 +12,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_bonds {
 namespace {
 
 constexpr double kRa = 0.01, kRb = 0.01, kEb = 1e8, kShearRatio = 0.4, kSigma = 2e6, kTau = 3e6;
@@ -253,4 +253,4 @@ TEST(BondedCantilever, TipDeflectionMatchesBeamTheoryAndNotTheStep) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_bonds

@@ -16,7 +16,7 @@
 #include "support/scenes.hpp"
 #include "support/spec_problems.hpp"
 
-namespace dem::test {
+namespace dem::test::test_breakable_stones {
 namespace {
 
 constexpr double kDensity = 2600, kSphere = 0.003;
@@ -217,4 +217,4 @@ TEST(BreakableStones, ACrushedStoneBreaksAtAPeakThatRisesWithBondStrength) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_breakable_stones

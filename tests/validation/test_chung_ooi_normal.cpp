@@ -7,7 +7,7 @@
 #include "support/impact.hpp"
 #include "support/report.hpp"
 
-namespace dem::test {
+namespace dem::test::test_chung_ooi_normal {
 namespace {
 
 struct HertzCase {
@@ -134,9 +134,9 @@ TEST(ChungOoiTest3, AluminiumOxideElasticContactTime) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_chung_ooi_normal
 
-namespace dem::test {
+namespace dem::test::test_chung_ooi_normal {
 namespace {
 
 // The damped impacts converge in the time step at second order, for both laws: the rebound of test
@@ -172,4 +172,4 @@ TEST(RestitutionConvergence, IsSecondOrderInTheStep) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_chung_ooi_normal

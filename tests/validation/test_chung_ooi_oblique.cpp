@@ -9,7 +9,7 @@
 #include "support/impulse.hpp"
 #include "support/report.hpp"
 
-namespace dem::test {
+namespace dem::test::test_chung_ooi_oblique {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
@@ -188,4 +188,4 @@ INSTANTIATE_TEST_SUITE_P(ChungOoi, TestsFiveToEight, ::testing::Values(HertzNorm
                          });
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_chung_ooi_oblique

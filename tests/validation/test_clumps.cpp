@@ -19,7 +19,7 @@
 #include "support/report.hpp"
 #include "support/spec_problems.hpp"
 
-namespace dem::test {
+namespace dem::test::test_clumps {
 namespace {
 
 constexpr double kR = 0.01, kG = 9.81;
@@ -309,4 +309,4 @@ TEST(Clumps, BadClumpsAreRefusedWithTheirPaths) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_clumps

@@ -15,7 +15,7 @@
 #include "support/meshes.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_contact_onset_energy {
 namespace {
 
 constexpr double kRadius = 0.01, kStiffness = 1e5, kDensity = 2500;
@@ -155,4 +155,4 @@ INSTANTIATE_TEST_SUITE_P(FromOverlap, Release, ::testing::Values(LinearNormal::k
                          });
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_contact_onset_energy

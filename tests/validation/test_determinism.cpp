@@ -13,7 +13,7 @@
 #include "support/meshes.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_determinism {
 namespace {
 
 Scene falling_heap() {
@@ -76,4 +76,4 @@ TEST(Determinism, OneAndTwoThreadsWriteIdenticalBytes) {
 TEST(Determinism, RepeatedRunsWriteIdenticalBytes) { EXPECT_TRUE(run_to_text(2) == run_to_text(2)); }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_determinism

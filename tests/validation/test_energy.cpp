@@ -11,7 +11,7 @@
 
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_energy {
 namespace {
 
 Scene elastic_gas(std::string_view model, std::uint32_t seed) {
@@ -57,4 +57,4 @@ INSTANTIATE_TEST_SUITE_P(ElasticGas, EnergyConservation, ::testing::Values(Linea
                          });
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_energy

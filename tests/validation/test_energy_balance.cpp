@@ -13,7 +13,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_energy_balance {
 namespace {
 
 enum Column {
@@ -304,4 +304,4 @@ TEST(EnergyBalance, TangentialAndRollingSpringsStoreTheirEnergy) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_energy_balance

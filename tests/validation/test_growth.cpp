@@ -10,7 +10,7 @@
 #include "spec/spec_loader.hpp"
 #include "support/report.hpp"
 
-namespace dem::test {
+namespace dem::test::test_growth {
 namespace {
 
 // The documented set-up (docs/spec.md, "Growth"): 0.25 grown by 2^(1/3) over 20,000 steps in a
@@ -78,4 +78,4 @@ TEST(Growth, TheGuardLetsAGrowingPackingWithStronglyDampedContactsRun) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_growth

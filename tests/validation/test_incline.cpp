@@ -8,7 +8,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_incline {
 namespace {
 
 constexpr double kR = 0.01, kG = 9.81;
@@ -57,4 +57,4 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_incline

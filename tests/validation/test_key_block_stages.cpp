@@ -12,7 +12,7 @@
 #include "sim/simulation.hpp"
 #include "spec/spec_loader.hpp"
 
-namespace dem::test {
+namespace dem::test::test_key_block_stages {
 namespace {
 
 // A closed frustum, narrow end down: the square at z0 of half-side a0, at z1 of half-side a1.
@@ -110,4 +110,4 @@ TEST(KeyBlockStages, AFunnelFilledWithHexIsGrownBondedAndReleasedWhole) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_key_block_stages

@@ -17,7 +17,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_mesh_valley {
 namespace {
 
 constexpr double kR = 0.005;
@@ -113,9 +113,9 @@ TEST(MeshValley, SlidingAcrossTheFoldKeepsTheMechanicalEnergy) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_mesh_valley
 
-namespace dem::test {
+namespace dem::test::test_mesh_valley {
 namespace {
 
 // A ridge (convex seen from above): two faces falling at `slope_deg` away from the y axis; at 90
@@ -205,4 +205,4 @@ TEST(MeshRidge, ASphereCrossingARidgeOverlapsOnlyWhatItPressesIn) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_mesh_valley

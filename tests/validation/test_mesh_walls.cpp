@@ -11,7 +11,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_mesh_walls {
 namespace {
 
 constexpr double kR = 0.01, kG = 9.81;
@@ -162,4 +162,4 @@ TEST(MeshFloor, RollingResistanceStopsTheSphereAsOnAPlane) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_mesh_walls

@@ -11,7 +11,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_momentum {
 namespace {
 
 struct Momenta {
@@ -98,4 +98,4 @@ INSTANTIATE_TEST_SUITE_P(BothLaws, Momentum, ::testing::Values(LinearNormal::kNa
                          });
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_momentum

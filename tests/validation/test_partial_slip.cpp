@@ -11,7 +11,7 @@
 
 #include "support/impact.hpp"
 
-namespace dem::test {
+namespace dem::test::test_partial_slip {
 namespace {
 
 // Sphere of R = 0.1 m (Al alloy, as Chung & Ooi tests 5-8) onto a plane at v_n = v_t = 0.2 m/s,
@@ -72,4 +72,4 @@ TEST(PartialSlip, AGlancingStuckImpactConvergesAtSecondOrderToo) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_partial_slip

@@ -13,7 +13,7 @@
 #include "sim/state_io.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_plane_2d {
 namespace {
 
 constexpr double kG = 9.81;
@@ -186,4 +186,4 @@ TEST(Plane2D, ASourceFillsABoxAtItsMassRateWithDiscs) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_plane_2d

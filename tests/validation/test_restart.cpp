@@ -10,7 +10,7 @@
 #include "support/meshes.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_restart {
 namespace {
 
 Scene remembering_scene() {
@@ -94,4 +94,4 @@ TEST(Restart, AStateOfAnotherJobIsRefused) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_restart

@@ -9,7 +9,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_rolling_resistance {
 namespace {
 
 constexpr double kR = 0.01, kDensity = 2500, kKn = 1e5, kG = 9.81, kMuR = 0.1;
@@ -204,4 +204,4 @@ TEST(RollingDashpot, AnyDampingRatioMakesNoEnergy) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_rolling_resistance

@@ -18,7 +18,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_run_results {
 namespace {
 
 constexpr double kKn = 1e7;        // N/m: a sphere on a rigid wall has 2 kn (docs/physics.md)
@@ -487,4 +487,4 @@ TEST(RunResults, ADamagedTrackFileIsRefusedByName) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_run_results

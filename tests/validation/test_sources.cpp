@@ -10,7 +10,7 @@
 #include "sim/state_io.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_sources {
 namespace {
 
 constexpr double kG = 9.81;
@@ -284,4 +284,4 @@ TEST(Sources, AStateWithInsertedParticlesIsRefusedByAJobWithoutTheirSource) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_sources

@@ -13,7 +13,7 @@
 
 #include "support/impact.hpp"
 
-namespace dem::test {
+namespace dem::test::test_spring_passivity {
 namespace {
 
 struct EnergyTrace {
@@ -85,4 +85,4 @@ TEST(SpringPassivity, TheRollingSpringNeverGainsEnergy) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_spring_passivity

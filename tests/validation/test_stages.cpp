@@ -14,7 +14,7 @@
 #include "sim/state_io.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_stages {
 namespace {
 
 constexpr double kG = 9.81;
@@ -450,4 +450,4 @@ TEST(Stages, AStagesRestitutionHoldsTheStepToItsLimit) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_stages

@@ -10,7 +10,7 @@
 #include "support/report.hpp"
 #include "support/scenes.hpp"
 
-namespace dem::test {
+namespace dem::test::test_wall_loads {
 namespace {
 
 constexpr double kR = 0.005, kG = 9.81, kPlateMass = 1.0;
@@ -261,4 +261,4 @@ TEST(LoadedPlate, AMeshWhoseLoadWasDroppedStaysWhereItWasLeft) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_wall_loads
