@@ -13,7 +13,7 @@
 #include "sim/runner.hpp"
 #include "spec/spec_loader.hpp"
 
-namespace dem::test {
+namespace dem::test::test_case_trends {
 namespace {
 
 namespace fs = std::filesystem;
@@ -61,4 +61,4 @@ TEST(CaseTrends, RockfallRunsShorterOnAGroundThatResistsRolling) {
 }
 
 }  // namespace
-}  // namespace dem::test
+}  // namespace dem::test::test_case_trends
