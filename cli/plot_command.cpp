@@ -28,6 +28,18 @@ int usage(const std::string& problem) {
   return 2;
 }
 
+// An axis given as "3:force (N)" or "travel:travel (m)": the column or key before the first colon,
+// and the label after it (none: `unlabelled` and the column or key, "column 3" or "travel").
+struct Axis {
+  std::string name, label;
+};
+
+Axis axis_of(const std::string& text, const std::string& unlabelled) {
+  const std::size_t colon = text.find(':');
+  if (colon == std::string::npos) return {text, unlabelled + text};
+  return {text.substr(0, colon), text.substr(colon + 1)};
+}
+
 // The rows of numbers of a text file: every line whose words are all numbers, with at least `need` of them.
 // A file to read: a regular file (not a folder, nor /dev/zero), opened.
 std::ifstream open_file(const std::string& path) {
@@ -125,15 +137,11 @@ int plot_command(const std::vector<std::string>& args) {
       }
       if (!list) throw std::runtime_error(file + ": " + rows_path + " is not a list in it");
       const json& rows = doc.at(pointer);
-      // "travel" or "travel:travel (m)": a key and its label
-      auto key = [](const std::string& text) { return text.substr(0, text.find(':')); };
-      auto label = [](const std::string& text) {
-        const std::size_t colon = text.find(':');
-        return colon == std::string::npos ? text : text.substr(colon + 1);
-      };
-      const std::string kx = key(x);
+      const Axis ax = axis_of(x, "");
+      const std::string& kx = ax.name;
       for (std::size_t k = 0; k < ys.size(); ++k) {
-        const std::string ky = key(ys[k]);
+        const Axis ay = axis_of(ys[k], "");
+        const std::string& ky = ay.name;
         study::Series series{{}, true, true};
         for (const json& row : rows) {
           if (!row.is_object() || !row.contains(kx) || !row.contains(ky) || !row[kx].is_number() ||
@@ -142,16 +150,10 @@ int plot_command(const std::vector<std::string>& args) {
                                      (row.is_object() && row.contains(kx) && row[kx].is_number() ? ky : kx));
           series.points.emplace_back(row[kx].get<double>(), row[ky].get<double>());
         }
-        panels[k] = {label(ys[k]), label(x), "", {series}, {}};
+        panels[k] = {ay.label, ax.label, "", {series}, {}};
       }
     } else {
-      // "3" or "3:force (N)": a column and its label
-      auto label = [](const std::string& text) {
-        const std::size_t colon = text.find(':');
-        return colon == std::string::npos ? "column " + text : text.substr(colon + 1);
-      };
-      auto column = [&](std::string text) {
-        text = text.substr(0, text.find(':'));
+      auto column = [&](const std::string& text) {
         std::size_t used = 0;
         int c = 0;
         try {
@@ -162,11 +164,11 @@ int plot_command(const std::vector<std::string>& args) {
         if (used != text.size() || c < 1) throw std::invalid_argument("a column is 1, 2, ... (got \"" + text + "\")");
         return static_cast<std::size_t>(c);
       };
-      const std::size_t cx = column(x);
+      const std::size_t cx = column(axis_of(x, "column ").name);
       std::size_t need = cx;
       std::vector<std::size_t> cy;
       for (const std::string& y : ys) {
-        cy.push_back(column(y));
+        cy.push_back(column(axis_of(y, "column ").name));
         need = std::max(need, cy.back());
       }
       const std::vector<std::vector<double>> rows = numeric_rows(file, need);
@@ -174,7 +176,7 @@ int plot_command(const std::vector<std::string>& args) {
       for (std::size_t k = 0; k < cy.size(); ++k) {
         study::Series series{{}, true, false};
         for (const std::vector<double>& row : rows) series.points.emplace_back(row[cx - 1], row[cy[k] - 1]);
-        panels[k] = {label(ys[k]), label(x), "", {series}, {}};
+        panels[k] = {axis_of(ys[k], "column ").label, axis_of(x, "column ").label, "", {series}, {}};
       }
     }
     std::ofstream o(out, std::ios::binary);

@@ -150,12 +150,11 @@ void StabilityGuard::check(const Simulation& sim) const {
                     static_cast<long long>(sim.stage_end_step() - sim.stage_start_step()));
       throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner + why);
     }
-    if (!sim.scene().stages.empty() && sim.step_count() - sim.stage_start_step() <= 2) {
+    if (sim.stage() > 0 && sim.step_count() - sim.stage_start_step() <= 2) {
       // a wall a stage adds where particles already are cuts into them at its first step
       std::string added;
       for (const WallInit& wall : sim.scene().walls)
-        if (wall.first_stage == sim.stage() && sim.stage() > 0)
-          added += (added.empty() ? "\"" : ", \"") + wall.name + "\"";
+        if (wall.first_stage == sim.stage()) added += (added.empty() ? "\"" : ", \"") + wall.name + "\"";
       if (!added.empty())
         throw InstabilityError(buf + where(sim, contacts.worst_particle) + partner + " at the first step of stage \"" +
                                sim.scene().stages[sim.stage()].name + "\"; likely cause: the wall it adds (" + added +

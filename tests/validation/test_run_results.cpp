@@ -205,6 +205,24 @@ TEST(RunResults, ALayerCoversItsOwnArea) {
   EXPECT_TRUE(res.loaded_walls.empty());
 }
 
+// Adds a rigid clump of the two spheres `a` and `b` (its members, in that order) with its centroid
+// at `centroid`, moving at `velocity` and spinning at `spin` (the members' own velocities as given).
+void add_pair_clump(Scene& s, ParticleInit a, ParticleInit b, double mass, const Vec3& moments, const Vec3& centroid,
+                    const Vec3& velocity = Vec3::Zero(), const Vec3& spin = Vec3::Zero()) {
+  a.clump = b.clump = static_cast<int>(s.clumps.size());
+  ClumpInit clump;
+  clump.first = static_cast<int>(s.particles.size());
+  clump.count = 2;
+  clump.mass = mass;
+  clump.moments = moments;
+  clump.position = centroid;
+  clump.velocity = velocity;
+  clump.angular_velocity = spin;
+  s.particles.push_back(a);
+  s.particles.push_back(b);
+  s.clumps.push_back(clump);
+}
+
 // A bonded pair pulled apart (and a loose sphere beside it): two pieces become three, the lighter
 // half of the pair is the mass broken off, one bond broke in tension.
 TEST(RunResults, ABondedPairPulledApartIsTwoFragmentsWithHalfItsMassBrokenOff) {
@@ -249,17 +267,8 @@ TEST(RunResults, AClumpIsOnePieceBesideBondedPieces) {
   s.particles.push_back(sphere({2 * r, 0, 0}, r));
   for (int c = 0; c < 2; ++c) {
     const Vec3 at(2.0 * c, 0, 1);
-    ParticleInit a = sphere(at - Vec3(0.5 * r, 0, 0), r), b = sphere(at + Vec3(0.5 * r, 0, 0), r);
-    a.clump = b.clump = c;
-    s.particles.push_back(a);
-    s.particles.push_back(b);
-    ClumpInit clump;
-    clump.first = 2 + 2 * c;
-    clump.count = 2;
-    clump.mass = 2 * sphere_mass(2600, r);
-    clump.moments = Vec3(1e-6, 2e-6, 2e-6);
-    clump.position = at;
-    s.clumps.push_back(clump);
+    add_pair_clump(s, sphere(at - Vec3(0.5 * r, 0, 0), r), sphere(at + Vec3(0.5 * r, 0, 0), r),
+                   2 * sphere_mass(2600, r), Vec3(1e-6, 2e-6, 2e-6), at);
   }
   BondSettings bonds;
   bonds.youngs_modulus = 1e7;
@@ -295,18 +304,8 @@ TEST(RunResults, EachPieceTravelsItsOwnVT) {
     s.particles.push_back(sphere({3.0 * k, 0, 0}, r, {speed * std::cos(angle), speed * std::sin(angle), 0}));
   }
   const Vec3 at(0, 5, 0), v(0.6, 0.8, 0.3);
-  ParticleInit a = sphere(at - Vec3(0.5 * r, 0, 0), r, v), b = sphere(at + Vec3(0.5 * r, 0, 0), r, v);
-  a.clump = b.clump = 0;
-  s.particles.push_back(a);
-  s.particles.push_back(b);
-  ClumpInit clump;
-  clump.first = 5;
-  clump.count = 2;
-  clump.mass = 2 * sphere_mass(2600, r);
-  clump.moments = Vec3(1e-6, 2e-6, 2e-6);
-  clump.position = at;
-  clump.velocity = v;
-  s.clumps.push_back(clump);
+  add_pair_clump(s, sphere(at - Vec3(0.5 * r, 0, 0), r, v), sphere(at + Vec3(0.5 * r, 0, 0), r, v),
+                 2 * sphere_mass(2600, r), Vec3(1e-6, 2e-6, 2e-6), at, v);
   s.time.dt = 5e-5;
   s.time.steps = 20000;
   Simulation sim(s);
@@ -336,22 +335,9 @@ TEST(RunResults, AClumpOfUnequalSpheresTravelsWithItsCentroid) {
   const double r = 0.01, t = 0.5, spin = std::numbers::pi / t;
   const std::vector<Vec3> at{{0, 0, 0}, {1, 0, 0}};
   const std::vector<Vec3> v{{0.2, 0, 0}, {0, 0, 0}};
-  for (int c = 0; c < 2; ++c) {
-    ParticleInit big = sphere(at[c] - Vec3(0.006, 0, 0), 2 * r, v[c]),
-                 small = sphere(at[c] + Vec3(0.014, 0, 0), r, v[c]);
-    big.clump = small.clump = c;
-    s.particles.push_back(big);
-    s.particles.push_back(small);
-    ClumpInit clump;
-    clump.first = 2 * c;
-    clump.count = 2;
-    clump.mass = 9 * sphere_mass(2600, r);
-    clump.moments = Vec3(1e-5, 2e-5, 2e-5);
-    clump.position = at[c];
-    clump.velocity = v[c];
-    clump.angular_velocity = Vec3(0, 0, spin);
-    s.clumps.push_back(clump);
-  }
+  for (int c = 0; c < 2; ++c)
+    add_pair_clump(s, sphere(at[c] - Vec3(0.006, 0, 0), 2 * r, v[c]), sphere(at[c] + Vec3(0.014, 0, 0), r, v[c]),
+                   9 * sphere_mass(2600, r), Vec3(1e-5, 2e-5, 2e-5), at[c], v[c], Vec3(0, 0, spin));
   s.time.dt = 5e-5;
   s.time.steps = 10000;
   Simulation sim(s);
