@@ -12,6 +12,7 @@ int validate_command(const std::vector<std::string>& args);
 int import_command(const std::vector<std::string>& args);  // cli/import_command.cpp
 int study_command(const std::vector<std::string>& args);   // cli/study_command.cpp
 int plot_command(const std::vector<std::string>& args);    // cli/plot_command.cpp
+int chains_command(const std::vector<std::string>& args);  // cli/chains_command.cpp
 
 // Runs a checked scene into `out` as `dem run` does: the legacy files, restart.dat and results.json
 // (threads < 0: the spec's; restart: a saved state to continue from, "" for none). Returns the exit

@@ -32,6 +32,8 @@ const char* kUsage =
     "  dem plot results.json --rows LIST --x KEY --y KEY [--y ...] --out FIGURE.svg\n"
     "                                   a figure of a list's rows (--rows loadedWalls[0].cycles --x cycle\n"
     "                                   --y settlement)\n"
+    "  dem chains RUN_DIR --times T[,T...] --out FIGURE.svg [--view x|y|z] [--unit U]\n"
+    "                                   the force chains at the frames nearest the times T, one panel each\n"
     "\n"
     "  dem submit SPEC.json [--wait] [--idempotency-key K] [--quiet]\n"
     "                                   send a job spec to dem-server (mesh files go inline) and print the\n"
@@ -65,6 +67,7 @@ int main(int argc, char** argv) {
   if (verb == "import") return dem::cli::import_command(args);
   if (verb == "study") return dem::cli::study_command(args);
   if (verb == "plot") return dem::cli::plot_command(args);
+  if (verb == "chains") return dem::cli::chains_command(args);
   if (verb == "submit") return dem::cli::submit_command(args);
   if (verb == "status") return dem::cli::status_command(args);
   if (verb == "list") return dem::cli::list_command(args);

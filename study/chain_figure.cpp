@@ -1,0 +1,139 @@
+#include "study/chain_figure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "study/svg_chart.hpp"
+
+namespace dem::study {
+namespace {
+
+std::string pixels(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+bool drawable(const Point2& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+
+struct DrawingExtent {
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  void add(const Point2& p, double r = 0) {
+    if (!drawable(p) || !std::isfinite(r)) return;
+    x0 = std::min(x0, p.x - r), x1 = std::max(x1, p.x + r);
+    y0 = std::min(y0, p.y - r), y1 = std::max(y1, p.y + r);
+  }
+  bool empty() const { return !(x1 >= x0 && y1 >= y0); }
+};
+
+// The largest round length (1, 2, 5 x 10^k) at most a quarter of `span`: the scale bar.
+double scale_bar_length(double span) {
+  const double raw = span / 4;
+  const double unit = std::pow(10.0, std::floor(std::log10(raw)));
+  return raw / unit >= 5 ? 5 * unit : raw / unit >= 2 ? 2 * unit : unit;
+}
+
+}  // namespace
+
+std::string chain_figure_svg(const ChainFigureText& text, const std::vector<ChainPanel>& panels) {
+  DrawingExtent extent;
+  double strongest = 0;
+  for (const ChainPanel& panel : panels) {
+    for (const ChainDisc& d : panel.discs) extent.add(d.centre, d.radius);
+    for (const auto& outline : panel.outlines)
+      for (const Point2& p : outline) extent.add(p);
+    for (const ChainLine& c : panel.chains)
+      if (std::isfinite(c.normal_force)) strongest = std::max(strongest, c.normal_force);
+  }
+  if (extent.empty()) extent = {0, 1, 0, 1};
+  const double span_x = std::max(extent.x1 - extent.x0, 1e-300), span_y = std::max(extent.y1 - extent.y0, 1e-300);
+  // each panel's drawing at most 300 px wide and 420 px tall, at one scale for all
+  const double scale = std::min(300 / span_x, 420 / span_y);
+  const double draw_w = span_x * scale, draw_h = span_y * scale;
+  const int gap = 30, head = 28, foot = 40;
+  const int columns = std::max(1, std::min<int>(4, static_cast<int>(panels.size())));
+  const int rows = std::max(1, (static_cast<int>(panels.size()) + columns - 1) / columns);
+  const double cell_w = draw_w + gap, cell_h = head + draw_h + foot;
+  const std::string legend = strongest > 0
+                                 ? "normal force " + number_text(strongest) +
+                                       " N (the strongest contact); width and darkness in proportion; " +
+                                       "contacts under " + number_text(100 * kWeakestChainDrawn) + "% of it not drawn"
+                                 : std::string("no contact carries a force");
+  // wide enough for the title (16 px: about 9 px a character) and the legend (12 px: about 7)
+  const double width = std::max({gap + columns * cell_w, 2.0 * gap + 9.0 * static_cast<double>(text.title.size()),
+                                 gap + 38 + 7.0 * static_cast<double>(legend.size())});
+  const double height = 50 + rows * cell_h + 40;
+
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + pixels(width) + "\" height=\"" +
+                    pixels(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg += "<text x=\"" + std::to_string(gap) + "\" y=\"24\" font-size=\"16\">" + xml_escaped(text.title) + "</text>\n";
+  for (std::size_t k = 0; k < panels.size(); ++k) {
+    const ChainPanel& panel = panels[k];
+    const double ox = gap + static_cast<double>(k % columns) * cell_w;
+    const double oy = 50 + static_cast<double>(k / columns) * cell_h;
+    const double top = oy + head;
+    auto sx = [&](double x) { return ox + (x - extent.x0) * scale; };
+    auto sy = [&](double y) { return top + draw_h - (y - extent.y0) * scale; };
+    svg += "<text x=\"" + pixels(ox) + "\" y=\"" + pixels(oy + 16) + "\" font-size=\"13\">" + xml_escaped(panel.title) +
+           "</text>\n";
+    svg += "<g fill=\"#9aa7b4\" fill-opacity=\"0.18\" stroke=\"none\">\n";
+    for (const ChainDisc& d : panel.discs)
+      if (drawable(d.centre) && std::isfinite(d.radius))
+        svg += "<circle cx=\"" + pixels(sx(d.centre.x)) + "\" cy=\"" + pixels(sy(d.centre.y)) + "\" r=\"" +
+               pixels(std::max(0.5, d.radius * scale)) + "\"/>\n";
+    svg += "</g>\n";
+    for (const auto& outline : panel.outlines) {
+      std::string points;
+      for (const Point2& p : outline)
+        if (drawable(p)) {
+          if (!points.empty()) points += ' ';
+          points += pixels(sx(p.x)) + "," + pixels(sy(p.y));
+        }
+      if (!points.empty())
+        svg += "<polygon points=\"" + points + "\" fill=\"none\" stroke=\"#444\" stroke-width=\"1.5\"/>\n";
+    }
+    // weakest first, so the strong chains are drawn over them
+    std::vector<const ChainLine*> drawn;
+    for (const ChainLine& c : panel.chains)
+      if (drawable(c.a) && drawable(c.b) && std::isfinite(c.normal_force) && strongest > 0 &&
+          c.normal_force >= kWeakestChainDrawn * strongest)
+        drawn.push_back(&c);
+    std::stable_sort(drawn.begin(), drawn.end(),
+                     [](const ChainLine* p, const ChainLine* q) { return p->normal_force < q->normal_force; });
+    svg += "<g stroke=\"#b2182b\" stroke-linecap=\"round\">\n";
+    for (const ChainLine* c : drawn) {
+      const double share = c->normal_force / strongest;
+      svg += "<line x1=\"" + pixels(sx(c->a.x)) + "\" y1=\"" + pixels(sy(c->a.y)) + "\" x2=\"" + pixels(sx(c->b.x)) +
+             "\" y2=\"" + pixels(sy(c->b.y)) + "\" stroke-width=\"" + number_text(0.4 + 5.6 * share) +
+             "\" stroke-opacity=\"" + number_text(0.35 + 0.65 * share) + "\"/>\n";
+    }
+    svg += "</g>\n";
+    // a scale bar under the drawing, with the plane's axes named
+    const double bar = scale_bar_length(span_x);
+    const double bar_y = top + draw_h + 16;
+    svg += "<line x1=\"" + pixels(ox) + "\" y1=\"" + pixels(bar_y) + "\" x2=\"" + pixels(ox + bar * scale) +
+           "\" y2=\"" + pixels(bar_y) + "\" stroke=\"#222\" stroke-width=\"2\"/>\n";
+    svg += "<text x=\"" + pixels(ox + bar * scale + 6) + "\" y=\"" + pixels(bar_y + 4) + "\">" + number_text(bar) +
+           " " + xml_escaped(text.unit.empty() ? "length unit" : text.unit) + "</text>\n";
+    svg += "<text x=\"" + pixels(ox + draw_w) + "\" y=\"" + pixels(bar_y + 4) +
+           "\" text-anchor=\"end\" fill=\"#666\">" + xml_escaped(text.x_label + " →, " + text.y_label + " ↑") +
+           "</text>\n";
+  }
+  const double legend_y = height - 18;
+  svg += "<line x1=\"" + std::to_string(gap) + "\" y1=\"" + pixels(legend_y - 4) + "\" x2=\"" +
+         std::to_string(gap + 30) + "\" y2=\"" + pixels(legend_y - 4) + "\" stroke=\"#b2182b\" stroke-width=\"6\"/>\n";
+  svg += "<text x=\"" + std::to_string(gap + 38) + "\" y=\"" + pixels(legend_y) + "\">" + xml_escaped(legend) +
+         "</text>\n";
+  svg += "</svg>\n";
+  return svg;
+}
+
+}  // namespace dem::study
