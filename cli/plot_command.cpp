@@ -19,9 +19,9 @@ using json = nlohmann::json;
 const char* kPlotUsage =
     "usage: dem plot FILE --x COLUMN --y COLUMN [--y COLUMN ...] --out FIGURE.svg [--title T]\n"
     "         FILE: columns of numbers (lines that are not are skipped); COLUMN: 1, 2, ..., or 2:NAME\n"
-    "       dem plot FILE.json --rows LIST --x KEY --y KEY [--y KEY ...] --out FIGURE.svg [--title T]\n"
+    "       dem plot FILE.json [FILE.json ...] --rows LIST --x KEY --y KEY [--y KEY ...] --out FIGURE.svg [--title T]\n"
     "         LIST: the path of a list of objects in the JSON file (loadedWalls[0].cycles); KEY: their fields,\n"
-    "         or KEY:NAME\n";
+    "         or KEY:NAME; several files: a line each, named in the legend by its folder, or NAME=FILE.json\n";
 
 int usage(const std::string& problem) {
   std::fprintf(stderr, "dem plot: %s\n%s", problem.c_str(), kPlotUsage);
@@ -86,10 +86,46 @@ std::vector<std::vector<double>> numeric_rows(const std::string& path, std::size
   return rows;
 }
 
+// One JSON file of an overlay: "NAME=PATH" names its line NAME (a NAME has no '/'); else its folder does.
+struct NamedFile {
+  std::string name, path;
+};
+
+NamedFile named_file(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  if (eq != std::string::npos && eq > 0 && text.find('/') > eq) return {text.substr(0, eq), text.substr(eq + 1)};
+  const std::filesystem::path folder = std::filesystem::path(text).parent_path();
+  return {folder.empty() ? text : folder.filename().string(), text};
+}
+
+// The series of `ky` against `kx` over the rows at `rows_path` of the JSON file `file`.
+study::Series json_rows_series(const std::string& file, const std::string& rows_path, const std::string& kx,
+                               const std::string& ky) {
+  std::ifstream in = open_file(file);
+  const json doc = json::parse(in, nullptr, false);
+  if (doc.is_discarded()) throw std::runtime_error(file + ": not JSON");
+  const json::json_pointer pointer(study::to_pointer(rows_path));
+  bool list = false;
+  try {
+    list = doc.contains(pointer) && doc.at(pointer).is_array();
+  } catch (const json::exception&) {  // an index past what a number holds
+  }
+  if (!list) throw std::runtime_error(file + ": " + rows_path + " is not a list in it");
+  study::Series series{{}, true, true, ""};
+  for (const json& row : doc.at(pointer)) {
+    if (!row.is_object() || !row.contains(kx) || !row.contains(ky) || !row[kx].is_number() || !row[ky].is_number())
+      throw std::runtime_error(file + ": a row of " + rows_path + " has no number " +
+                               (row.is_object() && row.contains(kx) && row[kx].is_number() ? ky : kx));
+    series.points.emplace_back(row[kx].get<double>(), row[ky].get<double>());
+  }
+  return series;
+}
+
 }  // namespace
 
 int plot_command(const std::vector<std::string>& args) {
-  std::string file, out, title, rows_path, x;
+  std::string out, title, rows_path, x;
+  std::vector<std::string> files;
   std::vector<std::string> ys;
   for (std::size_t k = 0; k < args.size(); ++k) {
     const std::string& a = args[k];
@@ -113,44 +149,29 @@ int plot_command(const std::vector<std::string>& args) {
         rows_path = v;
     } else if (!a.empty() && a[0] == '-') {
       return usage("unknown option " + a);
-    } else if (file.empty()) {
-      file = a;
     } else {
-      return usage("one file only (got \"" + file + "\" and \"" + a + "\")");
+      files.push_back(a);
     }
   }
-  if (file.empty()) return usage("missing the file to plot");
+  if (files.empty()) return usage("missing the file to plot");
+  if (files.size() > 1 && rows_path.empty())
+    return usage("one file only without --rows (got \"" + files[0] + "\" and \"" + files[1] + "\")");
+  const std::string& file = files[0];
   if (x.empty() || ys.empty()) return usage("--x and at least one --y");
   if (out.empty()) return usage("--out FIGURE.svg");
   if (title.empty()) title = std::filesystem::path(file).filename().string();
   try {
     std::vector<study::Panel> panels(ys.size());
     if (!rows_path.empty()) {
-      std::ifstream in = open_file(file);
-      const json doc = json::parse(in, nullptr, false);
-      if (doc.is_discarded()) throw std::runtime_error(file + ": not JSON");
-      const json::json_pointer pointer(study::to_pointer(rows_path));
-      bool list = false;
-      try {
-        list = doc.contains(pointer) && doc.at(pointer).is_array();
-      } catch (const json::exception&) {  // an index past what a number holds
-      }
-      if (!list) throw std::runtime_error(file + ": " + rows_path + " is not a list in it");
-      const json& rows = doc.at(pointer);
       const Axis ax = axis_of(x, "");
-      const std::string& kx = ax.name;
       for (std::size_t k = 0; k < ys.size(); ++k) {
         const Axis ay = axis_of(ys[k], "");
-        const std::string& ky = ay.name;
-        study::Series series{{}, true, true};
-        for (const json& row : rows) {
-          if (!row.is_object() || !row.contains(kx) || !row.contains(ky) || !row[kx].is_number() ||
-              !row[ky].is_number())
-            throw std::runtime_error(file + ": a row of " + rows_path + " has no number " +
-                                     (row.is_object() && row.contains(kx) && row[kx].is_number() ? ky : kx));
-          series.points.emplace_back(row[kx].get<double>(), row[ky].get<double>());
+        panels[k] = {ay.label, ax.label, "", {}, {}};
+        for (const std::string& text : files) {
+          const NamedFile f = files.size() > 1 ? named_file(text) : NamedFile{"", text};
+          panels[k].series.push_back(json_rows_series(f.path, rows_path, ax.name, ay.name));
+          panels[k].series.back().name = f.name;
         }
-        panels[k] = {ay.label, ax.label, "", {series}, {}};
       }
     } else {
       auto column = [&](const std::string& text) {
@@ -174,7 +195,7 @@ int plot_command(const std::vector<std::string>& args) {
       const std::vector<std::vector<double>> rows = numeric_rows(file, need);
       if (rows.empty()) throw std::runtime_error(file + ": no line of at least " + std::to_string(need) + " numbers");
       for (std::size_t k = 0; k < cy.size(); ++k) {
-        study::Series series{{}, true, false};
+        study::Series series{{}, true, false, ""};
         for (const std::vector<double>& row : rows) series.points.emplace_back(row[cx - 1], row[cy[k] - 1]);
         panels[k] = {axis_of(ys[k], "column ").label, axis_of(x, "column ").label, "", {series}, {}};
       }

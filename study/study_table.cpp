@@ -164,7 +164,7 @@ std::string figure_svg(const StudyPlan& plan, const std::vector<StudyRow>& rows)
     panel.x_label = x_name;
     if (!numeric)
       for (const json& v : distinct) panel.x_categories.push_back(v.is_string() ? v.get<std::string>() : v.dump());
-    Series runs{{}, false, true}, means{{}, true, false};
+    Series runs{{}, false, true, ""}, means{{}, true, false, ""};
     std::map<double, std::pair<double, int>> sums;  // the mean at each x, joined
     for (const StudyRow& row : rows)
       if (const auto y = number_at(row, key)) {

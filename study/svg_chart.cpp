@@ -130,6 +130,24 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
             svg += "<circle cx=\"" + fmt(sx(x)) + "\" cy=\"" + fmt(sy(y)) + "\" r=\"3.5\" fill=\"" + colour +
                    "\" fill-opacity=\"0.8\"/>\n";
     }
+    // the legend, top left inside the frame, on a white ground over the lines
+    int named = 0;
+    for (const Series& series : panel.series) named += series.name.empty() ? 0 : 1;
+    if (named > 0) {
+      std::size_t longest = 0;
+      for (const Series& series : panel.series) longest = std::max(longest, series.name.size());
+      svg += "<rect x=\"" + fmt(px + 4) + "\" y=\"" + fmt(py + 4) + "\" width=\"" +
+             fmt(30 + 7 * static_cast<double>(longest)) + "\" height=\"" + fmt(6 + 15 * named) +
+             "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#ccc\"/>\n";
+      int row = 0;
+      for (std::size_t s = 0; s < panel.series.size(); ++s) {
+        if (panel.series[s].name.empty()) continue;
+        const double ly = py + 16 + 15 * row++;
+        svg += "<line x1=\"" + fmt(px + 9) + "\" x2=\"" + fmt(px + 27) + "\" y1=\"" + fmt(ly - 4) + "\" y2=\"" +
+               fmt(ly - 4) + "\" stroke=\"" + kColours[s % std::size(kColours)] + "\" stroke-width=\"2\"/><text x=\"" +
+               fmt(px + 31) + "\" y=\"" + fmt(ly) + "\">" + xml_escaped(panel.series[s].name) + "</text>\n";
+      }
+    }
   }
   svg += "</svg>\n";
   return svg;

@@ -12,6 +12,7 @@ struct Series {
   std::vector<std::pair<double, double>> points;
   bool line = true;      // joined in the given order
   bool markers = false;  // a dot at each point
+  std::string name;      // in the panel's legend; no legend when no series has one
 };
 
 struct Panel {

@@ -64,6 +64,40 @@ TEST_F(CliPlot, RowsOfAJsonList) {
   EXPECT_NE(not_list.output.find("is not a list in it"), std::string::npos) << not_list.output;
 }
 
+TEST_F(CliPlot, SeveralRunsOverlaidALineEachNamedInTheLegend) {
+  fs::create_directories(dir_ / "run-001");
+  fs::create_directories(dir_ / "run-002");
+  const fs::path a = write_spec("run-001/results.json", R"({"cycles": [{"cycle": 1, "s": 1}, {"cycle": 2, "s": 2}]})");
+  const fs::path b = write_spec("run-002/results.json", R"({"cycles": [{"cycle": 1, "s": 3}, {"cycle": 2, "s": 5}]})");
+  const fs::path out = dir_ / "overlay.svg";
+  CommandResult r = run_dem("plot " + shell_quoted(a) + " " + shell_quoted(b) +
+                            " --rows cycles --x cycle --y s --y cycle --out " + shell_quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::string svg = read(out);
+  EXPECT_EQ(count(svg, "<polyline"), 4u) << "two panels, a line per file in each";
+  EXPECT_EQ(count(svg, ">run-001<"), 2u) << "each line named by its run's folder, in each panel's legend";
+  EXPECT_EQ(count(svg, ">run-002<"), 2u);
+  // NAME=FILE names a line; the second file's points are its own
+  r = run_dem("plot 'clumped stones=" + a.string() + "' 'breakable stones=" + b.string() +
+              "' --rows cycles --x cycle --y s --out " + shell_quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  svg = read(out);
+  EXPECT_NE(svg.find(">clumped stones<"), std::string::npos);
+  EXPECT_NE(svg.find(">breakable stones<"), std::string::npos);
+  // one file: no legend
+  r = run_dem("plot " + shell_quoted(a) + " --rows cycles --x cycle --y s --out " + shell_quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read(out).find(">run-001<"), std::string::npos);
+  // a bad file among them is named; columns of text files take one file
+  r = run_dem("plot " + shell_quoted(a) + " " + shell_quoted(dir_ / "none.json") +
+              " --rows cycles --x cycle --y s --out " + shell_quoted(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("none.json: cannot open it"), std::string::npos) << r.output;
+  r = run_dem("plot " + shell_quoted(a) + " " + shell_quoted(b) + " --x 1 --y 2 --out " + shell_quoted(out));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("one file only without --rows"), std::string::npos) << r.output;
+}
+
 TEST_F(CliPlot, BadArgumentsAreNamed) {
   const fs::path data = write_spec("a.dat", "1 2\n3 4\n");
   EXPECT_EQ(run_dem("plot").exit_code, 2);
