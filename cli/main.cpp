@@ -32,7 +32,7 @@ const char* kUsage =
     "  dem plot results.json [MORE.json ...] --rows LIST --x KEY --y KEY [--y ...] --out FIGURE.svg\n"
     "                                   a figure of a list's rows (--rows loadedWalls[0].cycles --x cycle\n"
     "                                   --y settlement); several files: a line each (NAME=FILE names it)\n"
-    "  dem chains RUN_DIR --times T[,T...] --out FIGURE.svg [--view x|y|z] [--unit U]\n"
+    "  dem chains RUN_DIR --times T[,T...] --out FIGURE.svg [--view x|y|z] [--unit U] [--title T]\n"
     "                                   the force chains at the frames nearest the times T, one panel each\n"
     "\n"
     "  dem submit SPEC.json [--wait] [--idempotency-key K] [--quiet]\n"

@@ -118,6 +118,7 @@ study::Series json_rows_series(const std::string& file, const std::string& rows_
                                (row.is_object() && row.contains(kx) && row[kx].is_number() ? ky : kx));
     series.points.emplace_back(row[kx].get<double>(), row[ky].get<double>());
   }
+  if (series.points.empty()) std::fprintf(stderr, "dem plot: %s: %s is empty\n", file.c_str(), rows_path.c_str());
   return series;
 }
 

@@ -60,15 +60,29 @@ std::string chain_figure_svg(const ChainFigureText& text, const std::vector<Chai
   const int gap = 30, head = 28, foot = 40;
   const int columns = std::max(1, std::min<int>(4, static_cast<int>(panels.size())));
   const int rows = std::max(1, (static_cast<int>(panels.size()) + columns - 1) / columns);
-  const double cell_w = draw_w + gap, cell_h = head + draw_h + foot;
-  const std::string legend = strongest > 0
-                                 ? "normal force " + number_text(strongest) +
-                                       " N (the strongest contact); width and darkness in proportion; " +
-                                       "contacts under " + number_text(100 * kWeakestChainDrawn) + "% of it not drawn"
-                                 : std::string("no contact carries a force");
+  // room for a panel's title and scale bar (about 170 px) however narrow the scene
+  const double cell_w = std::max(draw_w, 190.0) + gap, cell_h = head + draw_h + foot;
+  // The strongest line is at most 0.6 of a typical particle across as drawn (the median disc), so
+  // that a bed of small particles stays readable under its chains; at most 6 px.
+  std::vector<double> diameters;
+  for (const ChainPanel& panel : panels)
+    for (const ChainDisc& d : panel.discs)
+      if (std::isfinite(d.radius)) diameters.push_back(2 * d.radius * scale);
+  double widest = 6;
+  if (!diameters.empty()) {
+    std::nth_element(diameters.begin(), diameters.begin() + diameters.size() / 2, diameters.end());
+    widest = std::clamp(0.6 * diameters[diameters.size() / 2], 0.8, 6.0);
+  }
+  const double thinnest = std::min(0.4, widest / 4);
+  const std::string legend =
+      strongest > 0 ? "line width " + number_text(thinnest) + " px + " + number_text(widest - thinnest) +
+                          " px × Fn / Fmax (" + number_text(widest) + " px at Fn = " + number_text(strongest) +
+                          " N, the strongest contact); contacts under " + number_text(100 * kWeakestChainDrawn) +
+                          "% of it, and pulling ones, not drawn"
+                    : std::string("no contact carries a force");
   // wide enough for the title (16 px: about 9 px a character) and the legend (12 px: about 7)
   const double width = std::max({gap + columns * cell_w, 2.0 * gap + 9.0 * static_cast<double>(text.title.size()),
-                                 gap + 38 + 7.0 * static_cast<double>(legend.size())});
+                                 gap + 38 + 6.5 * static_cast<double>(legend.size())});
   const double height = 50 + rows * cell_h + 40;
 
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + pixels(width) + "\" height=\"" +
@@ -112,8 +126,9 @@ std::string chain_figure_svg(const ChainFigureText& text, const std::vector<Chai
     for (const ChainLine* c : drawn) {
       const double share = c->normal_force / strongest;
       svg += "<line x1=\"" + pixels(sx(c->a.x)) + "\" y1=\"" + pixels(sy(c->a.y)) + "\" x2=\"" + pixels(sx(c->b.x)) +
-             "\" y2=\"" + pixels(sy(c->b.y)) + "\" stroke-width=\"" + number_text(0.4 + 5.6 * share) +
-             "\" stroke-opacity=\"" + number_text(0.35 + 0.65 * share) + "\"/>\n";
+             "\" y2=\"" + pixels(sy(c->b.y)) + "\" stroke-width=\"" +
+             number_text(thinnest + (widest - thinnest) * share) + "\" stroke-opacity=\"" +
+             number_text(0.35 + 0.65 * share) + "\"/>\n";
     }
     svg += "</g>\n";
     // a scale bar under the drawing, with the plane's axes named
@@ -129,7 +144,8 @@ std::string chain_figure_svg(const ChainFigureText& text, const std::vector<Chai
   }
   const double legend_y = height - 18;
   svg += "<line x1=\"" + std::to_string(gap) + "\" y1=\"" + pixels(legend_y - 4) + "\" x2=\"" +
-         std::to_string(gap + 30) + "\" y2=\"" + pixels(legend_y - 4) + "\" stroke=\"#b2182b\" stroke-width=\"6\"/>\n";
+         std::to_string(gap + 30) + "\" y2=\"" + pixels(legend_y - 4) + "\" stroke=\"#b2182b\" stroke-width=\"" +
+         number_text(widest) + "\"/>\n";
   svg += "<text x=\"" + std::to_string(gap + 38) + "\" y=\"" + pixels(legend_y) + "\">" + xml_escaped(legend) +
          "</text>\n";
   svg += "</svg>\n";

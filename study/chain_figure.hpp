@@ -40,8 +40,11 @@ struct ChainFigureText {
 // bed's thousands of them would make the file large without changing the picture.
 inline constexpr double kWeakestChainDrawn = 0.01;
 
-// Every panel at one scale (the extent of all their discs and outlines), up to four a row. The
-// strongest normal force over all panels sets the widest line; the legend gives it in newtons.
+// Every panel at one scale (the extent of all their discs and outlines), up to four a row. A line's
+// width grows linearly with its normal force, on one scale for every panel: from 0.4 px to 6 px at
+// the strongest force over all panels, or to 0.6 of a typical particle as drawn when that is less
+// (a bed of small particles stays visible); the legend states the rule and the force in newtons.
+// Pulling contacts (Fn < 0, without noTensileForce) are not drawn.
 std::string chain_figure_svg(const ChainFigureText& text, const std::vector<ChainPanel>& panels);
 
 }  // namespace dem::study

@@ -28,7 +28,13 @@ std::vector<double> ticks(double lo, double hi) {
   return out;
 }
 
-const char* kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b"};
+// Ten colours (matplotlib's tab10); past ten, the colours again dashed, then dotted.
+const char* kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                          "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+const char* kDashes[] = {"", " stroke-dasharray=\"7 4\"", " stroke-dasharray=\"2 3\""};
+
+const char* colour_of(std::size_t series) { return kColours[series % std::size(kColours)]; }
+const char* dash_of(std::size_t series) { return kDashes[(series / std::size(kColours)) % std::size(kDashes)]; }
 
 }  // namespace
 
@@ -57,7 +63,28 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
   const int panel_rows = std::max(1, (static_cast<int>(panels.size()) + columns - 1) / columns);
   // wide enough for the title too (16 px sans-serif: about 9 px a character), as one panel's is narrow
   const int width = std::max(columns * (panel_w + gap) + gap, 2 * gap + 9 * static_cast<int>(title.size()));
-  const int height = panel_rows * (panel_h + margin_t + gap) + 50;
+  // the named lines' legend under the panels: the first panel's names (an overlay's runs name the
+  // same lines in every panel), laid out in rows
+  std::vector<std::string> legend;
+  for (const Panel& panel : panels) {
+    for (const Series& series : panel.series) legend.push_back(series.name);
+    if (std::any_of(legend.begin(), legend.end(), [](const std::string& n) { return !n.empty(); })) break;
+    legend.clear();
+  }
+  std::vector<std::pair<double, int>> legend_at;  // each entry's x and row
+  for (double x = gap; const std::string& name : legend) {
+    const double w = 44 + 7 * static_cast<double>(name.size());
+    const int row = legend_at.empty() ? 0 : legend_at.back().second;
+    if (x > gap && x + w > width - gap) {
+      legend_at.emplace_back(gap, row + 1);
+      x = gap + w;
+    } else {
+      legend_at.emplace_back(x, row);
+      x += w;
+    }
+  }
+  const int panels_height = panel_rows * (panel_h + margin_t + gap) + 50;
+  const int height = panels_height + (legend_at.empty() ? 0 : 18 * (legend_at.back().second + 1) + 4);
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) + "\" height=\"" +
                     std::to_string(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
@@ -114,7 +141,7 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
              ") rotate(-90)\" text-anchor=\"middle\">" + xml_escaped(panel.y_label) + "</text>\n";
     for (std::size_t s = 0; s < panel.series.size(); ++s) {
       const Series& series = panel.series[s];
-      const char* colour = kColours[s % std::size(kColours)];
+      const char* colour = colour_of(s);
       if (series.line) {
         std::string line;
         for (const auto& [x, y] : series.points) {
@@ -122,7 +149,8 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
           if (!line.empty()) line += ' ';
           line += fmt(sx(x)) + "," + fmt(sy(y));
         }
-        svg += "<polyline points=\"" + line + "\" fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n";
+        svg += "<polyline points=\"" + line + "\" fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"2\"" +
+               dash_of(s) + "/>\n";
       }
       if (series.markers)
         for (const auto& [x, y] : series.points)
@@ -130,24 +158,13 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
             svg += "<circle cx=\"" + fmt(sx(x)) + "\" cy=\"" + fmt(sy(y)) + "\" r=\"3.5\" fill=\"" + colour +
                    "\" fill-opacity=\"0.8\"/>\n";
     }
-    // the legend, top left inside the frame, on a white ground over the lines
-    int named = 0;
-    for (const Series& series : panel.series) named += series.name.empty() ? 0 : 1;
-    if (named > 0) {
-      std::size_t longest = 0;
-      for (const Series& series : panel.series) longest = std::max(longest, series.name.size());
-      svg += "<rect x=\"" + fmt(px + 4) + "\" y=\"" + fmt(py + 4) + "\" width=\"" +
-             fmt(30 + 7 * static_cast<double>(longest)) + "\" height=\"" + fmt(6 + 15 * named) +
-             "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#ccc\"/>\n";
-      int row = 0;
-      for (std::size_t s = 0; s < panel.series.size(); ++s) {
-        if (panel.series[s].name.empty()) continue;
-        const double ly = py + 16 + 15 * row++;
-        svg += "<line x1=\"" + fmt(px + 9) + "\" x2=\"" + fmt(px + 27) + "\" y1=\"" + fmt(ly - 4) + "\" y2=\"" +
-               fmt(ly - 4) + "\" stroke=\"" + kColours[s % std::size(kColours)] + "\" stroke-width=\"2\"/><text x=\"" +
-               fmt(px + 31) + "\" y=\"" + fmt(ly) + "\">" + xml_escaped(panel.series[s].name) + "</text>\n";
-      }
-    }
+  }
+  for (std::size_t k = 0; k < legend.size(); ++k) {
+    if (legend[k].empty()) continue;
+    const double lx = legend_at[k].first, ly = panels_height - 8 + 18 * legend_at[k].second;
+    svg += "<line x1=\"" + fmt(lx) + "\" x2=\"" + fmt(lx + 24) + "\" y1=\"" + fmt(ly - 4) + "\" y2=\"" + fmt(ly - 4) +
+           "\" stroke=\"" + colour_of(k) + "\" stroke-width=\"2\"" + dash_of(k) + "/><text x=\"" + fmt(lx + 30) +
+           "\" y=\"" + fmt(ly) + "\">" + xml_escaped(legend[k]) + "</text>\n";
   }
   svg += "</svg>\n";
   return svg;
