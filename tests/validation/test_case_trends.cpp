@@ -86,7 +86,7 @@ class PlateAndFloorForces : public Observer {
 // cases/ballast-box, smaller: two of its three batches of clumped stones (110 of 165), all fifteen
 // load cycles. The sleeper settles after every cycle, and less as the cycles go on: over cycles
 // 12-15 by less than 0.8 of what it did over cycles 2-5 (this bed: 0.55; the README's three beds of
-// 165 stones: 0.21, 0.75 and 0.28). The load reaches the floor through the bed, and the sleeper
+// 165 stones: 0.23, 0.73 and 0.26). Most of the load reaches the floor through the bed, and the sleeper
 // applies F_min and F_max of the load at its minima and peaks.
 TEST(CaseTrends, TheBallastBoxSettlesEveryCycleAndLessEachTime) {
   api::JobSpec spec = spec::read_json_file((case_dir("ballast-box") / "spec.json").string());
@@ -119,7 +119,8 @@ TEST(CaseTrends, TheBallastBoxSettlesEveryCycleAndLessEachTime) {
   std::printf("at the sleeper's largest force in a frame, %.0f N, the floor carries %.0f N\n", forces.peak_sleeper_,
               forces.floor_at_peak_);
   EXPECT_GT(forces.peak_sleeper_, 0.9 * 51840);
-  EXPECT_GT(forces.floor_at_peak_, 0.75 * forces.peak_sleeper_) << "the box's side walls carry the load";
+  // most of it: 78% on this bed, the rest going to the side walls by friction
+  EXPECT_GT(forces.floor_at_peak_, 0.6 * forces.peak_sleeper_) << "the box's side walls carry the load";
 }
 
 }  // namespace
