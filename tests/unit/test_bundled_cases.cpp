@@ -43,18 +43,25 @@ TEST(BundledCases, EveryCaseIsAValidSpecWithATitledReadme) {
 namespace dem::test {
 namespace {
 
-// A case's study (cases/NAME/study.json) plans, and every run's spec is valid: dem study --plan.
-TEST(BundledCases, EveryCasesStudyPlansWithValidSpecs) {
+// A case's studies (cases/NAME/*.json with a "base") plan, every run's spec valid (dem study --plan),
+// and its other specs (a variant beside spec.json) are valid too (dem validate).
+TEST(BundledCases, EveryCasesStudiesAndVariantsAreValid) {
   int studies = 0;
   for (const std::filesystem::directory_entry& e :
-       std::filesystem::directory_iterator(std::filesystem::path(DEM_SOURCE_DIR) / "cases")) {
-    const std::filesystem::path study = e.path() / "study.json";
-    if (!std::filesystem::exists(study)) continue;
-    ++studies;
-    const std::string command = "'" DEM_BINARY_DIR "/dem' study '" + study.string() + "' --plan > /dev/null 2>&1";
+       std::filesystem::recursive_directory_iterator(std::filesystem::path(DEM_SOURCE_DIR) / "cases")) {
+    const std::filesystem::path file = e.path();
+    if (file.extension() != ".json" || file.filename() == "spec.json") continue;
+    std::ifstream in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find("\"parameters\"") == std::string::npos && text.find("\"materials\"") == std::string::npos)
+      continue;  // not a spec or a study (a mesh's or a table's JSON)
+    const bool study = text.find("\"base\"") != std::string::npos;
+    studies += study;
+    const std::string command = "'" DEM_BINARY_DIR "/dem' " + std::string(study ? "study '" : "validate '") +
+                                file.string() + "'" + (study ? " --plan" : "") + " > /dev/null 2>&1";
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
   }
-  EXPECT_GE(studies, 1);
+  EXPECT_GE(studies, 3);
 }
 
 }  // namespace
