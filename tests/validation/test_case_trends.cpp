@@ -88,7 +88,7 @@ class PlateAndFloorForces : public Observer {
 // 12-15 by less than 0.8 of what it did over cycles 2-5 (this bed: 0.55; the README's three beds of
 // 165 stones: 0.23, 0.73 and 0.26). Most of the load reaches the floor through the bed, and the sleeper
 // applies F_min and F_max of the load at its minima and peaks.
-TEST(CaseTrends, TheBallastBoxSettlesEveryCycleAndLessEachTime) {
+TEST(CaseTrends, TheBallastBoxSettlesEveryCycleAndLessInItsLastCyclesThanItsFirst) {
   api::JobSpec spec = spec::read_json_file((case_dir("ballast-box") / "spec.json").string());
   ASSERT_EQ(spec.ballast_stones_size(), 3);
   spec.mutable_ballast_stones()->RemoveLast();
