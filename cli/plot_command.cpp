@@ -89,13 +89,14 @@ std::vector<std::vector<double>> numeric_rows(const std::string& path, std::size
 // One JSON file of an overlay: "NAME=PATH" names its line NAME (a NAME has no '/'); else its folder does.
 struct NamedFile {
   std::string name, path;
+  bool given = false;  // NAME=PATH, not the folder's name
 };
 
 NamedFile named_file(const std::string& text) {
   const std::size_t eq = text.find('=');
-  if (eq != std::string::npos && eq > 0 && text.find('/') > eq) return {text.substr(0, eq), text.substr(eq + 1)};
+  if (eq != std::string::npos && eq > 0 && text.find('/') > eq) return {text.substr(0, eq), text.substr(eq + 1), true};
   const std::filesystem::path folder = std::filesystem::path(text).parent_path();
-  return {folder.empty() ? text : folder.filename().string(), text};
+  return {folder.empty() ? text : folder.filename().string(), text, false};
 }
 
 // The series of `ky` against `kx` over the rows at `rows_path` of the JSON file `file`.
@@ -164,12 +165,20 @@ int plot_command(const std::vector<std::string>& args) {
   try {
     std::vector<study::Panel> panels(ys.size());
     if (!rows_path.empty()) {
+      std::vector<NamedFile> named;  // one file: no name (no legend)
+      for (const std::string& text : files)
+        named.push_back(files.size() > 1 ? named_file(text) : NamedFile{"", text, false});
+      std::vector<bool> shared(named.size());  // a folder's name two lines would have: each named by its path
+      for (std::size_t a = 0; a < named.size(); ++a)
+        for (std::size_t b = 0; b < named.size(); ++b)
+          shared[a] = shared[a] || (a != b && named[a].name == named[b].name);
+      for (std::size_t a = 0; a < named.size(); ++a)
+        if (shared[a] && !named[a].given) named[a].name = named[a].path;
       const Axis ax = axis_of(x, "");
       for (std::size_t k = 0; k < ys.size(); ++k) {
         const Axis ay = axis_of(ys[k], "");
         panels[k] = {ay.label, ax.label, "", {}, {}};
-        for (const std::string& text : files) {
-          const NamedFile f = files.size() > 1 ? named_file(text) : NamedFile{"", text};
+        for (const NamedFile& f : named) {
           panels[k].series.push_back(json_rows_series(f.path, rows_path, ax.name, ay.name));
           panels[k].series.back().name = f.name;
         }

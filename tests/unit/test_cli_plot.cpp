@@ -87,6 +87,17 @@ TEST_F(CliPlot, SeveralRunsOverlaidALineEachNamedInTheLegend) {
   svg = read(out);
   EXPECT_NE(svg.find(">clumped stones<"), std::string::npos);
   EXPECT_NE(svg.find(">breakable stones<"), std::string::npos);
+  // two folders of one name: each line named by its path instead
+  fs::create_directories(dir_ / "E" / "x");
+  fs::create_directories(dir_ / "F" / "x");
+  const fs::path e = write_spec("E/x/results.json", R"({"cycles": [{"cycle": 1, "s": 1}]})");
+  const fs::path f = write_spec("F/x/results.json", R"({"cycles": [{"cycle": 1, "s": 2}]})");
+  r = run_dem("plot " + shell_quoted(e) + " " + shell_quoted(f) + " --rows cycles --x cycle --y s --out " +
+              shell_quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  svg = read(out);
+  EXPECT_NE(svg.find(">" + e.string() + "<"), std::string::npos) << svg;
+  EXPECT_NE(svg.find(">" + f.string() + "<"), std::string::npos);
   // one file: no legend
   r = run_dem("plot " + shell_quoted(a) + " --rows cycles --x cycle --y s --out " + shell_quoted(out));
   ASSERT_EQ(r.exit_code, 0) << r.output;
