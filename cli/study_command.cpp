@@ -151,6 +151,7 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
       row.state = "succeeded";
       row.results = done;
       std::printf("%s (done before, kept)\n", row_line(plan, row).c_str());
+      write_table(out, plan, rows);  // a study of kept runs only still ends with their table
       continue;
     }
     fs::create_directories(folder);

@@ -66,6 +66,10 @@ TEST_F(CliStudy, OneCommandRunsEveryValueAndWritesTheTableAndTheFigure) {
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(again.output.find("into"), std::string::npos) << again.output;
   EXPECT_NE(again.output.find("(done before, kept)"), std::string::npos) << again.output;
+  // and the table still holds their results (it said "not run" when every run was kept)
+  EXPECT_EQ(read(out / "study.csv"), csv);
+  const nlohmann::json kept = nlohmann::json::parse(read(out / "study.json"));
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(kept["rows"][k]["state"], "succeeded") << k;
 }
 
 // A run's folder keeps its spec standing alone, the mesh it names inline: it runs again from there,
