@@ -91,8 +91,9 @@ std::string chain_figure_svg(const ChainFigureText& text, const std::vector<Chai
   svg += "<text x=\"" + std::to_string(gap) + "\" y=\"24\" font-size=\"16\">" + xml_escaped(text.title) + "</text>\n";
   for (std::size_t k = 0; k < panels.size(); ++k) {
     const ChainPanel& panel = panels[k];
-    const double ox = gap + static_cast<double>(k % columns) * cell_w;
-    const double oy = 50 + static_cast<double>(k / columns) * cell_h;
+    const std::size_t column = k % static_cast<std::size_t>(columns), row = k / static_cast<std::size_t>(columns);
+    const double ox = gap + static_cast<double>(column) * cell_w;
+    const double oy = 50 + static_cast<double>(row) * cell_h;
     const double top = oy + head;
     auto sx = [&](double x) { return ox + (x - extent.x0) * scale; };
     auto sy = [&](double y) { return top + draw_h - (y - extent.y0) * scale; };
