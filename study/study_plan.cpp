@@ -1,5 +1,7 @@
 #include "study/study_plan.hpp"
 
+#include <algorithm>
+
 #include <cstdio>
 #include <set>
 
@@ -167,23 +169,34 @@ StudyPlan plan_study(const json& study, const json& base_from_file) {
     for (const auto& [key, value] : p.items())
       if (key != "path" && key != "values") problems.push_back(where + "." + key + ": unknown field (path, values)");
     StudyParameter parameter;
-    if (!p.contains("path") || !p["path"].is_string()) {
+    // one field, or several that take each value together
+    std::vector<std::string> paths;
+    if (p.contains("path") && p["path"].is_string()) paths.push_back(p["path"]);
+    if (p.contains("path") && p["path"].is_array() && !p["path"].empty() &&
+        std::all_of(p["path"].begin(), p["path"].end(), [](const json& v) { return v.is_string(); }))
+      paths = p["path"].get<std::vector<std::string>>();
+    if (paths.empty())
       problems.push_back(where +
-                         ".path: the field to vary, as \"bonds.tensileStrength\" or \"/bonds/tensileStrength\"");
-    } else {
-      parameter.path = p["path"];
+                         ".path: the field to vary, as \"bonds.tensileStrength\" or \"/bonds/tensileStrength\", or "
+                         "a list of fields that take each value together");
+    for (std::size_t f = 0; f < paths.size(); ++f) {
+      const std::string& path = paths[f];
+      const std::string field = p["path"].is_array() ? where + ".path[" + std::to_string(f) + "]" : where + ".path";
+      if (f > 0) parameter.path += " = ";
+      parameter.path += path;
       try {
-        parameter.pointer = to_pointer(parameter.path);
+        const std::string pointer_text = to_pointer(path);
         std::string why;
-        const json::json_pointer pointer(parameter.pointer);
+        const json::json_pointer pointer(pointer_text);
         if (pointer.empty())
-          problems.push_back(where + ".path: \"" + parameter.path + "\" is the whole spec, not a field of it");
+          problems.push_back(field + ": \"" + path + "\" is the whole spec, not a field of it");
         else if (base && !parent_of(*base, pointer, why))
-          problems.push_back(where + ".path: \"" + parameter.path + "\": " + why);
-        else if (!pointers.insert(parameter.pointer).second)
-          problems.push_back(where + ".path: \"" + parameter.path + "\" is varied twice");
+          problems.push_back(field + ": \"" + path + "\": " + why);
+        else if (!pointers.insert(pointer_text).second)
+          problems.push_back(field + ": \"" + path + "\" is varied twice");
+        parameter.pointers.push_back(pointer_text);
       } catch (const std::exception& e) {
-        problems.push_back(where + ".path: not a field's path: " + e.what());
+        problems.push_back(field + ": not a field's path: " + e.what());
       }
     }
     if (!p.contains("values") || !p["values"].is_array() || p["values"].empty())
@@ -230,7 +243,7 @@ StudyPlan plan_study(const json& study, const json& base_from_file) {
     }
     for (std::size_t k = 0; k < plan.parameters.size(); ++k) {
       const StudyParameter& p = plan.parameters[k];
-      run.spec[json::json_pointer(p.pointer)] = p.values[pick[k]];
+      for (const std::string& pointer : p.pointers) run.spec[json::json_pointer(pointer)] = p.values[pick[k]];
       run.values.push_back(p.values[pick[k]]);
     }
     if (!pointers.count("/name"))

@@ -22,8 +22,11 @@ class StudyError : public std::runtime_error {
 };
 
 struct StudyParameter {
-  std::string path;     // as the study gives it ("bonds.tensileStrength", "/packings/0/seed")
-  std::string pointer;  // the same as a JSON pointer (RFC 6901)
+  // as the study gives it ("bonds.tensileStrength", "/packings/0/seed"); a list of fields that take
+  // one value together (a bond strength that is both the tensile and the shear one) is named by its
+  // fields joined with " = "
+  std::string path;
+  std::vector<std::string> pointers;  // each field as a JSON pointer (RFC 6901)
   std::vector<nlohmann::json> values;
 };
 

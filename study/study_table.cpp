@@ -116,9 +116,10 @@ std::string table_csv(const StudyPlan& plan, const std::vector<StudyRow>& rows) 
   std::string csv = "run";
   const bool jobs = std::any_of(rows.begin(), rows.end(), [](const StudyRow& r) { return r.job >= 0; });
   if (jobs) csv += ",job";
-  for (const StudyParameter& p : plan.parameters) csv += "," + csv_field(p.path);
+  // (',' then the field: GCC 12 warns falsely of overlapping copies in "," + a temporary string)
+  for (const StudyParameter& p : plan.parameters) (csv += ',') += csv_field(p.path);
   csv += ",state,error";
-  for (const std::string& c : columns) csv += "," + csv_field(c);
+  for (const std::string& c : columns) (csv += ',') += csv_field(c);
   csv += "\n";
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const StudyRow& row = rows[r];
@@ -131,7 +132,7 @@ std::string table_csv(const StudyPlan& plan, const std::vector<StudyRow>& rows) 
       csv += ',';
       if (k < row.values.size()) csv += csv_value(row.values[k]);
     }
-    csv += "," + csv_field(row.state) + "," + csv_field(row.error);
+    ((((csv += ',') += csv_field(row.state)) += ',') += csv_field(row.error));
     for (const std::string& c : columns) {
       const auto found = flat[r].find(c);
       csv += ',';

@@ -86,6 +86,29 @@ TEST_F(ServerStudies, AStudyIsOneRequestAndItsTableComesFromItsJobsResults) {
   EXPECT_EQ(get("/api/studies")["studies"].size(), 1u);
 }
 
+// One value for several fields (the PDEM-EGD manual's bond strength C is the tensile and the shear
+// one): each job gets the value in every field, and the table names the parameter by all of them.
+TEST_F(ServerStudies, AParameterMaySetSeveralFieldsToOneValue) {
+  start_server();
+  nlohmann::json study = study_of(pouring_spec(0.015, 20, 10), "", {0.3, 0.6});
+  study["parameters"][0]["path"] = {"interactions[0].friction", "interactions[1].friction"};
+  const client::Response r = post(study);
+  ASSERT_EQ(r.status, 201) << r.body;
+  const long id = nlohmann::json::parse(r.body)["id"];
+  const nlohmann::json done = wait_finished(id);
+  EXPECT_EQ(done["counts"]["succeeded"], 2) << done.dump();
+  EXPECT_EQ(done["parameters"][0], "interactions[0].friction = interactions[1].friction");
+  const long second = done["jobs"][1]["job"];
+  EXPECT_EQ(job(second)["name"], "radius study #2 (interactions[0].friction = interactions[1].friction=0.6)");
+  const client::Response csv = client_->get("/api/studies/" + std::to_string(id) + "/results.csv");
+  EXPECT_EQ(csv.body.rfind("run,job,interactions[0].friction = interactions[1].friction,state", 0), 0u) << csv.body;
+  // a bad field among them is named by its place in the list
+  study["parameters"][0]["path"] = {"interactions[0].friction", "interactions[7].friction"};
+  const client::Response bad = post(study);
+  EXPECT_EQ(bad.status, 400);
+  EXPECT_NE(bad.body.find("parameters[0].path[1]: \\\"interactions[7].friction\\\""), std::string::npos) << bad.body;
+}
+
 TEST_F(ServerStudies, CancelStopsEveryJobOfTheStudy) {
   start_server();
   const client::Response r = post(study_of(pouring_spec(0.012, 2000000, 1000), "numerics.threads", {1, 1, 1}));

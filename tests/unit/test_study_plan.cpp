@@ -66,6 +66,28 @@ TEST(StudyPlan, AZipTakesTheKthValueOfEach) {
                           "bonds.seed has 2"));
 }
 
+// The PDEM-EGD manual's one bond strength C is both the tensile and the shear strength: a parameter
+// may name several fields that take each value together, and a grid crosses it with the seeds.
+TEST(StudyPlan, AParameterMaySetSeveralFieldsToOneValue) {
+  const StudyPlan plan =
+      plan_study(study_with({{{"path", {"bonds.tensileStrength", "bonds.shearStrength"}}, {"values", {0, 4e6}}},
+                             {{"path", "packings[0].seed"}, {"values", {1, 2, 3}}}}),
+                 json());
+  ASSERT_EQ(plan.runs.size(), 6u);
+  EXPECT_EQ(plan.runs[4].spec["bonds"]["tensileStrength"], 4e6);
+  EXPECT_EQ(plan.runs[4].spec["bonds"]["shearStrength"], 4e6);
+  EXPECT_EQ(plan.runs[4].spec["packings"][0]["seed"], 2);
+  EXPECT_EQ(plan.parameters[0].path, "bonds.tensileStrength = bonds.shearStrength");
+  EXPECT_EQ(plan.runs[4].spec["name"],
+            "s #5 (bonds.tensileStrength = bonds.shearStrength=4000000.0, packings[0].seed=2)");
+  EXPECT_TRUE(has_problem(study_with({{{"path", {"bonds.seed", "bonds.x.y"}}, {"values", {1}}}}),
+                          "parameters[0].path[1]: \"bonds.x.y\": the base spec has no \"/bonds/x\""));
+  EXPECT_TRUE(has_problem(study_with({{{"path", {"bonds.seed", "/bonds/seed"}}, {"values", {1}}}}), "varied twice"));
+  EXPECT_TRUE(has_problem(study_with({{{"path", json::array()}, {"values", {1}}}}), "parameters[0].path: the field"));
+  EXPECT_TRUE(
+      has_problem(study_with({{{"path", {"bonds.seed", 3}}, {"values", {1}}}}), "parameters[0].path: the field"));
+}
+
 TEST(StudyPlan, AFieldTheBaseDoesNotHaveIsAddedWhenItsParentIsThere) {
   const StudyPlan plan = plan_study(study_with({{{"path", "bonds.shearStrength"}, {"values", {5}}}}), json());
   EXPECT_EQ(plan.runs[0].spec["bonds"]["shearStrength"], 5);
