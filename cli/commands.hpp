@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -9,16 +10,18 @@ namespace dem::cli {
 
 int run_command(const std::vector<std::string>& args);
 int validate_command(const std::vector<std::string>& args);
-int import_command(const std::vector<std::string>& args);  // cli/import_command.cpp
-int study_command(const std::vector<std::string>& args);   // cli/study_command.cpp
-int plot_command(const std::vector<std::string>& args);    // cli/plot_command.cpp
-int chains_command(const std::vector<std::string>& args);  // cli/chains_command.cpp
+int import_command(const std::vector<std::string>& args);    // cli/import_command.cpp
+int study_command(const std::vector<std::string>& args);     // cli/study_command.cpp
+int plot_command(const std::vector<std::string>& args);      // cli/plot_command.cpp
+int chains_command(const std::vector<std::string>& args);    // cli/chains_command.cpp
+int deposits_command(const std::vector<std::string>& args);  // cli/deposits_command.cpp
 
 // Runs a checked scene into `out` as `dem run` does: the legacy files, restart.dat and results.json
-// (threads < 0: the spec's; restart: a saved state to continue from, "" for none). Returns the exit
-// status (0, or 1 when the run stopped); throws for a state or file that cannot be read or written.
+// (threads < 0: the spec's; restart: a saved state to continue from, "" for none; log: where its
+// lines go, stdout and stderr when null). Returns the exit status (0, or 1 when the run stopped);
+// throws for a state or file that cannot be read or written.
 int run_scene(Scene scene, const std::string& label, const std::string& out, int threads, bool quiet,
-              const std::string& restart);
+              const std::string& restart, std::FILE* log = nullptr);
 
 // Client verbs of a dem-server (cli/client_commands.cpp)
 int submit_command(const std::vector<std::string>& args);

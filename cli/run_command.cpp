@@ -106,7 +106,9 @@ int validate_command(const std::vector<std::string>& args) {
 }
 
 int run_scene(Scene scene, const std::string& label, const std::string& out, int threads, bool quiet,
-              const std::string& restart) {
+              const std::string& restart, std::FILE* log) {
+  std::FILE* info = log != nullptr ? log : stdout;
+  std::FILE* problems = log != nullptr ? log : stderr;
   if (threads >= 0) scene.numerics.threads = threads;
   Simulation sim(std::move(scene));
   const bool append = !restart.empty();
@@ -116,9 +118,9 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, int
   }
   const std::int64_t first_step = sim.step_count();  // a continued run starts at its saved step
   std::filesystem::create_directories(out);
-  std::printf("%s: %zu particles, %zu walls, %lld steps; %s\n", label.c_str(), sim.particles().size(),
-              sim.scene().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
-  std::fflush(stdout);
+  std::fprintf(info, "%s: %zu particles, %zu walls, %lld steps; %s\n", label.c_str(), sim.particles().size(),
+               sim.scene().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
+  std::fflush(info);
 
   std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, out, append);
   writers.push_back(std::make_unique<StateWriter>((std::filesystem::path(out) / "restart.dat").string()));
@@ -133,9 +135,9 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, int
   const RunOutcome outcome = run(sim, observers, options);
   writers.clear();  // closes the files
   results::write_results_file(recorder->results(), out);
-  for (const std::string& note : recorder->results().notes) std::fprintf(stderr, "dem run: note: %s\n", note.c_str());
+  for (const std::string& note : recorder->results().notes) std::fprintf(problems, "dem run: note: %s\n", note.c_str());
   if (!outcome.ok) {
-    std::fprintf(stderr, "dem run: %s\n(the files in %s hold every frame written before the stop)\n",
+    std::fprintf(problems, "dem run: %s\n(the files in %s hold every frame written before the stop)\n",
                  outcome.error.c_str(), out.c_str());
     return 1;
   }
@@ -143,16 +145,17 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, int
   const std::int64_t steps_run = outcome.steps - first_step;
   const double rate = static_cast<double>(sim.particles().size()) * static_cast<double>(steps_run) /
                       std::max(outcome.loop_seconds, 1e-9);
-  std::printf("done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d\n",
-              static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate,
-              sim.neighbor_builds());
+  std::fprintf(
+      info, "done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d\n",
+      static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate, sim.neighbor_builds());
   for (std::size_t k = 0; k < sim.scene().sources.size(); ++k) {
     const SourceProgress& progress = sim.source_progress()[k];
-    std::printf("source \"%s\": inserted %lld particles, %.6g kg; %lld batches found no room for a particle due\n",
-                sim.scene().sources[k].name.c_str(), static_cast<long long>(progress.inserted), progress.mass,
-                static_cast<long long>(progress.crowded_batches));
+    std::fprintf(info,
+                 "source \"%s\": inserted %lld particles, %.6g kg; %lld batches found no room for a particle due\n",
+                 sim.scene().sources[k].name.c_str(), static_cast<long long>(progress.inserted), progress.mass,
+                 static_cast<long long>(progress.crowded_batches));
   }
-  std::printf("results: %s\n", (std::filesystem::path(out) / results::kResultsName).c_str());
+  std::fprintf(info, "results: %s\n", (std::filesystem::path(out) / results::kResultsName).c_str());
   return 0;
 }
 

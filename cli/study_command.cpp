@@ -1,10 +1,14 @@
-// dem study: a parameter study (study/study_plan.hpp) run here, one job after another, or on a
-// dem-server (--submit), ending with its table (study.csv, study.json) and figure (study.svg).
+// dem study: a parameter study (study/study_plan.hpp) run here, one job after another (or a few at
+// once, --jobs), or on a dem-server (--submit), ending with its table (study.csv, study.json) and
+// figure (study.svg).
 #include <algorithm>
+#include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <thread>
 
@@ -23,10 +27,11 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 const Verb kVerb{"study",
-                 "study STUDY.json --out DIR [--threads N] [--quiet] [--plan] | study STUDY.json --out DIR --submit "
+                 "study STUDY.json --out DIR [--jobs N] [--threads N] [--quiet] [--plan] | study STUDY.json --out DIR "
+                 "--submit "
                  "[--detach] | study --id ID --out DIR",
                  "the study file",
-                 {"--out", "--threads", "--id"},
+                 {"--out", "--threads", "--jobs", "--id"},
                  {"--quiet", "--plan", "--submit", "--detach"},
                  0,
                  1};
@@ -132,48 +137,93 @@ json done_before(const fs::path& folder, const json& spec) {
   return done;
 }
 
-int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path& out, int threads, bool quiet) {
+// Runs the study's runs here, `jobs` at a time (each with `threads` threads; with several at once,
+// each run's own lines go to its folder's run.log), keeping those done before with the same spec.
+int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path& out, int threads, bool quiet,
+             int jobs) {
   const std::vector<json> specs = check_runs(plan, in.base_dir);
   fs::create_directories(out);
   std::vector<study::StudyRow> rows;
   for (const study::StudyRun& run : plan.runs) rows.push_back(study::row_of(run));
   write_table(out, plan, rows);
   int failed = 0;
-  for (std::size_t k = 0; k < plan.runs.size(); ++k) {
+  std::mutex shared;  // guards rows, failed, the table's files and the lines printed
+  auto run_one = [&](std::size_t k) {
     const study::StudyRun& run = plan.runs[k];
-    study::StudyRow& row = rows[k];
     char name[32];
     std::snprintf(name, sizeof name, "run-%03d", run.index);
     const fs::path folder = out / name;
     // a run done before with this very spec is kept: a study stopped half-way goes on where it stopped
     const fs::path results = folder / results::kResultsName, spec_file = folder / "spec.json";
     if (const json done = done_before(folder, specs[k]); !done.is_null()) {
-      row.state = "succeeded";
-      row.results = done;
-      std::printf("%s (done before, kept)\n", row_line(plan, row).c_str());
+      const std::lock_guard<std::mutex> lock(shared);
+      rows[k].state = "succeeded";
+      rows[k].results = done;
+      std::printf("%s (done before, kept)\n", row_line(plan, rows[k]).c_str());
       write_table(out, plan, rows);  // a study of kept runs only still ends with their table
-      continue;
+      return;
     }
     fs::create_directories(folder);
     fs::remove(results);
     write_text(spec_file, specs[k].dump(2) + "\n");
-    std::printf("run %d of %zu (%s) into %s\n", run.index, plan.runs.size(),
-                study::describe_values(plan.parameters, run.values).c_str(), folder.c_str());
-    std::fflush(stdout);
+    const fs::path log_file = folder / "run.log";
+    {
+      std::string where = folder.string();
+      if (jobs > 1) (where += ", its lines in ") += log_file.string();
+      const std::lock_guard<std::mutex> lock(shared);
+      std::printf("run %d of %zu (%s) into %s\n", run.index, plan.runs.size(),
+                  study::describe_values(plan.parameters, run.values).c_str(), where.c_str());
+      std::fflush(stdout);
+    }
+    std::FILE* log = nullptr;
+    if (jobs > 1 && (log = std::fopen(log_file.c_str(), "w")) == nullptr)
+      throw std::runtime_error("cannot write " + log_file.string());
     int status = 1;
+    std::string error;
     try {
       status = run_scene(spec::to_scene(spec::parse_json(specs[k].dump()), in.base_dir), spec_file.string(),
-                         folder.string(), threads, quiet, "");
+                         folder.string(), threads, quiet || jobs > 1, "", log);
     } catch (const std::exception& e) {
-      row.error = e.what();
+      error = e.what();
+      if (log != nullptr) std::fprintf(log, "dem study: %s\n", e.what());
     }
-    if (fs::exists(results)) row.results = json::parse(std::ifstream(results), nullptr, false);
-    if (row.results.is_discarded()) row.results = nullptr;
+    if (log != nullptr) std::fclose(log);
+    json found;
+    if (fs::exists(results)) found = json::parse(std::ifstream(results), nullptr, false);
+    const std::lock_guard<std::mutex> lock(shared);
+    study::StudyRow& row = rows[k];
+    row.error = error;
+    row.results = found.is_discarded() ? json() : found;
     row.state = status == 0 ? "succeeded" : "failed";
     if (status != 0 && row.error.empty() && row.results.is_object()) row.error = row.results.value("error", "");
     failed += status != 0;
     std::printf("%s\n", row_line(plan, row).c_str());
+    std::fflush(stdout);
     write_table(out, plan, rows);
+  };
+  if (jobs <= 1) {
+    for (std::size_t k = 0; k < plan.runs.size(); ++k) run_one(k);
+  } else {
+    // each worker takes the next run not yet begun; the first error that is not a run's own (a
+    // folder or table that cannot be written) stops the workers and is thrown once they have ended
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stop{false};
+    std::exception_ptr first_error;
+    std::vector<std::thread> workers;
+    for (int w = 0; w < std::min<int>(jobs, static_cast<int>(plan.runs.size())); ++w)
+      workers.emplace_back([&] {
+        for (std::size_t k; !stop && (k = next++) < plan.runs.size();) {
+          try {
+            run_one(k);
+          } catch (...) {
+            const std::lock_guard<std::mutex> lock(shared);
+            if (!first_error) first_error = std::current_exception();
+            stop = true;
+          }
+        }
+      });
+    for (std::thread& w : workers) w.join();
+    if (first_error) std::rethrow_exception(first_error);
   }
   for (const std::string& key : plan.plot) {
     const bool any = std::any_of(rows.begin(), rows.end(),
@@ -254,6 +304,15 @@ int study_command(const std::vector<std::string>& args) {
     if (threads < 0)
       return usage_error(kVerb, "--threads is a whole number >= 0 (got \"" + a.value("--threads") + "\")");
   }
+  int jobs = 1;
+  if (a.values.count("--jobs")) {
+    const std::string& text = a.value("--jobs");
+    jobs = text.size() <= 2 && !text.empty() && std::all_of(text.begin(), text.end(), ::isdigit) ? std::stoi(text) : 0;
+    if (jobs < 1 || jobs > 64)
+      return usage_error(kVerb, "--jobs is a whole number from 1 to 64 (got \"" + text + "\")");
+    // several runs at once share the cores, unless --threads says otherwise
+    if (threads < 0 && jobs > 1) threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / jobs);
+  }
   const std::string& path = a.positional[0];
   try {
     const StudyInput in = read_study(path);
@@ -268,7 +327,7 @@ int study_command(const std::vector<std::string>& args) {
     }
     if (!a.flag("--submit")) {
       if (a.flag("--detach")) return usage_error(kVerb, "--detach goes with --submit (a study on the server)");
-      return run_here(plan, in, out, threads, a.flag("--quiet"));
+      return run_here(plan, in, out, threads, a.flag("--quiet"), jobs);
     }
     const json study = for_server(in);
     return with_server(kVerb, a, [&](const ServerApi& api) {

@@ -72,6 +72,47 @@ TEST_F(CliStudy, OneCommandRunsEveryValueAndWritesTheTableAndTheFigure) {
   for (int k = 0; k < 3; ++k) EXPECT_EQ(kept["rows"][k]["state"], "succeeded") << k;
 }
 
+// --jobs 2: two runs at once, each with its lines in its folder's run.log; the table and every
+// run's results are those of the same study run one after another (the runs are deterministic).
+TEST_F(CliStudy, SeveralRunsAtOnceGiveTheTableOfOneAfterAnother) {
+  write_spec("base.json", kBase);
+  std::string five = kStudy;
+  five.replace(five.find("[0.5, 1, 2]"), 11, "[0.5, 1, 2, 3, 4]");
+  const fs::path study = write_spec("study.json", five);
+  const fs::path serial = dir_ / "serial", parallel = dir_ / "parallel";
+  const CommandResult one = run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(serial) + " --quiet");
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const CommandResult two =
+      run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(parallel) + " --jobs 2 --threads 1");
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  // the same rows, but for the wall-clock time each run took
+  auto rows_of = [&](const fs::path& out) {
+    nlohmann::json rows = nlohmann::json::parse(read(out / "study.json"))["rows"];
+    for (nlohmann::json& row : rows) row["results"].erase("runSeconds");
+    return rows;
+  };
+  EXPECT_EQ(rows_of(parallel), rows_of(serial));
+  for (const char* run : {"run-001", "run-002", "run-003", "run-004", "run-005"}) {
+    nlohmann::json here = nlohmann::json::parse(read(parallel / run / "results.json"));
+    nlohmann::json there = nlohmann::json::parse(read(serial / run / "results.json"));
+    here.erase("runSeconds"), there.erase("runSeconds");
+    EXPECT_EQ(here, there) << run;
+    const std::string log = read(parallel / run / "run.log");
+    EXPECT_NE(log.find("done: steps=40"), std::string::npos) << run << ": " << log;
+    EXPECT_NE(two.output.find("its lines in " + (parallel / run / "run.log").string()), std::string::npos) << run;
+  }
+  EXPECT_EQ(two.output.find("done: steps"), std::string::npos) << "the runs' own lines are in their logs";
+  EXPECT_NE(two.output.find("5 runs, 0 failed"), std::string::npos) << two.output;
+  for (const std::string bad : {"0", "65", "two", "-1", "1.5"}) {
+    const CommandResult r =
+        run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(dir_ / "bad") + " --jobs " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.output.find("--jobs is a whole number from 1 to 64 (got \"" + bad + "\")"), std::string::npos)
+        << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
 // A run's folder keeps its spec standing alone, the mesh it names inline: it runs again from there,
 // and a mesh changed since is a changed spec, run anew (it was kept: an independent tester). A
 // results.json that cannot be read is a run to do again, not a study that cannot go on.
