@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "cli/commands.hpp"
+#include "cli/run_frames.hpp"
 #include "legacy/legacy_formats.hpp"
 #include "study/chain_figure.hpp"
 
@@ -46,35 +47,6 @@ std::vector<double> parse_times(const std::string& list) {
   return times;
 }
 
-template <class Frame>
-std::vector<Frame> read_frames(const fs::path& path, legacy::ReadResult<Frame> (*reader)(std::istream&),
-                               const char* need) {
-  std::error_code error;
-  if (!fs::exists(path, error))
-    throw std::runtime_error(path.string() + ": not there" + (*need != '\0' ? std::string(" (") + need + ")" : ""));
-  if (!fs::is_regular_file(path, error)) throw std::runtime_error(path.string() + ": not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open it");
-  legacy::ReadResult<Frame> read = reader(in);
-  if (!read.problem.empty()) std::fprintf(stderr, "dem chains: %s: %s\n", path.string().c_str(), read.problem.c_str());
-  if (read.frames.empty()) throw std::runtime_error(path.string() + ": no complete frame in it");
-  return std::move(read.frames);
-}
-
-// The two axes of the drawing plane for a view along `axis` (right-handed: y is seen from -y).
-std::pair<int, int> plane_axes(const std::string& view) {
-  if (view == "x") return {1, 2};
-  if (view == "y") return {0, 2};
-  if (view == "z") return {0, 1};
-  throw std::invalid_argument("--view: x, y or z (got \"" + view + "\")");
-}
-
-std::string time_text(double t) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "t = %.3f s", t);
-  return buf;
-}
-
 // A frame of either animation file, in the drawing plane.
 struct PlaneFrame {
   double time = 0;
@@ -87,7 +59,8 @@ struct PlaneFrame {
 std::vector<PlaneFrame> frames_3d(const fs::path& file, std::pair<int, int> axes) {
   auto project = [&](const Vec3& p) { return study::Point2{p[axes.first], p[axes.second]}; };
   std::vector<PlaneFrame> out;
-  for (const legacy::AnimationFrame& f : read_frames<legacy::AnimationFrame>(file, &legacy::read_animation, "")) {
+  for (const legacy::AnimationFrame& f :
+       read_frames<legacy::AnimationFrame>(file, &legacy::read_animation, "dem chains")) {
     PlaneFrame frame{f.scalars[0], f.step, {}, {}, {}};
     for (const legacy::AnimationParticle& p : f.particles) {
       frame.discs[p.id] = {project(p.position), p.diameter / 2};
@@ -106,7 +79,7 @@ std::vector<PlaneFrame> frames_3d(const fs::path& file, std::pair<int, int> axes
 std::vector<PlaneFrame> frames_2d(const fs::path& file) {
   std::vector<PlaneFrame> out;
   for (const legacy::Animation2DFrame& f :
-       read_frames<legacy::Animation2DFrame>(file, &legacy::read_animation_2d, "")) {
+       read_frames<legacy::Animation2DFrame>(file, &legacy::read_animation_2d, "dem chains")) {
     PlaneFrame frame{f.scalars[0], f.step, {}, {}, {}};
     for (const legacy::AnimationDisc& d : f.discs) {
       frame.discs[d.id] = {{d.position.x(), d.position.y()}, d.diameter / 2};
@@ -158,8 +131,9 @@ int chains_command(const std::vector<std::string>& args) {
   if (planar && view != "y") return chains_usage("a 2D run is drawn in its x-z plane: --view y (got \"" + view + "\")");
   try {
     const std::vector<PlaneFrame> frames = planar ? frames_2d(animation_2d) : frames_3d(animation_3d, axes);
-    const auto chain_frames = read_frames<legacy::ForceChainFrame>(
-        fs::path(dir) / "ForceChain_3D.dat", &legacy::read_force_chains, "a run with outputs.forceChains writes it");
+    const auto chain_frames =
+        read_frames<legacy::ForceChainFrame>(fs::path(dir) / "ForceChain_3D.dat", &legacy::read_force_chains,
+                                             "dem chains", "a run with outputs.forceChains writes it");
     std::unordered_map<std::int64_t, const legacy::ForceChainFrame*> chains_at;
     for (const legacy::ForceChainFrame& c : chain_frames) chains_at[c.step] = &c;
     std::vector<const PlaneFrame*> both;  // the frames both files hold
@@ -176,10 +150,8 @@ int chains_command(const std::vector<std::string>& args) {
       std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
       spacing = gaps[gaps.size() / 2];
     }
-    std::string folder = fs::absolute(fs::path(dir)).lexically_normal().string();
-    while (folder.size() > 1 && folder.back() == '/') folder.pop_back();
     const char* names = "xyz";
-    study::ChainFigureText text{title.empty() ? "Force chains, " + fs::path(folder).filename().string() : title,
+    study::ChainFigureText text{title.empty() ? "Force chains, " + folder_name(dir) : title,
                                 std::string(1, names[axes.first]), std::string(1, names[axes.second]), unit};
     std::vector<study::ChainPanel> panels;
     for (double t : times) {

@@ -18,12 +18,14 @@ const char* kUsage =
     "                                   a legacy INPT.inp (PDEM-EGD's: MESH the terrain, then the funnel) as\n"
     "                                   a job spec, with every line's fate; --unit: metres per INPT length\n"
     "                                   unit (default 1; 0.001 for mm)\n"
-    "  dem study STUDY.json --out DIR [--threads N] [--quiet] [--plan]\n"
+    "  dem study STUDY.json --out DIR [--jobs N] [--threads N] [--quiet] [--plan]\n"
     "                                   a parameter study: the base spec's runs for each value (or combination\n"
-    "                                   of values) of the fields it names, one after another into DIR/run-NNN,\n"
-    "                                   then DIR/study.csv, study.json (one row per run: its values and its\n"
-    "                                   results.json) and study.svg (each result against the first parameter);\n"
-    "                                   runs done before with the same spec are kept; --plan lists the runs\n"
+    "                                   of values) of the fields it names, one after another (--jobs N: N at\n"
+    "                                   once, each with cores/N threads and its lines in its run.log) into\n"
+    "                                   DIR/run-NNN, then DIR/study.csv, study.json (one row per run: its\n"
+    "                                   values and its results.json) and study.svg (each result against the\n"
+    "                                   first parameter); runs done before with the same spec are kept;\n"
+    "                                   --plan lists the runs\n"
     "  dem study STUDY.json --out DIR --submit [--detach]      the same study on a dem-server (its jobs run\n"
     "                                   there); waits for them and downloads the table and figure into DIR\n"
     "  dem study --id ID --out DIR                            follow a study on the server to its end\n"
@@ -34,6 +36,9 @@ const char* kUsage =
     "                                   --y settlement); several files: a line each (NAME=FILE names it)\n"
     "  dem chains RUN_DIR --times T[,T...] --out FIGURE.svg [--view x|y|z] [--unit U] [--title T]\n"
     "                                   the force chains at the frames nearest the times T, one panel each\n"
+    "  dem deposits RUN_DIR [RUN_DIR ...] --out FIGURE.svg [--time T] [--view x|y|z] [--terrain MESH]\n"
+    "                                   the runs' particles at their last frames side by side, coloured by\n"
+    "                                   piece, over the terrain's contours (NAME=RUN_DIR names a panel)\n"
     "\n"
     "  dem submit SPEC.json [--wait] [--idempotency-key K] [--quiet]\n"
     "                                   send a job spec to dem-server (mesh files go inline) and print the\n"
@@ -68,6 +73,7 @@ int main(int argc, char** argv) {
   if (verb == "study") return dem::cli::study_command(args);
   if (verb == "plot") return dem::cli::plot_command(args);
   if (verb == "chains") return dem::cli::chains_command(args);
+  if (verb == "deposits") return dem::cli::deposits_command(args);
   if (verb == "submit") return dem::cli::submit_command(args);
   if (verb == "status") return dem::cli::status_command(args);
   if (verb == "list") return dem::cli::list_command(args);

@@ -1,0 +1,161 @@
+// dem deposits: a figure (SVG) of where several runs' particles lie at their last frame (or at a
+// given time), side by side at one scale, coloured by the piece each belongs to, over a terrain's
+// contour lines: a landslide study's deposits, as the PDEM-EGD manual's figure 4.17 shows them.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "cli/commands.hpp"
+#include "cli/run_frames.hpp"
+#include "legacy/legacy_formats.hpp"
+#include "mesh/mesh_io.hpp"
+#include "study/deposit_figure.hpp"
+
+namespace dem::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kDepositsUsage =
+    "usage: dem deposits RUN_DIR [RUN_DIR ...] --out FIGURE.svg [--time T] [--view x|y|z] [--terrain MESH]\n"
+    "                    [--contour STEP] [--unit U] [--title T]\n"
+    "         the particles of each run (its ANIMATION_3D.dat) at its last frame, or the frame nearest T (s),\n"
+    "         one panel each at one scale, seen along --view (default z: from above, x to the right, y up),\n"
+    "         each sphere coloured by the piece it belongs to (the eight largest pieces their own colours);\n"
+    "         NAME=RUN_DIR names a panel (default: the folder's name). --terrain draws a mesh file's contour\n"
+    "         lines under every panel (the legacy format or STL), every --contour STEP (default: a round\n"
+    "         step giving 10 to 25 levels); --unit names the length unit. At most 20 runs\n";
+
+int deposits_usage(const std::string& problem) {
+  std::fprintf(stderr, "dem deposits: %s\n%s", problem.c_str(), kDepositsUsage);
+  return 2;
+}
+
+struct NamedRun {
+  std::string name, dir;
+};
+
+// "NAME=DIR" (split at the last '=': a name such as "C = 4 MPa" may hold some; a NAME has no '/'),
+// or DIR named by its folder (a folder that is there is taken whole, '=' and all).
+NamedRun named_run(const std::string& text) {
+  std::error_code error;
+  const std::size_t eq = text.rfind('=');
+  if (!fs::is_directory(text, error) && eq != std::string::npos && eq > 0 && text.find('/') > eq)
+    return {text.substr(0, eq), text.substr(eq + 1)};
+  return {folder_name(text), text};
+}
+
+double number_option(const std::string& name, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v))
+    throw std::invalid_argument(name + ": \"" + text + "\" is not a number");
+  return v;
+}
+
+}  // namespace
+
+int deposits_command(const std::vector<std::string>& args) {
+  std::string out, view = "z", terrain, unit, title, time_text_given, contour_text;
+  std::vector<NamedRun> runs;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kDepositsUsage, stdout);
+      return 0;
+    }
+    if (a == "--out" || a == "--time" || a == "--view" || a == "--terrain" || a == "--contour" || a == "--unit" ||
+        a == "--title") {
+      if (k + 1 >= args.size()) return deposits_usage(a + " needs a value");
+      const std::string& v = args[++k];
+      (a == "--out"       ? out
+       : a == "--time"    ? time_text_given
+       : a == "--view"    ? view
+       : a == "--terrain" ? terrain
+       : a == "--contour" ? contour_text
+       : a == "--unit"    ? unit
+                          : title) = v;
+    } else if (!a.empty() && a[0] == '-') {
+      return deposits_usage("unknown option " + a);
+    } else {
+      runs.push_back(named_run(a));
+    }
+  }
+  if (runs.empty()) return deposits_usage("give at least one run's folder");
+  if (runs.size() > 20) return deposits_usage("at most 20 runs (got " + std::to_string(runs.size()) + ")");
+  if (out.empty()) return deposits_usage("give --out FIGURE.svg");
+  std::pair<int, int> axes;
+  double at_time = NAN, contour_step = 0;
+  try {
+    axes = plane_axes(view);
+    if (!time_text_given.empty()) at_time = number_option("--time", time_text_given);
+    if (!contour_text.empty()) {
+      contour_step = number_option("--contour", contour_text);
+      if (!(contour_step > 0)) throw std::invalid_argument("--contour: must be above 0 (got " + contour_text + ")");
+      if (terrain.empty()) throw std::invalid_argument("--contour: needs --terrain MESH");
+    }
+  } catch (const std::invalid_argument& e) {
+    return deposits_usage(e.what());
+  }
+  const int depth = 3 - axes.first - axes.second;
+  try {
+    std::vector<study::DepositPanel> panels;
+    for (const NamedRun& run : runs) {
+      const auto frames = read_frames<legacy::AnimationFrame>(
+          fs::path(run.dir) / "ANIMATION_3D.dat", &legacy::read_animation, "dem deposits", "a 3D run writes it");
+      const legacy::AnimationFrame* frame = &frames.back();
+      if (std::isfinite(at_time))
+        for (const legacy::AnimationFrame& f : frames)
+          if (std::abs(f.scalars[0] - at_time) < std::abs(frame->scalars[0] - at_time)) frame = &f;
+      study::DepositPanel panel;
+      panel.title = run.name;
+      std::set<int> pieces;
+      for (const legacy::AnimationParticle& p : frame->particles) {
+        // part 0: the run has no bonds or clumps, and every sphere is a piece of its own
+        const int piece = p.part > 0 ? p.part : -p.id;
+        panel.discs.push_back({{p.position[axes.first], p.position[axes.second]}, p.diameter / 2, piece});
+        pieces.insert(piece);
+      }
+      panel.subtitle = time_text(frame->scalars[0], 1) + ", " + std::to_string(pieces.size()) +
+                       (pieces.size() == 1 ? " piece" : " pieces");
+      panels.push_back(std::move(panel));
+    }
+    std::vector<study::ContourSegment> contours;
+    std::string contour_words;
+    if (!terrain.empty()) {
+      const TriangleMesh mesh = read_mesh(terrain);
+      std::vector<study::MeshTriangle> triangles;
+      double lo = INFINITY, hi = -INFINITY;
+      for (const auto& t : mesh.triangles) {
+        study::MeshTriangle m{};
+        for (int c = 0; c < 3; ++c)
+          for (int d = 0; d < 3; ++d) m.corners[c][d] = mesh.vertices[t[c]][d];
+        triangles.push_back(m);
+      }
+      for (const Vec3& v : mesh.vertices) lo = std::min(lo, v[depth]), hi = std::max(hi, v[depth]);
+      if (contour_step == 0) contour_step = study::contour_interval(hi - lo);
+      contours = study::contour_segments(triangles, axes.first, axes.second, depth, contour_step);
+      char words[96];
+      std::snprintf(words, sizeof words, "contours every %g %s", contour_step,
+                    unit.empty() ? "length units" : unit.c_str());
+      contour_words = words;
+    }
+    const char* names = "xyz";
+    const study::DepositFigureText text{title.empty() ? std::string("Deposits") : title,
+                                        std::string(1, names[axes.first]), std::string(1, names[axes.second]), unit,
+                                        contour_words};
+    std::ofstream file(out, std::ios::binary);
+    file << study::deposit_figure_svg(text, panels, contours);
+    file.close();
+    if (!file) throw std::runtime_error(out + ": cannot write it");
+    std::printf("%s\n", out.c_str());
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dem deposits: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace dem::cli
