@@ -28,6 +28,8 @@ const char* kDepositsUsage =
     "         lines under every panel (the legacy format or STL), every --contour STEP (default: a round\n"
     "         step giving 10 to 25 levels); --unit names the length unit. At most 20 runs\n";
 
+constexpr int kMostContourLevels = 1000;
+
 int deposits_usage(const std::string& problem) {
   std::fprintf(stderr, "dem deposits: %s\n%s", problem.c_str(), kDepositsUsage);
   return 2;
@@ -103,12 +105,26 @@ int deposits_command(const std::vector<std::string>& args) {
   try {
     std::vector<study::DepositPanel> panels;
     for (const NamedRun& run : runs) {
+      std::error_code error;
+      if (!fs::exists(fs::path(run.dir) / "ANIMATION_3D.dat", error) &&
+          fs::is_regular_file(fs::path(run.dir) / "ANIMATION_2D.dat", error))
+        throw std::runtime_error(run.dir +
+                                 " is a 2D run (ANIMATION_2D.dat): dem deposits draws 3D runs' deposits; "
+                                 "dem chains draws a 2D run's discs");
       const auto frames = read_frames<legacy::AnimationFrame>(
           fs::path(run.dir) / "ANIMATION_3D.dat", &legacy::read_animation, "dem deposits", "a 3D run writes it");
       const legacy::AnimationFrame* frame = &frames.back();
-      if (std::isfinite(at_time))
+      if (std::isfinite(at_time)) {
         for (const legacy::AnimationFrame& f : frames)
           if (std::abs(f.scalars[0] - at_time) < std::abs(frame->scalars[0] - at_time)) frame = &f;
+        // a frame farther from the time than the frames are apart is worth a word
+        const double spacing = frames.size() > 1 ? std::abs(frames.back().scalars[0] - frames.front().scalars[0]) /
+                                                       static_cast<double>(frames.size() - 1)
+                                                 : 0;
+        if (std::abs(frame->scalars[0] - at_time) > spacing + 1e-9 * std::max(1.0, std::abs(at_time)))
+          std::fprintf(stderr, "dem deposits: %s: --time %g s: the nearest frame is %s\n", run.name.c_str(), at_time,
+                       time_text(frame->scalars[0], 3).c_str());
+      }
       study::DepositPanel panel;
       panel.title = run.name;
       std::set<int> pieces;
@@ -118,7 +134,7 @@ int deposits_command(const std::vector<std::string>& args) {
         panel.discs.push_back({{p.position[axes.first], p.position[axes.second]}, p.diameter / 2, piece});
         pieces.insert(piece);
       }
-      panel.subtitle = time_text(frame->scalars[0], 1) + ", " + std::to_string(pieces.size()) +
+      panel.subtitle = time_text(frame->scalars[0], 3) + ", " + std::to_string(pieces.size()) +
                        (pieces.size() == 1 ? " piece" : " pieces");
       panels.push_back(std::move(panel));
     }
@@ -136,6 +152,14 @@ int deposits_command(const std::vector<std::string>& args) {
       }
       for (const Vec3& v : mesh.vertices) lo = std::min(lo, v[depth]), hi = std::max(hi, v[depth]);
       if (contour_step == 0) contour_step = study::contour_interval(hi - lo);
+      // a line per level and triangle: a step far below the relief would draw millions
+      const double levels = (hi - lo) / contour_step;
+      if (levels > kMostContourLevels) {
+        char words[200];
+        std::snprintf(words, sizeof words, "--contour %s gives %.3g levels over the terrain's relief of %g: at most %d",
+                      contour_text.c_str(), levels, hi - lo, kMostContourLevels);
+        return deposits_usage(words);
+      }
       contours = study::contour_segments(triangles, axes.first, axes.second, depth, contour_step);
       char words[96];
       std::snprintf(words, sizeof words, "contours every %g %s", contour_step,

@@ -37,6 +37,7 @@ const char* kUsage =
     "  dem chains RUN_DIR --times T[,T...] --out FIGURE.svg [--view x|y|z] [--unit U] [--title T]\n"
     "                                   the force chains at the frames nearest the times T, one panel each\n"
     "  dem deposits RUN_DIR [RUN_DIR ...] --out FIGURE.svg [--time T] [--view x|y|z] [--terrain MESH]\n"
+    "               [--contour STEP] [--unit U] [--title T]\n"
     "                                   the runs' particles at their last frames side by side, coloured by\n"
     "                                   piece, over the terrain's contours (NAME=RUN_DIR names a panel)\n"
     "\n"

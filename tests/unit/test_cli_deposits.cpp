@@ -71,8 +71,8 @@ TEST_F(CliDeposits, APanelARunItsPiecesColouredLargestFirst) {
                                   shell_quoted(loose) + " --unit m --title rows --out " + shell_quoted(out));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string svg = read(out);
-  EXPECT_NE(svg.find("t = 0.2 s, 2 pieces"), std::string::npos) << "the bonded run: three glued, one alone";
-  EXPECT_NE(svg.find("t = 0.2 s, 4 pieces"), std::string::npos) << "the loose run";
+  EXPECT_NE(svg.find("t = 0.200 s, 2 pieces"), std::string::npos) << "the bonded run: three glued, one alone";
+  EXPECT_NE(svg.find("t = 0.200 s, 4 pieces"), std::string::npos) << "the loose run";
   std::vector<std::string> glued = disc_colours(svg, "C = 1 GPa");
   ASSERT_EQ(glued.size(), 4u);
   EXPECT_EQ(std::count(glued.begin(), glued.end(), "#1f77b4"), 3) << "the largest piece: the first colour";
@@ -127,6 +127,53 @@ TEST(DepositFigure, ContoursAreWhereTheLevelsCutTheTriangles) {
   EXPECT_EQ(study::contour_interval(1100), 100);
   EXPECT_EQ(study::contour_interval(50), 5);
   EXPECT_EQ(study::contour_interval(0), 1) << "a flat terrain";
+}
+
+// An independent tester: frames at 0.05, 0.15 and 0.25 s were labelled 0.1, 0.2 and 0.3 s; a time
+// past the run drew the last frame without a word.
+TEST_F(CliDeposits, ThePanelSaysWhichFrameItDrawsAndAFarTimeIsTold) {
+  std::string spec = row_spec(false);
+  spec.replace(spec.find("\"interval\": 0.1"), 15, "\"interval\": 0.05");
+  const fs::path run = dir_ / "run";
+  ASSERT_EQ(run_dem("run " + shell_quoted(write_spec("r.json", spec)) + " --out " + shell_quoted(run) +
+                    " --quiet --threads 1")
+                .exit_code,
+            0);
+  const fs::path out = dir_ / "deposits.svg";
+  const CommandResult r = run_dem("deposits " + shell_quoted(run) + " --time 0.15 --out " + shell_quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(read(out).find("t = 0.150 s, 4 pieces"), std::string::npos);
+  EXPECT_EQ(r.output.find("nearest frame"), std::string::npos) << r.output;
+  const CommandResult late = run_dem("deposits " + shell_quoted(run) + " --time 100 --out " + shell_quoted(out));
+  ASSERT_EQ(late.exit_code, 0) << late.output;
+  EXPECT_NE(late.output.find("run: --time 100 s: the nearest frame is t = 0.200 s"), std::string::npos) << late.output;
+}
+
+// An independent tester: --contour 1e-9 on a 2 m ramp asked for two billion levels and ate the
+// memory; a 2D run was told its ANIMATION_3D.dat was missing.
+TEST_F(CliDeposits, TooManyContourLevelsAndA2DRunAreRefusedByName) {
+  const fs::path run = run_row("loose", false);
+  const fs::path terrain = dir_ / "ramp.dat";
+  std::ofstream(terrain) << kRamp;
+  const fs::path out = dir_ / "deposits.svg";
+  const CommandResult fine = run_dem("deposits " + shell_quoted(run) + " --terrain " + shell_quoted(terrain) +
+                                     " --contour 1e-9 --out " + shell_quoted(out));
+  EXPECT_EQ(fine.exit_code, 2);
+  EXPECT_NE(fine.output.find("--contour 1e-9 gives 2e+09 levels over the terrain's relief of 2: at most 1000"),
+            std::string::npos)
+      << fine.output;
+  std::string flat = row_spec(false);
+  flat.replace(flat.find("\"gravity\""), 0, "\"dimension\": 2, \"discThickness\": 0.2,\n  ");
+  const fs::path planar = dir_ / "planar";
+  const CommandResult made = run_dem("run " + shell_quoted(write_spec("planar.json", flat)) + " --out " +
+                                     shell_quoted(planar) + " --quiet --threads 1");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const CommandResult two_d = run_dem("deposits " + shell_quoted(planar) + " --out " + shell_quoted(out));
+  EXPECT_EQ(two_d.exit_code, 1);
+  EXPECT_NE(two_d.output.find("is a 2D run (ANIMATION_2D.dat): dem deposits draws 3D runs' deposits"),
+            std::string::npos)
+      << two_d.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST_F(CliDeposits, EveryMissingFileAndBadArgumentIsNamed) {
