@@ -19,7 +19,12 @@ std::string joined(const std::vector<std::string>& problems) {
 // The value a pointer's parent leads to, or why there is none.
 const json* parent_of(const json& base, const json::json_pointer& pointer, std::string& why) {
   const json::json_pointer parent = pointer.parent_pointer();
-  if (!base.contains(parent)) {
+  bool there = false;
+  try {
+    there = base.contains(parent);
+  } catch (const json::exception&) {  // an index past what a number holds
+  }
+  if (!there) {
     why = "the base spec has no " + (parent.empty() ? std::string("root") : "\"" + parent.to_string() + "\"");
     return nullptr;
   }
@@ -159,6 +164,7 @@ StudyPlan plan_study(const json& study, const json& base_from_file) {
   if (!parameters.is_array() || parameters.empty())
     problems.push_back("parameters: a non-empty list of {\"path\": ..., \"values\": [...]}");
   std::set<std::string> pointers;
+  std::vector<std::pair<std::string, std::string>> varied;  // each field's pointer and where it is named
   for (std::size_t k = 0; parameters.is_array() && k < parameters.size(); ++k) {
     const std::string where = "parameters[" + std::to_string(k) + "]";
     const json& p = parameters[k];
@@ -172,10 +178,18 @@ StudyPlan plan_study(const json& study, const json& base_from_file) {
     // one field, or several that take each value together
     std::vector<std::string> paths;
     if (p.contains("path") && p["path"].is_string()) paths.push_back(p["path"]);
-    if (p.contains("path") && p["path"].is_array() && !p["path"].empty() &&
-        std::all_of(p["path"].begin(), p["path"].end(), [](const json& v) { return v.is_string(); }))
-      paths = p["path"].get<std::vector<std::string>>();
-    if (paths.empty())
+    bool named = !paths.empty();
+    if (p.contains("path") && p["path"].is_array() && !p["path"].empty()) {
+      named = true;
+      for (std::size_t f = 0; f < p["path"].size(); ++f)
+        if (p["path"][f].is_string())
+          paths.push_back(p["path"][f]);
+        else
+          problems.push_back(where + ".path[" + std::to_string(f) + "]: a field's path, as text (got " +
+                             p["path"][f].dump() + ")");
+      if (paths.size() < p["path"].size()) paths.clear();
+    }
+    if (!named)
       problems.push_back(where +
                          ".path: the field to vary, as \"bonds.tensileStrength\" or \"/bonds/tensileStrength\", or "
                          "a list of fields that take each value together");
@@ -194,6 +208,15 @@ StudyPlan plan_study(const json& study, const json& base_from_file) {
           problems.push_back(field + ": \"" + path + "\": " + why);
         else if (!pointers.insert(pointer_text).second)
           problems.push_back(field + ": \"" + path + "\" is varied twice");
+        else
+          for (const auto& [other, other_field] : varied) {
+            // a field and one that holds it: the later would overwrite (part of) the earlier's value
+            const bool holds = other.rfind(pointer_text + "/", 0) == 0, held = pointer_text.rfind(other + "/", 0) == 0;
+            if (holds || held)
+              problems.push_back(field + ": \"" + path + "\" " + (holds ? "holds" : "is part of") + " a field " +
+                                 other_field + " varies: vary one of them");
+          }
+        varied.emplace_back(pointer_text, field);
         parameter.pointers.push_back(pointer_text);
       } catch (const std::exception& e) {
         problems.push_back(field + ": not a field's path: " + e.what());

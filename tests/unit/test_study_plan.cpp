@@ -84,8 +84,18 @@ TEST(StudyPlan, AParameterMaySetSeveralFieldsToOneValue) {
                           "parameters[0].path[1]: \"bonds.x.y\": the base spec has no \"/bonds/x\""));
   EXPECT_TRUE(has_problem(study_with({{{"path", {"bonds.seed", "/bonds/seed"}}, {"values", {1}}}}), "varied twice"));
   EXPECT_TRUE(has_problem(study_with({{{"path", json::array()}, {"values", {1}}}}), "parameters[0].path: the field"));
-  EXPECT_TRUE(
-      has_problem(study_with({{{"path", {"bonds.seed", 3}}, {"values", {1}}}}), "parameters[0].path: the field"));
+  EXPECT_TRUE(has_problem(study_with({{{"path", {"bonds.seed", 3}}, {"values", {1}}}}),
+                          "parameters[0].path[1]: a field's path, as text (got 3)"));
+  // an independent tester: a field and the object holding it, varied at once, gave a table that said
+  // the field's value while the run had the object's (the later parameter overwrote the earlier)
+  EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.tensileStrength"}, {"values", {7}}},
+                                      {{"path", "bonds"}, {"values", {{{"tensileStrength", 5}}}}}}),
+                          "parameters[1].path: \"bonds\" holds a field parameters[0].path varies: vary one of them"));
+  EXPECT_TRUE(has_problem(study_with({{{"path", {"bonds", "bonds.seed"}}, {"values", {1}}}}),
+                          "parameters[0].path[1]: \"bonds.seed\" is part of a field parameters[0].path[0] varies"));
+  // and an index past what a number holds was answered in the JSON library's words
+  EXPECT_TRUE(has_problem(study_with({{{"path", "packings[99999999999999999999].seed"}, {"values", {1}}}}),
+                          "the base spec has no \"/packings/99999999999999999999\""));
 }
 
 TEST(StudyPlan, AFieldTheBaseDoesNotHaveIsAddedWhenItsParentIsThere) {
