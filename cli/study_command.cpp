@@ -50,12 +50,19 @@ json read_json(const fs::path& path, const std::string& what) {
 }
 
 void write_text(const fs::path& path, const std::string& text) {
+  // into a file beside it, renamed over it once whole: the table written before stays until then
   const fs::path part = path.string() + ".part";
+  bool written = false;
   {
     std::ofstream out(part, std::ios::binary);
     out << text;
     out.flush();
-    if (!out) throw std::runtime_error("cannot write " + part.string() + " (a full disk?)");
+    written = static_cast<bool>(out);
+  }
+  if (!written) {
+    std::error_code ignored;
+    fs::remove(part, ignored);
+    throw std::runtime_error("cannot write " + path.string() + " (a full disk?); the one written before is kept");
   }
   fs::rename(part, path);
 }

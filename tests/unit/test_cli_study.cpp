@@ -113,6 +113,26 @@ TEST_F(CliStudy, SeveralRunsAtOnceGiveTheTableOfOneAfterAnother) {
   EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
 
+// A table that cannot be written (a full disk: /dev/full) is said so, the one written before stays,
+// and no half-written file is left beside it (an independent tester found a 0-byte study.json.part).
+TEST_F(CliStudy, ATableThatCannotBeWrittenKeepsTheOneBefore) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
+  write_spec("base.json", kBase);
+  const fs::path study = write_spec("study.json", kStudy);
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet").exit_code, 0);
+  const std::string before = read(out / "study.json");
+  fs::create_symlink("/dev/full", out / "study.json.part");
+  const CommandResult full = run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet");
+  EXPECT_EQ(full.exit_code, 1);
+  EXPECT_NE(full.output.find("cannot write " + (out / "study.json").string() +
+                             " (a full disk?); the one written before is kept"),
+            std::string::npos)
+      << full.output;
+  EXPECT_EQ(read(out / "study.json"), before);
+  EXPECT_FALSE(fs::exists(fs::symlink_status(out / "study.json.part")));
+}
+
 // A run's folder keeps its spec standing alone, the mesh it names inline: it runs again from there,
 // and a mesh changed since is a changed spec, run anew (it was kept: an independent tester). A
 // results.json that cannot be read is a run to do again, not a study that cannot go on.
