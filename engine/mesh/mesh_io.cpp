@@ -57,11 +57,11 @@ double real_at(const std::string& name, const TokenLine& line, int k) {
   return *value;
 }
 
-int count_at(const std::string& name, const TokenLine& line, int k, const char* what) {
+int count_at(const std::string& name, const TokenLine& line, int k, const char* what, int least = 0) {
   const double value = real_at(name, line, k);
-  if (value < 0 || value != std::floor(value) || value > 2e9)
+  if (value < least || value != std::floor(value) || value > 2e9)
     throw MeshError(name + " line " + std::to_string(line.number) + ": " + what +
-                    " must be a whole number >= 0, got \"" + line.tokens[k] + "\"");
+                    " must be a whole number >= " + std::to_string(least) + ", got \"" + line.tokens[k] + "\"");
   return static_cast<int>(value);
 }
 
@@ -173,7 +173,7 @@ TriangleMesh parse_legacy_mesh(const std::string& text, const std::string& name)
     const TokenLine& line = lines[1 + nv + t];
     expect_tokens(name, line, 3, "1-based vertex indices i j k");
     std::array<int, 3> tri{};
-    for (int k = 0; k < 3; ++k) tri[k] = count_at(name, line, k, "a vertex index") - 1;
+    for (int k = 0; k < 3; ++k) tri[k] = count_at(name, line, k, "a vertex index (the first vertex is 1)", 1) - 1;
     mesh.triangles.push_back(tri);
   }
   check_mesh(mesh, [&](std::size_t t) { return name + " line " + std::to_string(lines[1 + nv + t].number); });

@@ -72,7 +72,7 @@ void check_mesh(const TriangleMesh& mesh, Where&& where) {
     for (int k = 0; k < 3; ++k)
       if (tri[k] < 0 || tri[k] >= nv)
         throw MeshError(where(t) + ": triangle " + std::to_string(t + 1) + " refers to vertex " +
-                        std::to_string(tri[k] + 1) + ", but the mesh has " + std::to_string(nv) + " vertices");
+                        std::to_string(tri[k] + 1) + ", but the vertices are numbered 1 to " + std::to_string(nv));
     const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
     // twice the area, against the mesh's size: 1e-12 relative catches collinear and repeated corners
     if ((b - a).cross(c - a).squaredNorm() <= 1e-24 * size2 * size2)

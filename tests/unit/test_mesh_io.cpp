@@ -69,13 +69,15 @@ TEST(LegacyMesh, EachBadFileHasItsOwnError) {
             "m.dat: the file ends after 1 of 2 triangles (truncated, last line 6)");
   EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 x\n1 1 0\n0 1 0\n1 2 3\n1 3 4\n"), "m.dat line 3: expected a number, got \"x\"");
   EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n1 2 3\n1 3 9\n"),
-            "m.dat line 7: triangle 2 refers to vertex 9, but the mesh has 4 vertices");
+            "m.dat line 7: triangle 2 refers to vertex 9, but the vertices are numbered 1 to 4");
   EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 2 3\n1 3 4\n"),
             "m.dat line 6: triangle 1 is degenerate (its corners are repeated or on one line)");
   EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n1 2 3\n1 3 4\n5 5 5\n"),
             "m.dat line 8: more lines than the 4 vertices and 2 triangles of line 1");
   EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 2 3\n1 3 4\n"),
-            "m.dat line 6: triangle 1 refers to vertex 0, but the mesh has 4 vertices");
+            "m.dat line 6: a vertex index (the first vertex is 1) must be a whole number >= 1, got \"0\"");
+  EXPECT_EQ(error_of("4 2\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n-3 2 3\n1 3 4\n"),
+            "m.dat line 6: a vertex index (the first vertex is 1) must be a whole number >= 1, got \"-3\"");
 }
 
 const std::string kAsciiStl =
