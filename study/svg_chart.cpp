@@ -16,6 +16,19 @@ std::string fmt(double v) {
   return buf;
 }
 
+// A tick's label: 4 significant digits, an exponent without its '+' and leading zeros (4e6, not
+// 4e+06), so that a study's values in pascals fit under their ticks.
+std::string tick_label(double v) {
+  std::string text = fmt(v);
+  const std::size_t e = text.find('e');
+  if (e == std::string::npos) return text;
+  std::string exponent = text.substr(e + 1);
+  const bool negative = !exponent.empty() && exponent[0] == '-';
+  if (!exponent.empty() && (exponent[0] == '+' || exponent[0] == '-')) exponent.erase(0, 1);
+  while (exponent.size() > 1 && exponent[0] == '0') exponent.erase(0, 1);
+  return text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+}
+
 // Round tick steps (1, 2, 5 x 10^k) covering [lo, hi].
 std::vector<double> ticks(double lo, double hi) {
   const double span = hi - lo;
@@ -123,12 +136,22 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
     for (double t : ticks(y0, y1))
       svg += "<line x1=\"" + fmt(px - 4) + "\" x2=\"" + fmt(px) + "\" y1=\"" + fmt(sy(t)) + "\" y2=\"" + fmt(sy(t)) +
              "\" stroke=\"#888\"/><text x=\"" + fmt(px - 6) + "\" y=\"" + fmt(sy(t) + 4) + "\" text-anchor=\"end\">" +
-             fmt(t) + "</text>\n";
+             tick_label(t) + "</text>\n";
     if (panel.x_categories.empty()) {
-      for (double t : ticks(x0, x1))
+      // every tick marked; a label only where it clears the last one (about 7 px a character)
+      double last_right = -1e300;
+      for (double t : ticks(x0, x1)) {
         svg += "<line x1=\"" + fmt(sx(t)) + "\" x2=\"" + fmt(sx(t)) + "\" y1=\"" + fmt(py + ph) + "\" y2=\"" +
-               fmt(py + ph + 4) + "\" stroke=\"#888\"/><text x=\"" + fmt(sx(t)) + "\" y=\"" + fmt(py + ph + 18) +
-               "\" text-anchor=\"middle\">" + fmt(t) + "</text>\n";
+               fmt(py + ph + 4) + "\" stroke=\"#888\"/>";
+        const std::string label = tick_label(t);
+        const double half = 3.5 * static_cast<double>(label.size());
+        if (sx(t) - half >= last_right + 6) {
+          svg += "<text x=\"" + fmt(sx(t)) + "\" y=\"" + fmt(py + ph + 18) + "\" text-anchor=\"middle\">" + label +
+                 "</text>";
+          last_right = sx(t) + half;
+        }
+        svg += "\n";
+      }
     } else {
       for (std::size_t c = 0; c < panel.x_categories.size(); ++c)
         svg += "<text x=\"" + fmt(sx(static_cast<double>(c))) + "\" y=\"" + fmt(py + ph + 18) +

@@ -206,5 +206,34 @@ TEST(StudyTable, TheFigureHasAPanelPerResultAndAPointPerRun) {
   EXPECT_NE(svg.find(">bonds.tensileStrength<"), std::string::npos);
 }
 
+// A study of strengths in pascals (0 to 16 MPa): its x labels ran into each other ("1.2e+07" every
+// 2e+06 over 280 px). They are short (4e6) and each clears the one before.
+TEST(StudyTable, TickLabelsAreShortAndDoNotOverlap) {
+  const StudyPlan plan =
+      plan_study(study_with({{{"path", "bonds.tensileStrength"}, {"values", {0, 4e6, 8e6, 12e6, 16e6}}}}), json());
+  std::vector<StudyRow> rows;
+  for (const StudyRun& run : plan.runs) {
+    rows.push_back(row_of(run));
+    rows.back().results = results(run.values[0].get<double>() / 1e6, run.index);
+  }
+  const std::string svg = figure_svg(plan, rows);
+  EXPECT_EQ(svg.find("e+0"), std::string::npos);
+  EXPECT_NE(svg.find("e6<"), std::string::npos) << "as 4e6";
+  // the x labels of the first panel: text-anchor middle, under the plot
+  std::vector<std::pair<double, std::size_t>> labels;  // centre, characters
+  const std::string first = svg.substr(0, svg.find("</text>", svg.find(">bonds.tensileStrength<")));
+  for (std::size_t at = first.find("text-anchor=\"middle\">"); at != std::string::npos;
+       at = first.find("text-anchor=\"middle\">", at + 1)) {
+    const std::size_t x = first.rfind("x=\"", at) + 3;
+    const std::size_t begin = at + 21, end = first.find('<', begin);
+    labels.emplace_back(std::stod(first.substr(x)), end - begin);
+  }
+  ASSERT_GE(labels.size(), 3u);
+  labels.pop_back();  // the axis's name
+  for (std::size_t k = 1; k < labels.size(); ++k)
+    EXPECT_GE(labels[k].first - labels[k - 1].first, 3.5 * (labels[k].second + labels[k - 1].second))
+        << "labels " << k - 1 << " and " << k;
+}
+
 }  // namespace
 }  // namespace dem::study
