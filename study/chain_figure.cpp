@@ -2,24 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "study/svg_chart.hpp"
 
 namespace dem::study {
 namespace {
-
-std::string pixels(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", v);
-  return buf;
-}
-
-std::string number_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
 
 bool drawable(const Point2& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 
@@ -32,13 +19,6 @@ struct DrawingExtent {
   }
   bool empty() const { return !(x1 >= x0 && y1 >= y0); }
 };
-
-// The largest round length (1, 2, 5 x 10^k) at most a quarter of `span`: the scale bar.
-double scale_bar_length(double span) {
-  const double raw = span / 4;
-  const double unit = std::pow(10.0, std::floor(std::log10(raw)));
-  return raw / unit >= 5 ? 5 * unit : raw / unit >= 2 ? 2 * unit : unit;
-}
 
 }  // namespace
 
@@ -75,9 +55,9 @@ std::string chain_figure_svg(const ChainFigureText& text, const std::vector<Chai
   }
   const double thinnest = std::min(0.4, widest / 4);
   const std::string legend =
-      strongest > 0 ? "line width " + number_text(thinnest) + " px + " + number_text(widest - thinnest) +
-                          " px × Fn / Fmax (" + number_text(widest) + " px at Fn = " + number_text(strongest) +
-                          " N, the strongest contact); contacts under " + number_text(100 * kWeakestChainDrawn) +
+      strongest > 0 ? "line width " + svg_number(thinnest) + " px + " + svg_number(widest - thinnest) +
+                          " px × Fn / Fmax (" + svg_number(widest) + " px at Fn = " + svg_number(strongest) +
+                          " N, the strongest contact); contacts under " + svg_number(100 * kWeakestChainDrawn) +
                           "% of it, and pulling ones, not drawn"
                     : std::string("no contact carries a force");
   // wide enough for the title (16 px: about 9 px a character) and the legend (12 px: about 7)
@@ -85,32 +65,30 @@ std::string chain_figure_svg(const ChainFigureText& text, const std::vector<Chai
                                  gap + 38 + 6.5 * static_cast<double>(legend.size())});
   const double height = 50 + rows * cell_h + 40;
 
-  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + pixels(width) + "\" height=\"" +
-                    pixels(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + svg_pixels(width) + "\" height=\"" +
+                    svg_pixels(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg += "<text x=\"" + std::to_string(gap) + "\" y=\"24\" font-size=\"16\">" + xml_escaped(text.title) + "</text>\n";
+  svg += svg_figure_title(text.title, gap);
   for (std::size_t k = 0; k < panels.size(); ++k) {
     const ChainPanel& panel = panels[k];
-    const std::size_t column = k % static_cast<std::size_t>(columns), row = k / static_cast<std::size_t>(columns);
-    const double ox = gap + static_cast<double>(column) * cell_w;
-    const double oy = 50 + static_cast<double>(row) * cell_h;
+    const auto [ox, oy] = grid_cell(k, columns, cell_w, cell_h, gap);
     const double top = oy + head;
     auto sx = [&](double x) { return ox + (x - extent.x0) * scale; };
     auto sy = [&](double y) { return top + draw_h - (y - extent.y0) * scale; };
-    svg += "<text x=\"" + pixels(ox) + "\" y=\"" + pixels(oy + 16) + "\" font-size=\"13\">" + xml_escaped(panel.title) +
-           "</text>\n";
+    svg += "<text x=\"" + svg_pixels(ox) + "\" y=\"" + svg_pixels(oy + 16) + "\" font-size=\"13\">" +
+           xml_escaped(panel.title) + "</text>\n";
     svg += "<g fill=\"#9aa7b4\" fill-opacity=\"0.18\" stroke=\"none\">\n";
     for (const ChainDisc& d : panel.discs)
       if (drawable(d.centre) && std::isfinite(d.radius))
-        svg += "<circle cx=\"" + pixels(sx(d.centre.x)) + "\" cy=\"" + pixels(sy(d.centre.y)) + "\" r=\"" +
-               pixels(std::max(0.5, d.radius * scale)) + "\"/>\n";
+        svg += "<circle cx=\"" + svg_pixels(sx(d.centre.x)) + "\" cy=\"" + svg_pixels(sy(d.centre.y)) + "\" r=\"" +
+               svg_pixels(std::max(0.5, d.radius * scale)) + "\"/>\n";
     svg += "</g>\n";
     for (const auto& outline : panel.outlines) {
       std::string points;
       for (const Point2& p : outline)
         if (drawable(p)) {
           if (!points.empty()) points += ' ';
-          points += pixels(sx(p.x)) + "," + pixels(sy(p.y));
+          points += svg_pixels(sx(p.x)) + "," + svg_pixels(sy(p.y));
         }
       if (!points.empty())
         svg += "<polygon points=\"" + points + "\" fill=\"none\" stroke=\"#444\" stroke-width=\"1.5\"/>\n";
@@ -126,28 +104,28 @@ std::string chain_figure_svg(const ChainFigureText& text, const std::vector<Chai
     svg += "<g stroke=\"#b2182b\" stroke-linecap=\"round\">\n";
     for (const ChainLine* c : drawn) {
       const double share = c->normal_force / strongest;
-      svg += "<line x1=\"" + pixels(sx(c->a.x)) + "\" y1=\"" + pixels(sy(c->a.y)) + "\" x2=\"" + pixels(sx(c->b.x)) +
-             "\" y2=\"" + pixels(sy(c->b.y)) + "\" stroke-width=\"" +
-             number_text(thinnest + (widest - thinnest) * share) + "\" stroke-opacity=\"" +
-             number_text(0.35 + 0.65 * share) + "\"/>\n";
+      svg += "<line x1=\"" + svg_pixels(sx(c->a.x)) + "\" y1=\"" + svg_pixels(sy(c->a.y)) + "\" x2=\"" +
+             svg_pixels(sx(c->b.x)) + "\" y2=\"" + svg_pixels(sy(c->b.y)) + "\" stroke-width=\"" +
+             svg_number(thinnest + (widest - thinnest) * share) + "\" stroke-opacity=\"" +
+             svg_number(0.35 + 0.65 * share) + "\"/>\n";
     }
     svg += "</g>\n";
     // a scale bar under the drawing, with the plane's axes named
     const double bar = scale_bar_length(span_x);
     const double bar_y = top + draw_h + 16;
-    svg += "<line x1=\"" + pixels(ox) + "\" y1=\"" + pixels(bar_y) + "\" x2=\"" + pixels(ox + bar * scale) +
-           "\" y2=\"" + pixels(bar_y) + "\" stroke=\"#222\" stroke-width=\"2\"/>\n";
-    svg += "<text x=\"" + pixels(ox + bar * scale + 6) + "\" y=\"" + pixels(bar_y + 4) + "\">" + number_text(bar) +
-           " " + xml_escaped(text.unit.empty() ? "length unit" : text.unit) + "</text>\n";
-    svg += "<text x=\"" + pixels(ox + draw_w) + "\" y=\"" + pixels(bar_y + 4) +
+    svg += "<line x1=\"" + svg_pixels(ox) + "\" y1=\"" + svg_pixels(bar_y) + "\" x2=\"" + svg_pixels(ox + bar * scale) +
+           "\" y2=\"" + svg_pixels(bar_y) + "\" stroke=\"#222\" stroke-width=\"2\"/>\n";
+    svg += "<text x=\"" + svg_pixels(ox + bar * scale + 6) + "\" y=\"" + svg_pixels(bar_y + 4) + "\">" +
+           svg_number(bar) + " " + xml_escaped(text.unit.empty() ? "length unit" : text.unit) + "</text>\n";
+    svg += "<text x=\"" + svg_pixels(ox + draw_w) + "\" y=\"" + svg_pixels(bar_y + 4) +
            "\" text-anchor=\"end\" fill=\"#666\">" + xml_escaped(text.x_label + " →, " + text.y_label + " ↑") +
            "</text>\n";
   }
   const double legend_y = height - 18;
-  svg += "<line x1=\"" + std::to_string(gap) + "\" y1=\"" + pixels(legend_y - 4) + "\" x2=\"" +
-         std::to_string(gap + 30) + "\" y2=\"" + pixels(legend_y - 4) + "\" stroke=\"#b2182b\" stroke-width=\"" +
-         number_text(widest) + "\"/>\n";
-  svg += "<text x=\"" + std::to_string(gap + 38) + "\" y=\"" + pixels(legend_y) + "\">" + xml_escaped(legend) +
+  svg += "<line x1=\"" + std::to_string(gap) + "\" y1=\"" + svg_pixels(legend_y - 4) + "\" x2=\"" +
+         std::to_string(gap + 30) + "\" y2=\"" + svg_pixels(legend_y - 4) + "\" stroke=\"#b2182b\" stroke-width=\"" +
+         svg_number(widest) + "\"/>\n";
+  svg += "<text x=\"" + std::to_string(gap + 38) + "\" y=\"" + svg_pixels(legend_y) + "\">" + xml_escaped(legend) +
          "</text>\n";
   svg += "</svg>\n";
   return svg;

@@ -2,25 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 
 #include "study/svg_chart.hpp"
 
 namespace dem::study {
 namespace {
-
-std::string px(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", v);
-  return buf;
-}
-
-std::string short_number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
 
 bool finite_point(const Point2& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 
@@ -30,13 +17,6 @@ constexpr const char* kPieceColours[kRankedPieces] = {"#1f77b4", "#d62728", "#2c
                                                       "#9467bd", "#17becf", "#8c564b", "#e377c2"};
 constexpr const char* kSmallPieceColour = "#c8ad7f";
 constexpr const char* kLooseSphereColour = "#8a8a8a";
-
-// The largest round length (1, 2, 5 x 10^k) at most a quarter of `span`: the scale bar.
-double round_quarter(double span) {
-  const double raw = span / 4;
-  const double unit = std::pow(10.0, std::floor(std::log10(raw)));
-  return raw / unit >= 5 ? 5 * unit : raw / unit >= 2 ? 2 * unit : unit;
-}
 
 // Each piece's colour: by its sphere count among the panel's pieces (ties: the lower number first).
 std::map<int, const char*> piece_colours(const std::vector<DepositDisc>& discs) {
@@ -125,37 +105,37 @@ std::string deposit_figure_svg(const DepositFigureText& text, const std::vector<
   const double height = 50 + rows * cell_h + 36;
 
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"" +
-                    px(width) + "\" height=\"" + px(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+                    svg_pixels(width) + "\" height=\"" + svg_pixels(height) +
+                    "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   // the contours once, in a drawing's own pixels, and each panel shows them through its window
-  svg += "<defs>\n<clipPath id=\"drawing\"><rect width=\"" + px(draw_w) + "\" height=\"" + px(draw_h) +
+  svg += "<defs>\n<clipPath id=\"drawing\"><rect width=\"" + svg_pixels(draw_w) + "\" height=\"" + svg_pixels(draw_h) +
          "\"/></clipPath>\n<g id=\"terrain\" fill=\"none\">\n";
   std::string minor, major;
   for (const ContourSegment& s : contours) {
     if (!finite_point(s.a) || !finite_point(s.b)) continue;
     std::string& path = s.major ? major : minor;
     path += 'M';
-    path += px((s.a.x - x0) * scale) + " " + px((y1 - s.a.y) * scale) + "L" + px((s.b.x - x0) * scale) + " " +
-            px((y1 - s.b.y) * scale);
+    path += svg_pixels((s.a.x - x0) * scale) + " " + svg_pixels((y1 - s.a.y) * scale) + "L" +
+            svg_pixels((s.b.x - x0) * scale) + " " + svg_pixels((y1 - s.b.y) * scale);
   }
   if (!minor.empty()) svg += "<path stroke=\"#b9b28f\" stroke-width=\"0.6\" d=\"" + minor + "\"/>\n";
   if (!major.empty()) svg += "<path stroke=\"#8f875f\" stroke-width=\"1.1\" d=\"" + major + "\"/>\n";
   svg += "</g>\n</defs>\n";
-  svg += "<text x=\"" + std::to_string(gap) + "\" y=\"24\" font-size=\"16\">" + xml_escaped(text.title) + "</text>\n";
+  svg += svg_figure_title(text.title, gap);
 
   for (std::size_t k = 0; k < panels.size(); ++k) {
     const DepositPanel& panel = panels[k];
-    const std::size_t column = k % static_cast<std::size_t>(columns), row = k / static_cast<std::size_t>(columns);
-    const double ox = gap + static_cast<double>(column) * cell_w;
-    const double oy = 50 + static_cast<double>(row) * cell_h;
+    const auto [ox, oy] = grid_cell(k, columns, cell_w, cell_h, gap);
     const double top = oy + head;
     const std::map<int, const char*> colour = piece_colours(panel.discs);
-    svg += "<text x=\"" + px(ox) + "\" y=\"" + px(oy + 14) + "\" font-size=\"13\">" + xml_escaped(panel.title) +
-           "</text>\n";
-    svg += "<text x=\"" + px(ox) + "\" y=\"" + px(oy + 30) + "\" fill=\"#555\">" + xml_escaped(panel.subtitle) +
-           "</text>\n";
-    svg += "<g transform=\"translate(" + px(ox) + "," + px(top) + ")\" clip-path=\"url(#drawing)\">\n";
-    svg += "<rect width=\"" + px(draw_w) + "\" height=\"" + px(draw_h) + "\" fill=\"#fbfaf5\" stroke=\"#ccc\"/>\n";
+    svg += "<text x=\"" + svg_pixels(ox) + "\" y=\"" + svg_pixels(oy + 14) + "\" font-size=\"13\">" +
+           xml_escaped(panel.title) + "</text>\n";
+    svg += "<text x=\"" + svg_pixels(ox) + "\" y=\"" + svg_pixels(oy + 30) + "\" fill=\"#555\">" +
+           xml_escaped(panel.subtitle) + "</text>\n";
+    svg += "<g transform=\"translate(" + svg_pixels(ox) + "," + svg_pixels(top) + ")\" clip-path=\"url(#drawing)\">\n";
+    svg += "<rect width=\"" + svg_pixels(draw_w) + "\" height=\"" + svg_pixels(draw_h) +
+           "\" fill=\"#fbfaf5\" stroke=\"#ccc\"/>\n";
     svg += "<use xlink:href=\"#terrain\" href=\"#terrain\"/>\n";
     // small pieces first, so the large ones are drawn over them
     std::vector<const DepositDisc*> order;
@@ -170,30 +150,34 @@ std::string deposit_figure_svg(const DepositFigureText& text, const std::vector<
     std::stable_sort(order.begin(), order.end(),
                      [&](const DepositDisc* p, const DepositDisc* q) { return rank(p) > rank(q); });
     for (const DepositDisc* d : order)
-      svg += "<circle cx=\"" + px((d->centre.x - x0) * scale) + "\" cy=\"" + px((y1 - d->centre.y) * scale) +
-             "\" r=\"" + px(std::max(0.6, d->radius * scale)) + "\" fill=\"" + colour.at(d->piece) + "\"/>\n";
+      svg += "<circle cx=\"" + svg_pixels((d->centre.x - x0) * scale) + "\" cy=\"" +
+             svg_pixels((y1 - d->centre.y) * scale) + "\" r=\"" + svg_pixels(std::max(0.6, d->radius * scale)) +
+             "\" fill=\"" + colour.at(d->piece) + "\"/>\n";
     svg += "</g>\n";
-    const double bar = round_quarter(span_x), bar_y = top + draw_h + 16;
-    svg += "<line x1=\"" + px(ox) + "\" y1=\"" + px(bar_y) + "\" x2=\"" + px(ox + bar * scale) + "\" y2=\"" +
-           px(bar_y) + "\" stroke=\"#222\" stroke-width=\"2\"/>\n";
-    svg += "<text x=\"" + px(ox + bar * scale + 6) + "\" y=\"" + px(bar_y + 4) + "\">" + short_number(bar) + " " +
-           xml_escaped(text.unit.empty() ? "length unit" : text.unit) + "</text>\n";
-    svg += "<text x=\"" + px(ox + std::max(draw_w, 170.0)) + "\" y=\"" + px(bar_y + 4) +
+    const double bar = scale_bar_length(span_x), bar_y = top + draw_h + 16;
+    svg += "<line x1=\"" + svg_pixels(ox) + "\" y1=\"" + svg_pixels(bar_y) + "\" x2=\"" + svg_pixels(ox + bar * scale) +
+           "\" y2=\"" + svg_pixels(bar_y) + "\" stroke=\"#222\" stroke-width=\"2\"/>\n";
+    svg += "<text x=\"" + svg_pixels(ox + bar * scale + 6) + "\" y=\"" + svg_pixels(bar_y + 4) + "\">" +
+           svg_number(bar) + " " + xml_escaped(text.unit.empty() ? "length unit" : text.unit) + "</text>\n";
+    svg += "<text x=\"" + svg_pixels(ox + std::max(draw_w, 170.0)) + "\" y=\"" + svg_pixels(bar_y + 4) +
            "\" text-anchor=\"end\" fill=\"#666\">" + xml_escaped(text.x_label + " →, " + text.y_label + " ↑") +
            "</text>\n";
   }
   // the legend: the ranked colours, then the small pieces', the loose spheres' and the contours
   const double ly = height - 16;
   double lx = gap;
-  svg += "<text x=\"" + px(lx) + "\" y=\"" + px(ly) + "\">pieces, largest first:</text>\n";
+  svg += "<text x=\"" + svg_pixels(lx) + "\" y=\"" + svg_pixels(ly) + "\">pieces, largest first:</text>\n";
   lx += 130;
   for (const char* c : kPieceColours) {
-    svg += "<circle cx=\"" + px(lx) + "\" cy=\"" + px(ly - 4) + "\" r=\"5\" fill=\"" + c + "\"/>\n";
+    svg += "<circle cx=\"" + svg_pixels(lx) + "\" cy=\"" + svg_pixels(ly - 4) + "\" r=\"5\" fill=\"" + c + "\"/>\n";
     lx += 14;
   }
-  svg += "<circle cx=\"" + px(lx + 6) + "\" cy=\"" + px(ly - 4) + "\" r=\"5\" fill=\"" + kSmallPieceColour + "\"/>\n";
-  svg += "<circle cx=\"" + px(lx + 20) + "\" cy=\"" + px(ly - 4) + "\" r=\"5\" fill=\"" + kLooseSphereColour + "\"/>\n";
-  svg += "<text x=\"" + px(lx + 32) + "\" y=\"" + px(ly) + "\">" + xml_escaped(legend_tail) + "</text>\n";
+  svg += "<circle cx=\"" + svg_pixels(lx + 6) + "\" cy=\"" + svg_pixels(ly - 4) + "\" r=\"5\" fill=\"" +
+         kSmallPieceColour + "\"/>\n";
+  svg += "<circle cx=\"" + svg_pixels(lx + 20) + "\" cy=\"" + svg_pixels(ly - 4) + "\" r=\"5\" fill=\"" +
+         kLooseSphereColour + "\"/>\n";
+  svg +=
+      "<text x=\"" + svg_pixels(lx + 32) + "\" y=\"" + svg_pixels(ly) + "\">" + xml_escaped(legend_tail) + "</text>\n";
   svg += "</svg>\n";
   return svg;
 }

@@ -193,4 +193,27 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
   return svg;
 }
 
+std::string svg_pixels(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
+std::string svg_number(double v) { return fmt(v); }
+
+double scale_bar_length(double span) {
+  const double raw = span / 4;
+  const double unit = std::pow(10.0, std::floor(std::log10(raw)));
+  return raw / unit >= 5 ? 5 * unit : raw / unit >= 2 ? 2 * unit : unit;
+}
+
+std::string svg_figure_title(const std::string& title, int gap) {
+  return "<text x=\"" + std::to_string(gap) + "\" y=\"24\" font-size=\"16\">" + xml_escaped(title) + "</text>\n";
+}
+
+CellOrigin grid_cell(std::size_t k, int columns, double cell_w, double cell_h, int gap) {
+  const std::size_t column = k % static_cast<std::size_t>(columns), row = k / static_cast<std::size_t>(columns);
+  return {gap + static_cast<double>(column) * cell_w, 50 + static_cast<double>(row) * cell_h};
+}
+
 }  // namespace dem::study

@@ -30,4 +30,20 @@ std::string chart_svg(const std::string& title, const std::vector<Panel>& panels
 // Text for SVG: <, >, & and " escaped.
 std::string xml_escaped(const std::string& text);
 
+// Numbers in the figures: a coordinate to a tenth of a pixel ("12.3"), a value to four significant
+// digits ("0.1234", "5.6e+07").
+std::string svg_pixels(double v);
+std::string svg_number(double v);
+
+// The largest round length (1, 2, 5 x 10^k) at most a quarter of `span`: a drawing's scale bar.
+double scale_bar_length(double span);
+
+// A figure of drawings in a grid (dem chains, dem deposits): its title line, and where the k-th
+// drawing's cell begins, `columns` a row of cells w x h, `gap` from the left, under the title.
+std::string svg_figure_title(const std::string& title, int gap);
+struct CellOrigin {
+  double x = 0, y = 0;
+};
+CellOrigin grid_cell(std::size_t k, int columns, double cell_w, double cell_h, int gap);
+
 }  // namespace dem::study
