@@ -314,7 +314,9 @@ int study_command(const std::vector<std::string>& args) {
   int jobs = 1;
   if (a.values.count("--jobs")) {
     const std::string& text = a.value("--jobs");
-    jobs = text.size() <= 2 && !text.empty() && std::all_of(text.begin(), text.end(), ::isdigit) ? std::stoi(text) : 0;
+    const bool digits = !text.empty() && text.size() <= 2 &&
+                        std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
+    jobs = digits ? std::stoi(text) : 0;
     if (jobs < 1 || jobs > 64)
       return usage_error(kVerb, "--jobs is a whole number from 1 to 64 (got \"" + text + "\")");
     // several runs at once share the cores, unless --threads says otherwise

@@ -71,7 +71,9 @@ std::string chain_figure_svg(const ChainFigureText& text, const std::vector<Chai
   svg += svg_figure_title(text.title, gap);
   for (std::size_t k = 0; k < panels.size(); ++k) {
     const ChainPanel& panel = panels[k];
-    const auto [ox, oy] = grid_cell(k, columns, cell_w, cell_h, gap);
+    // (named copies, not a structured binding: clang before C++20 cannot capture one in a lambda)
+    const CellOrigin cell = grid_cell(k, columns, cell_w, cell_h, gap);
+    const double ox = cell.x, oy = cell.y;
     const double top = oy + head;
     auto sx = [&](double x) { return ox + (x - extent.x0) * scale; };
     auto sy = [&](double y) { return top + draw_h - (y - extent.y0) * scale; };

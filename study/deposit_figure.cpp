@@ -126,7 +126,9 @@ std::string deposit_figure_svg(const DepositFigureText& text, const std::vector<
 
   for (std::size_t k = 0; k < panels.size(); ++k) {
     const DepositPanel& panel = panels[k];
-    const auto [ox, oy] = grid_cell(k, columns, cell_w, cell_h, gap);
+    // (named copies, not a structured binding: clang before C++20 cannot capture one in a lambda)
+    const CellOrigin cell = grid_cell(k, columns, cell_w, cell_h, gap);
+    const double ox = cell.x, oy = cell.y;
     const double top = oy + head;
     const std::map<int, const char*> colour = piece_colours(panel.discs);
     svg += "<text x=\"" + svg_pixels(ox) + "\" y=\"" + svg_pixels(oy + 14) + "\" font-size=\"13\">" +
