@@ -103,6 +103,35 @@ int deposits_command(const std::vector<std::string>& args) {
   }
   const int depth = 3 - axes.first - axes.second;
   try {
+    // the terrain first: a step it refuses is told before any run's frames are read
+    std::vector<study::ContourSegment> contours;
+    std::string contour_words;
+    if (!terrain.empty()) {
+      const TriangleMesh mesh = read_mesh(terrain);
+      std::vector<study::MeshTriangle> triangles;
+      double lo = INFINITY, hi = -INFINITY;
+      for (const auto& t : mesh.triangles) {
+        study::MeshTriangle m{};
+        for (int c = 0; c < 3; ++c)
+          for (int d = 0; d < 3; ++d) m.corners[c][d] = mesh.vertices[t[c]][d];
+        triangles.push_back(m);
+      }
+      for (const Vec3& v : mesh.vertices) lo = std::min(lo, v[depth]), hi = std::max(hi, v[depth]);
+      if (contour_step == 0) contour_step = study::contour_interval(hi - lo);
+      // a line per level and triangle: a step far below the relief would draw millions
+      const double levels = (hi - lo) / contour_step;
+      if (levels > kMostContourLevels) {
+        char words[200];
+        std::snprintf(words, sizeof words, "--contour %s gives %.3g levels over the terrain's relief of %g: at most %d",
+                      contour_text.c_str(), levels, hi - lo, kMostContourLevels);
+        return deposits_usage(words);
+      }
+      contours = study::contour_segments(triangles, axes.first, axes.second, depth, contour_step);
+      char words[96];
+      std::snprintf(words, sizeof words, "contours every %g %s", contour_step,
+                    unit.empty() ? "length units" : unit.c_str());
+      contour_words = words;
+    }
     std::vector<study::DepositPanel> panels;
     for (const NamedRun& run : runs) {
       std::error_code error;
@@ -137,34 +166,6 @@ int deposits_command(const std::vector<std::string>& args) {
       panel.subtitle = time_text(frame->scalars[0], 3) + ", " + std::to_string(pieces.size()) +
                        (pieces.size() == 1 ? " piece" : " pieces");
       panels.push_back(std::move(panel));
-    }
-    std::vector<study::ContourSegment> contours;
-    std::string contour_words;
-    if (!terrain.empty()) {
-      const TriangleMesh mesh = read_mesh(terrain);
-      std::vector<study::MeshTriangle> triangles;
-      double lo = INFINITY, hi = -INFINITY;
-      for (const auto& t : mesh.triangles) {
-        study::MeshTriangle m{};
-        for (int c = 0; c < 3; ++c)
-          for (int d = 0; d < 3; ++d) m.corners[c][d] = mesh.vertices[t[c]][d];
-        triangles.push_back(m);
-      }
-      for (const Vec3& v : mesh.vertices) lo = std::min(lo, v[depth]), hi = std::max(hi, v[depth]);
-      if (contour_step == 0) contour_step = study::contour_interval(hi - lo);
-      // a line per level and triangle: a step far below the relief would draw millions
-      const double levels = (hi - lo) / contour_step;
-      if (levels > kMostContourLevels) {
-        char words[200];
-        std::snprintf(words, sizeof words, "--contour %s gives %.3g levels over the terrain's relief of %g: at most %d",
-                      contour_text.c_str(), levels, hi - lo, kMostContourLevels);
-        return deposits_usage(words);
-      }
-      contours = study::contour_segments(triangles, axes.first, axes.second, depth, contour_step);
-      char words[96];
-      std::snprintf(words, sizeof words, "contours every %g %s", contour_step,
-                    unit.empty() ? "length units" : unit.c_str());
-      contour_words = words;
     }
     const char* names = "xyz";
     const study::DepositFigureText text{title.empty() ? std::string("Deposits") : title,

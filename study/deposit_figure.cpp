@@ -18,18 +18,26 @@ constexpr const char* kPieceColours[kRankedPieces] = {"#1f77b4", "#d62728", "#2c
 constexpr const char* kSmallPieceColour = "#c8ad7f";
 constexpr const char* kLooseSphereColour = "#8a8a8a";
 
-// Each piece's colour: by its sphere count among the panel's pieces (ties: the lower number first).
-std::map<int, const char*> piece_colours(const std::vector<DepositDisc>& discs) {
+// Each piece's class: 0 to kRankedPieces - 1 for the largest (by sphere count among the panel's
+// pieces; ties: the lower number first), kRankedPieces for a smaller piece of two spheres or more,
+// kRankedPieces + 1 for a sphere alone.
+std::map<int, int> piece_classes(const std::vector<DepositDisc>& discs) {
   std::map<int, int> count;
   for (const DepositDisc& d : discs) ++count[d.piece];
   std::vector<std::pair<int, int>> ranked(count.begin(), count.end());
   std::stable_sort(ranked.begin(), ranked.end(), [](const auto& p, const auto& q) { return p.second > q.second; });
-  std::map<int, const char*> colour;
+  std::map<int, int> classes;
   for (std::size_t k = 0; k < ranked.size(); ++k)
-    colour[ranked[k].first] = ranked[k].second == 1          ? kLooseSphereColour
-                              : k < std::size(kPieceColours) ? kPieceColours[k]
-                                                             : kSmallPieceColour;
-  return colour;
+    classes[ranked[k].first] = ranked[k].second == 1 ? kRankedPieces + 1
+                               : k < kRankedPieces   ? static_cast<int>(k)
+                                                     : kRankedPieces;
+  return classes;
+}
+
+const char* class_colour(int piece_class) {
+  return piece_class < kRankedPieces    ? kPieceColours[piece_class]
+         : piece_class == kRankedPieces ? kSmallPieceColour
+                                        : kLooseSphereColour;
 }
 
 }  // namespace
@@ -130,7 +138,7 @@ std::string deposit_figure_svg(const DepositFigureText& text, const std::vector<
     const CellOrigin cell = grid_cell(k, columns, cell_w, cell_h, gap);
     const double ox = cell.x, oy = cell.y;
     const double top = oy + head;
-    const std::map<int, const char*> colour = piece_colours(panel.discs);
+    const std::map<int, int> classes = piece_classes(panel.discs);
     svg += "<text x=\"" + svg_pixels(ox) + "\" y=\"" + svg_pixels(oy + 14) + "\" font-size=\"13\">" +
            xml_escaped(panel.title) + "</text>\n";
     svg += "<text x=\"" + svg_pixels(ox) + "\" y=\"" + svg_pixels(oy + 30) + "\" fill=\"#555\">" +
@@ -143,18 +151,13 @@ std::string deposit_figure_svg(const DepositFigureText& text, const std::vector<
     std::vector<const DepositDisc*> order;
     for (const DepositDisc& d : panel.discs)
       if (finite_point(d.centre) && std::isfinite(d.radius)) order.push_back(&d);
-    auto rank = [&](const DepositDisc* d) {
-      const char* c = colour.at(d->piece);
-      for (std::size_t r = 0; r < std::size(kPieceColours); ++r)
-        if (c == kPieceColours[r]) return static_cast<int>(r);
-      return c == kSmallPieceColour ? kRankedPieces : kRankedPieces + 1;
-    };
-    std::stable_sort(order.begin(), order.end(),
-                     [&](const DepositDisc* p, const DepositDisc* q) { return rank(p) > rank(q); });
+    std::stable_sort(order.begin(), order.end(), [&](const DepositDisc* p, const DepositDisc* q) {
+      return classes.at(p->piece) > classes.at(q->piece);
+    });
     for (const DepositDisc* d : order)
       svg += "<circle cx=\"" + svg_pixels((d->centre.x - x0) * scale) + "\" cy=\"" +
              svg_pixels((y1 - d->centre.y) * scale) + "\" r=\"" + svg_pixels(std::max(0.6, d->radius * scale)) +
-             "\" fill=\"" + colour.at(d->piece) + "\"/>\n";
+             "\" fill=\"" + class_colour(classes.at(d->piece)) + "\"/>\n";
     svg += "</g>\n";
     const double bar = scale_bar_length(span_x), bar_y = top + draw_h + 16;
     svg += "<line x1=\"" + svg_pixels(ox) + "\" y1=\"" + svg_pixels(bar_y) + "\" x2=\"" + svg_pixels(ox + bar * scale) +
