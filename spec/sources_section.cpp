@@ -2,6 +2,7 @@
 // source is checked against the walls, stages and materials it names; its particles' count over the
 // run, where the run's length is known in seconds, against the spec's particle limit.
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -18,6 +19,8 @@ constexpr int kTrialDraws = 200;
 // A region at most this many largest diameters across (its cells are counted in 21 bits an axis).
 constexpr double kMaxCellsAcross = 1e6;
 constexpr double kMaxCountRate = 1e9;  // particles/s
+constexpr std::int64_t kMaxTotalCount =
+    1'000'000'000'000;  // particles: far beyond any limit, a bound for the arithmetic
 
 // The seconds the source runs at most, where the spec says it in seconds (0: unknown, a length in steps).
 // The seconds the source's window may last at most: its stage's or the run's length where given in
@@ -139,6 +142,17 @@ void load_source(const api::Source& in, const std::string& path, int index, Spec
     s.count_rate = in.count_rate();
     check.in_range(path + ".countRate", s.count_rate, 0, kMaxCountRate, true, false);
   }
+  if (in.has_mass() && in.has_count()) {
+    check.fail(path, "give mass (kg) or count (particles), one of them: the most it inserts in all");
+  } else if (in.has_mass()) {
+    s.total_mass = in.mass();
+    if (!(s.total_mass >= 0) || s.total_mass > kMass.max)
+      check.fail(path + ".mass", "must be in [0, " + num(kMass.max) + "] kg (got " + num(s.total_mass) + ")");
+  } else if (in.has_count()) {
+    s.total_count = in.count();
+    if (s.total_count < 0 || s.total_count > kMaxTotalCount)
+      check.fail(path + ".count", "must be in [0, 1e12] particles (got " + std::to_string(in.count()) + ")");
+  }
   if (!std::isfinite(in.mass_rate())) check.fail(path + ".massRate", "must be finite");
   if (!std::isfinite(in.count_rate())) check.fail(path + ".countRate", "must be finite");
   check.vector(path + ".velocity", in.velocity(), kSpeed);
@@ -181,10 +195,14 @@ void load_source(const api::Source& in, const std::string& path, int index, Spec
     return;
   }
   const double length = active_length(s, scene, time);
-  const double count = s.count_rate > 0 ? s.count_rate * length : s.mass_rate * length / mean_mass;
-  if (length > 0 && !check.room(path, scene.particles.size() + static_cast<std::size_t>(inserted), std::ceil(count)))
+  const double by_rate = s.count_rate > 0 ? s.count_rate * length : s.mass_rate * length / mean_mass;
+  // a total caps it, and gives the count where the window is not known in seconds
+  const double by_total = s.total_count >= 0 ? static_cast<double>(s.total_count) : s.total_mass / mean_mass;
+  const double count = length > 0 ? std::min(by_rate, by_total) : by_total;
+  if (std::isfinite(count) &&
+      !check.room(path, scene.particles.size() + static_cast<std::size_t>(inserted), std::ceil(count)))
     return;
-  inserted += std::ceil(count);
+  if (std::isfinite(count)) inserted += std::ceil(count);
   scene.sources.push_back(s);
 }
 

@@ -175,6 +175,10 @@ struct ParticleSource {
   std::uint64_t seed = 1;
   double mass_rate = 0;   // kg/s; or
   double count_rate = 0;  // particles/s
+  // The most it inserts in all (a study's sand mass: 0, 2, 4 kg), then it stops: infinity and -1 when
+  // not given. A source with a total of 0 inserts nothing (its particles still set the time step).
+  double total_mass = std::numeric_limits<double>::infinity();  // kg
+  std::int64_t total_count = -1;
   Vec3 velocity = Vec3::Zero();
   // Active from `start` to `end` (s), counted from the run's start, or from its stage's when `stage` >= 0
   // (then only during that stage).

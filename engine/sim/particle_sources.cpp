@@ -123,8 +123,11 @@ std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource
   double m = scene.grain().mass(density, r);
   // rate times time to the nearest particle: within half a particle of it
   auto owed = [&] {
-    return source.mass_rate > 0 ? progress.mass + m / 2 <= source.mass_rate * active
-                                : static_cast<double>(progress.inserted) + 0.5 <= source.count_rate * active;
+    const bool below_total = progress.mass + m / 2 <= source.total_mass &&
+                             (source.total_count < 0 || progress.inserted < source.total_count);
+    return below_total &&
+           (source.mass_rate > 0 ? progress.mass + m / 2 <= source.mass_rate * active
+                                 : static_cast<double>(progress.inserted) + 0.5 <= source.count_rate * active);
   };
   if (!owed()) return out;
 

@@ -56,6 +56,21 @@ TEST(SourceSpec, ASandStreamLoadsAsWrittenIntoAnEmptyScene) {
   EXPECT_TRUE(std::isinf(s.end));
 }
 
+TEST(SourceSpec, ATotalMassOfZeroIsASourceThatInsertsNothing) {
+  const std::string sand = kSand;
+  const std::string zero = sand.substr(0, sand.size() - 1) + R"(, "mass": 0})";
+  const Scene scene = spec::to_scene(spec::parse_json(with_sources(zero)));
+  ASSERT_EQ(scene.sources.size(), 1u);
+  EXPECT_EQ(scene.sources[0].total_mass, 0);
+  EXPECT_EQ(scene.sources[0].total_count, -1);
+  const Scene open = spec::to_scene(spec::parse_json(with_sources(kSand)));
+  EXPECT_TRUE(std::isinf(open.sources[0].total_mass));
+  EXPECT_EQ(open.sources[0].total_count, -1);
+  // a stream that would overrun the particle limit over its window stops at its total well within it
+  const std::string long_stream = sand.substr(0, sand.size() - 1) + R"(, "end": 1e6, "mass": 0.01})";
+  EXPECT_EQ(spec_problems(with_sources(long_stream, R"("duration": 2e6)")), "");
+}
+
 TEST(SourceSpec, AFaceSourceTakesTheLargestDiameterAsItsDepth) {
   const Scene scene = spec::to_scene(spec::parse_json(with_sources(
       R"({"face": "lid", "material": "sand", "sizes": {"kind": "ONE_SIZE", "mean": 0.005}, "countRate": 100})")));
@@ -98,6 +113,10 @@ TEST(SourceSpec, EachMistakeIsNamedWithItsPath) {
            box + R"(, "massRate": 1})",
        "sources[0].sizes: hardly any size drawn"},
       {"{" + sizes + ", " + box + R"(, "massRate": -1})", "sources[0].massRate: must be a positive number (got -1)"},
+      {"{" + sizes + ", " + box + R"(, "massRate": 1, "mass": -1})", "sources[0].mass: must be"},
+      {"{" + sizes + ", " + box + R"(, "massRate": 1, "count": -3})", "sources[0].count: must be"},
+      {"{" + sizes + ", " + box + R"(, "massRate": 1, "mass": 1, "count": 3})",
+       "sources[0]: give mass (kg) or count (particles), one of them"},
       {"{" + sizes + ", " + box + R"(, "massRate": 1, "start": 0.5})",
        "sources[0].start: the source starts at 0.5 s, when its run of 0.5 s is over: it would never insert"},
       {"{" + sizes + ", " + box + R"(, "massRate": 1, "name": "a\nb"})",

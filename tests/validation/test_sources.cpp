@@ -133,6 +133,29 @@ TEST(Sources, ACountRateInsertsRateTimesTimeToTheNearestParticle) {
   }
 }
 
+// A source given a total (a study's sand mass: 0, 2, 4 kg) stops when it has inserted it, to the
+// nearest particle; a total of 0 inserts nothing.
+TEST(Sources, ATotalMassOrCountStopsTheStreamWhenItHasEntered) {
+  for (double total : {0.0, 0.004, 0.02}) {
+    Scene s = sand_stream(0.1);
+    s.sources[0].mass_rate = 0.5;  // 0.05 kg over the run without the total
+    s.sources[0].total_mass = total;
+    Simulation sim(std::move(s));
+    while (sim.step_count() < sim.total_steps()) sim.step();
+    EXPECT_NEAR(inserted_mass(sim), total, 0.5 * sphere_mass(kDensity, 0.003)) << total << " kg";
+    if (total == 0) {
+      EXPECT_EQ(sim.particles().size(), 0u);
+    }
+  }
+  Scene s = sand_stream(0.1);
+  s.sources[0].mass_rate = 0;
+  s.sources[0].count_rate = 1234;
+  s.sources[0].total_count = 17;
+  Simulation sim(std::move(s));
+  while (sim.step_count() < sim.total_steps()) sim.step();
+  EXPECT_EQ(sim.particles().size(), 17u);
+}
+
 TEST(Sources, ACrowdedRegionHoldsParticlesBackUntilThereIsRoom) {
   Scene s = sand_stream(0.05);
   s.sources[0].box = Box{{-0.01, -0.01, 0.25}, {0.01, 0.01, 0.26}};  // room for a few grains only
