@@ -41,6 +41,23 @@ nlohmann::json motion_json(const MotionResults& m) {
   };
 }
 
+nlohmann::json source_json(const SourceResults& s) {
+  nlohmann::json heights = nlohmann::json::array();
+  for (std::size_t k = 0; k < s.heights.size(); ++k)
+    heights.push_back(
+        {{"fraction", static_cast<double>(k) / static_cast<double>(s.heights.size() - 1)}, {"height", s.heights[k]}});
+  nlohmann::json j = {{"name", s.name},
+                      {"inserted", s.inserted},
+                      {"mass", s.mass},
+                      {"crowdedBatches", s.crowded_batches},
+                      {"heights", heights}};
+  if (!s.heights.empty()) {
+    j["heightMean"] = s.height_mean;
+    j["heightMedian"] = s.heights[s.heights.size() / 2];
+  }
+  return j;
+}
+
 nlohmann::json fragments_json(const FragmentResults& f) {
   nlohmann::json sizes = nlohmann::json::array();
   for (const FragmentBin& b : f.sizes)
@@ -112,6 +129,10 @@ nlohmann::json to_json(const RunResults& r) {
   if (!r.loaded_walls.empty()) {
     j["loadedWalls"] = nlohmann::json::array();
     for (const LoadedWallResults& w : r.loaded_walls) j["loadedWalls"].push_back(loaded_wall_json(w));
+  }
+  if (!r.sources.empty()) {
+    j["sources"] = nlohmann::json::array();
+    for (const SourceResults& s : r.sources) j["sources"].push_back(source_json(s));
   }
   return j;
 }

@@ -92,6 +92,26 @@ std::vector<MassPoint> mass_points(const Simulation& sim, const std::map<int, Ve
   return points;
 }
 
+double mean_of(const std::vector<double>& values) {
+  double sum = 0;
+  for (double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
+// The quantiles of `values` (not empty) at n fractions 0, 1/(n-1), ..., 1: linear between the sorted
+// values (numpy's and R's default, type 7).
+std::vector<double> quantiles_of(std::vector<double> values, int n) {
+  std::sort(values.begin(), values.end());
+  std::vector<double> out;
+  for (int k = 0; k < n; ++k) {
+    const double at = static_cast<double>(values.size() - 1) * k / (n - 1);
+    const auto below = static_cast<std::size_t>(std::floor(at));
+    const std::size_t above = std::min(below + 1, values.size() - 1);
+    out.push_back(values[below] + (at - static_cast<double>(below)) * (values[above] - values[below]));
+  }
+  return out;
+}
+
 // Each piece's travel, their mean and quantiles (MotionResults::pieces).
 void piece_travels(const Simulation& sim, const std::vector<MassPoint>& points, const Vec3& up, MotionResults& m) {
   const std::vector<int> label = sim.fragments();
@@ -112,17 +132,34 @@ void piece_travels(const Simulation& sim, const std::vector<MassPoint>& points, 
     if (piece.mass > 0) travel.push_back(horizontal((piece.end - piece.start) / piece.mass, up).norm());
   m.pieces = static_cast<int>(travel.size());
   if (travel.empty()) return;
-  std::sort(travel.begin(), travel.end());
-  double sum = 0;
-  for (double d : travel) sum += d;
-  m.piece_travel_mean = sum / static_cast<double>(travel.size());
-  // quantile q: linear between the sorted travels (numpy's and R's default, type 7)
-  for (int k = 0; k < MotionResults::kPieceQuantiles; ++k) {
-    const double at = static_cast<double>(travel.size() - 1) * k / (MotionResults::kPieceQuantiles - 1);
-    const auto below = static_cast<std::size_t>(std::floor(at));
-    const std::size_t above = std::min(below + 1, travel.size() - 1);
-    m.piece_travel.push_back(travel[below] + (at - static_cast<double>(below)) * (travel[above] - travel[below]));
+  m.piece_travel_mean = mean_of(travel);
+  m.piece_travel = quantiles_of(std::move(travel), MotionResults::kPieceQuantiles);
+}
+
+// What each source inserted, and its particles' heights at the end (RunResults::sources).
+std::vector<SourceResults> source_results(const Simulation& sim) {
+  const Scene& scene = sim.scene();
+  const Particles& p = sim.particles();
+  const Vec3 up = up_of(scene);
+  std::vector<std::vector<double>> heights(scene.sources.size());
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    const int source = scene.particles[p.id[j]].source;
+    if (source >= 0) heights[source].push_back(p.x[j].dot(up));
   }
+  std::vector<SourceResults> out;
+  for (std::size_t k = 0; k < scene.sources.size(); ++k) {
+    SourceResults s;
+    s.name = scene.sources[k].name;
+    s.inserted = sim.source_progress()[k].inserted;
+    s.mass = sim.source_progress()[k].mass;
+    s.crowded_batches = sim.source_progress()[k].crowded_batches;
+    if (!heights[k].empty()) {
+      s.height_mean = mean_of(heights[k]);
+      s.heights = quantiles_of(std::move(heights[k]), SourceResults::kHeightQuantiles);
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 int last_stage(const Scene& scene) { return scene.stages.empty() ? 0 : static_cast<int>(scene.stages.size()) - 1; }
@@ -556,6 +593,7 @@ void ResultsRecorder::finish(const Simulation& sim, const RunOutcome& outcome) {
   r.kinetic_end = sim.kinetic_energy();
   if (reference_) r.motion = motion(sim);
   if (!sim.bonds().empty()) r.fragments = fragment_results(sim);
+  r.sources = source_results(sim);
   r.loaded_walls.clear();
   for (const auto& [k, w] : walls_) {
     LoadedWallResults l;

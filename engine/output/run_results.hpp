@@ -90,6 +90,20 @@ struct LoadedWallResults {
   std::vector<LoadCycle> cycles;        // the cycles completed
 };
 
+// What a source (Scene::sources) put into the run, and where its particles are at the end: the
+// BallastDEM manual's wind-blown sand, how much entered and how deep into the ballast it went.
+struct SourceResults {
+  std::string name;
+  std::int64_t inserted = 0;  // particles
+  double mass = 0;            // kg
+  std::int64_t crowded_batches = 0;
+  // Its particles' centres along up (against gravity; +z without it), m, at the end: their mean and
+  // quantiles at the fractions 0, 0.05, ..., 1 (empty when none is left).
+  static constexpr int kHeightQuantiles = 21;
+  double height_mean = 0;
+  std::vector<double> heights;
+};
+
 struct RunResults {
   bool ok = true;
   std::string error;
@@ -105,6 +119,7 @@ struct RunResults {
   std::optional<MotionResults> motion;       // none before the reference or without free particles
   std::optional<FragmentResults> fragments;  // with bonds
   std::vector<LoadedWallResults> loaded_walls;
+  std::vector<SourceResults> sources;  // one per source of the scene, in its order
 };
 
 // Watches a run (every step, a few numbers per loaded wall) and makes its RunResults at the end.

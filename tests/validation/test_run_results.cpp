@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "output/run_results.hpp"
+#include "results/results_json.hpp"
 #include "sim/state_io.hpp"
 #include "support/report.hpp"
 #include "support/scenes.hpp"
@@ -397,6 +398,41 @@ TEST(RunResults, ParticlesASourceInsertsCountFromWhereTheyEntered) {
   EXPECT_LT(r.motion->com_end.z(), 0.05);
   EXPECT_GT(r.motion->com_drop, 0.23);
   EXPECT_GT(r.motion->fall_height, 0.25);
+}
+
+// What a source put in, and where its particles lie at the end (the sand-infiltration case's depth
+// of the sand): 0.05 s at 200 a second is 10 spheres of 5 mm radius, on the floor or on each other at the end.
+TEST(RunResults, ASourceSaysWhatItInsertedAndHowHighItsParticlesEnd) {
+  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.3, 0.5, 1e5);
+  s.walls.push_back(plane(Vec3::Zero(), Vec3::UnitZ(), "floor"));
+  ParticleSource source;
+  source.name = "hopper";
+  source.box = {Vec3(-0.05, -0.05, 0.28), Vec3(0.05, 0.05, 0.32)};
+  source.sizes.mean = 0.01;
+  source.count_rate = 200;
+  source.end = 0.05;
+  s.sources.push_back(source);
+  s.gravity = Vec3(0, 0, -kG);
+  s.time.dt = 2e-5;
+  s.time.steps = 20000;  // 0.4 s: all have landed
+  Simulation sim(s);
+  const RunResults r = run_with_recorder(sim, track_path("source_heights"), false);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.sources.size(), 1u);
+  const SourceResults& hopper = r.sources[0];
+  EXPECT_EQ(hopper.name, "hopper");
+  EXPECT_EQ(hopper.inserted, 10);
+  EXPECT_NEAR(hopper.mass, 10 * sphere_mass(2600, 0.005), 1e-12);
+  EXPECT_EQ(hopper.crowded_batches, 0);
+  ASSERT_EQ(hopper.heights.size(), static_cast<std::size_t>(SourceResults::kHeightQuantiles));
+  EXPECT_NEAR(hopper.heights.front(), 0.005, 5e-4);  // the lowest rests on the floor
+  EXPECT_LT(hopper.heights.back(), 0.03);            // the highest on two others at most
+  EXPECT_GT(hopper.height_mean, 0.0045);
+  EXPECT_LT(hopper.height_mean, 0.02);
+  const nlohmann::json j = results::to_json(r);
+  EXPECT_EQ(j["sources"][0]["inserted"], 10);
+  EXPECT_EQ(j["sources"][0]["heights"].size(), 21u);
+  EXPECT_EQ(j["sources"][0]["heights"][20]["fraction"], 1.0);
 }
 
 // A run continued without its track file says its results count from the continuation (they were
