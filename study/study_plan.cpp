@@ -110,7 +110,10 @@ std::string describe_values(const std::vector<StudyParameter>& parameters, const
   std::string text;
   for (std::size_t k = 0; k < parameters.size() && k < values.size(); ++k) {
     if (!text.empty()) text += ", ";
-    text += parameters[k].path + "=" + (values[k].is_string() ? values[k].get<std::string>() : values[k].dump());
+    // several fields set to one value read "a = b = 4e6", not "a = b=4e6"
+    const bool several = parameters[k].pointers.size() > 1;
+    text += parameters[k].path + (several ? " = " : "=") +
+            (values[k].is_string() ? values[k].get<std::string>() : values[k].dump());
   }
   return text;
 }

@@ -79,7 +79,7 @@ TEST(StudyPlan, AParameterMaySetSeveralFieldsToOneValue) {
   EXPECT_EQ(plan.runs[4].spec["packings"][0]["seed"], 2);
   EXPECT_EQ(plan.parameters[0].path, "bonds.tensileStrength = bonds.shearStrength");
   EXPECT_EQ(plan.runs[4].spec["name"],
-            "s #5 (bonds.tensileStrength = bonds.shearStrength=4000000.0, packings[0].seed=2)");
+            "s #5 (bonds.tensileStrength = bonds.shearStrength = 4000000.0, packings[0].seed=2)");
   EXPECT_TRUE(has_problem(study_with({{{"path", {"bonds.seed", "bonds.x.y"}}, {"values", {1}}}}),
                           "parameters[0].path[1]: \"bonds.x.y\": the base spec has no \"/bonds/x\""));
   EXPECT_TRUE(has_problem(study_with({{{"path", {"bonds.seed", "/bonds/seed"}}, {"values", {1}}}}), "varied twice"));
