@@ -99,7 +99,7 @@ TEST_F(ServerStudies, AParameterMaySetSeveralFieldsToOneValue) {
   EXPECT_EQ(done["counts"]["succeeded"], 2) << done.dump();
   EXPECT_EQ(done["parameters"][0], "interactions[0].friction = interactions[1].friction");
   const long second = done["jobs"][1]["job"];
-  EXPECT_EQ(job(second)["name"], "radius study #2 (interactions[0].friction = interactions[1].friction=0.6)");
+  EXPECT_EQ(job(second)["name"], "radius study #2 (interactions[0].friction = interactions[1].friction = 0.6)");
   const client::Response csv = client_->get("/api/studies/" + std::to_string(id) + "/results.csv");
   EXPECT_EQ(csv.body.rfind("run,job,interactions[0].friction = interactions[1].friction,state", 0), 0u) << csv.body;
   // a bad field among them is named by its place in the list
