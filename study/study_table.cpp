@@ -17,8 +17,10 @@ void flatten_into(const json& value, const std::string& key, std::vector<std::pa
   if (value.is_object()) {
     for (const auto& [name, inner] : value.items()) flatten_into(inner, key.empty() ? name : key + "." + name, out);
   } else if (value.is_array()) {
+    // A list of numbers, or one of results.json's lists of walls and sources (a column each field of
+    // each); other lists of objects (cycles, size bins, quantile rows) stay in the JSON table.
     const bool numbers = std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_number(); });
-    if (!numbers && key != "loadedWalls") return;  // cycles and size bins: the JSON table has them
+    if (!numbers && key != "loadedWalls" && key != "sources") return;
     for (std::size_t k = 0; k < value.size(); ++k) flatten_into(value[k], key + "." + std::to_string(k), out);
   } else {
     out.emplace_back(key, value);

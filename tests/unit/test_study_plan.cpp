@@ -149,7 +149,8 @@ json results(double runout, int fragments) {
   return {{"status", "completed"},
           {"motion", {{"runout", {{"length", runout}}}, {"centreOfMass", {{"end", {1, 2, 3}}}}}},
           {"fragments", {{"count", fragments}, {"sizes", {{{"fragments", 1}}}}}},
-          {"loadedWalls", {{{"wall", "sleeper"}, {"permanentSettlement", 0.01}, {"cycles", {{{"cycle", 1}}}}}}}};
+          {"loadedWalls", {{{"wall", "sleeper"}, {"permanentSettlement", 0.01}, {"cycles", {{{"cycle", 1}}}}}}},
+          {"sources", {{{"name", "sand"}, {"mass", 2.0}, {"heights", {{{"fraction", 0}, {"height", 0.1}}}}}}}};
 }
 
 TEST(StudyTable, OneRowPerRunWithItsValuesAndItsResults) {
@@ -168,7 +169,9 @@ TEST(StudyTable, OneRowPerRunWithItsValuesAndItsResults) {
   EXPECT_NE(header.find("motion.runout.length"), std::string::npos) << header;
   EXPECT_NE(header.find("motion.centreOfMass.end.2"), std::string::npos) << header;
   EXPECT_NE(header.find("loadedWalls.0.permanentSettlement"), std::string::npos) << header;
-  EXPECT_EQ(header.find("cycles"), std::string::npos) << header;  // left to the JSON table
+  EXPECT_NE(header.find("sources.0.mass"), std::string::npos) << header;  // a sand mass put in
+  EXPECT_EQ(header.find("cycles"), std::string::npos) << header;          // left to the JSON table
+  EXPECT_EQ(header.find("heights"), std::string::npos) << header;
   EXPECT_EQ(header.find("sizes"), std::string::npos) << header;
   EXPECT_NE(csv.find("\n1,1,\"a,b\",succeeded,,"), std::string::npos) << csv;  // a comma quoted
   EXPECT_NE(csv.find("\n2,1,c,failed,unstable"), std::string::npos) << csv;
