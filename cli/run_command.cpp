@@ -12,6 +12,7 @@
 #include "output/run_results.hpp"
 #include "output/run_writers.hpp"
 #include "results/results_json.hpp"
+#include "sim/particle_sources.hpp"
 #include "sim/state_io.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -150,10 +151,20 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, int
       static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate, sim.neighbor_builds());
   for (std::size_t k = 0; k < sim.scene().sources.size(); ++k) {
     const SourceProgress& progress = sim.source_progress()[k];
+    const ParticleSource& source = sim.scene().sources[k];
+    const std::optional<bool> reached = total_reached(sim.scene(), source, progress);
+    char short_of[160] = "";
+    if (reached && !*reached) {
+      if (source.total_count >= 0)
+        std::snprintf(short_of, sizeof short_of, "; short of its total of %lld particles",
+                      static_cast<long long>(source.total_count));
+      else
+        std::snprintf(short_of, sizeof short_of, "; short of its total of %.6g kg", source.total_mass);
+    }
     std::fprintf(info,
-                 "source \"%s\": inserted %lld particles, %.6g kg; %lld batches found no room for a particle due\n",
-                 sim.scene().sources[k].name.c_str(), static_cast<long long>(progress.inserted), progress.mass,
-                 static_cast<long long>(progress.crowded_batches));
+                 "source \"%s\": inserted %lld particles, %.6g kg; %lld batches found no room for a particle due%s\n",
+                 source.name.c_str(), static_cast<long long>(progress.inserted), progress.mass,
+                 static_cast<long long>(progress.crowded_batches), short_of);
   }
   std::fprintf(info, "results: %s\n", (std::filesystem::path(out) / results::kResultsName).c_str());
   return 0;

@@ -51,6 +51,7 @@ nlohmann::json source_json(const SourceResults& s) {
                       {"mass", s.mass},
                       {"crowdedBatches", s.crowded_batches},
                       {"heights", heights}};
+  if (s.total_reached) j["totalReached"] = *s.total_reached;
   if (!s.heights.empty()) {
     j["heightMean"] = s.height_mean;
     j["heightMedian"] = s.heights[s.heights.size() / 2];

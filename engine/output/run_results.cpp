@@ -1,5 +1,7 @@
 #include "output/run_results.hpp"
 
+#include "sim/particle_sources.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -153,6 +155,7 @@ std::vector<SourceResults> source_results(const Simulation& sim) {
     s.inserted = sim.source_progress()[k].inserted;
     s.mass = sim.source_progress()[k].mass;
     s.crowded_batches = sim.source_progress()[k].crowded_batches;
+    s.total_reached = total_reached(scene, scene.sources[k], sim.source_progress()[k]);
     if (!heights[k].empty()) {
       s.height_mean = mean_of(heights[k]);
       s.heights = quantiles_of(std::move(heights[k]), SourceResults::kHeightQuantiles);

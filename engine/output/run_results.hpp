@@ -97,6 +97,7 @@ struct SourceResults {
   std::int64_t inserted = 0;  // particles
   double mass = 0;            // kg
   std::int64_t crowded_batches = 0;
+  std::optional<bool> total_reached;  // whether it inserted its mass or count: none given, none
   // Its particles' centres along up (against gravity; +z without it), m, at the end: their mean and
   // quantiles at the fractions 0, 0.05, ..., 1 (empty when none is left).
   static constexpr int kHeightQuantiles = 21;

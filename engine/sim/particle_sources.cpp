@@ -114,6 +114,15 @@ std::vector<ParticleInit> source_extremes(const Scene& scene, const ParticleSour
   return {smallest, largest};
 }
 
+std::optional<bool> total_reached(const Scene& scene, const ParticleSource& source, const SourceProgress& progress) {
+  if (source.total_count >= 0) return progress.inserted >= source.total_count;
+  if (!std::isfinite(source.total_mass)) return std::nullopt;
+  // reached when the next particle would take it past the total by more than half itself
+  const double next =
+      scene.grain().mass(scene.materials[source.material].density, source_radius(source, progress.inserted));
+  return progress.mass + next / 2 > source.total_mass;
+}
+
 std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource& source, SourceProgress& progress,
                                         double active, const Particles& existing, const FacesNow& faces_now,
                                         const WallTest& touches_wall) {

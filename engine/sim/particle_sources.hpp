@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "core/particles.hpp"
@@ -26,6 +27,11 @@ double source_radius(const ParticleSource& source, std::int64_t k);
 // The smallest and largest particle the source can insert, at the region's extreme corners with the
 // source's velocity (the time step and the scene's extent must allow for them before they exist).
 std::vector<ParticleInit> source_extremes(const Scene& scene, const ParticleSource& source);
+
+// Whether the source has inserted its total (mass or count): none given, nothing owed by it.
+// A total the rate and the window do not reach is worth saying (a study of sand masses above it
+// would give the same run each time).
+std::optional<bool> total_reached(const Scene& scene, const ParticleSource& source, const SourceProgress& progress);
 
 // A face of the region (a source on the faces of a plate or mesh), where the wall is now.
 using Face = std::array<Vec3, 3>;

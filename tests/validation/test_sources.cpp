@@ -6,6 +6,7 @@
 
 #include <sstream>
 
+#include "sim/particle_sources.hpp"
 #include "sim/runner.hpp"
 #include "sim/state_io.hpp"
 #include "support/scenes.hpp"
@@ -143,6 +144,7 @@ TEST(Sources, ATotalMassOrCountStopsTheStreamWhenItHasEntered) {
     Simulation sim(std::move(s));
     while (sim.step_count() < sim.total_steps()) sim.step();
     EXPECT_NEAR(inserted_mass(sim), total, 0.5 * sphere_mass(kDensity, 0.003)) << total << " kg";
+    EXPECT_EQ(total_reached(sim.scene(), sim.scene().sources[0], sim.source_progress()[0]), true);
     if (total == 0) {
       EXPECT_EQ(sim.particles().size(), 0u);
     }
@@ -154,6 +156,16 @@ TEST(Sources, ATotalMassOrCountStopsTheStreamWhenItHasEntered) {
   Simulation sim(std::move(s));
   while (sim.step_count() < sim.total_steps()) sim.step();
   EXPECT_EQ(sim.particles().size(), 17u);
+  EXPECT_EQ(total_reached(sim.scene(), sim.scene().sources[0], sim.source_progress()[0]), true);
+
+  // a total the rate does not reach over the run is said to be short (the run's 0.05 kg of 1 kg)
+  Scene beyond = sand_stream(0.1);
+  beyond.sources[0].mass_rate = 0.5;
+  beyond.sources[0].total_mass = 1;
+  Simulation short_of(std::move(beyond));
+  while (short_of.step_count() < short_of.total_steps()) short_of.step();
+  EXPECT_EQ(total_reached(short_of.scene(), short_of.scene().sources[0], short_of.source_progress()[0]), false);
+  EXPECT_EQ(total_reached(sim.scene(), ParticleSource{}, SourceProgress{}), std::nullopt);  // no total
 }
 
 TEST(Sources, ACrowdedRegionHoldsParticlesBackUntilThereIsRoom) {
