@@ -130,16 +130,23 @@ std::vector<json> check_runs(const study::StudyPlan& plan, const std::string& ba
   return specs;
 }
 
-// The results of a run done before with this very spec, or null (none, another spec, not
-// completed, or a file that cannot be read: the run is done again).
+// A spec without its name: a run's name is the study's with its values, which a renamed study or
+// a new way of labelling changes without changing what is run.
+json without_name(json spec) {
+  if (spec.is_object()) spec.erase("name");
+  return spec;
+}
+
+// The results of a run done before with this very spec (but for its name), or null (none, another
+// spec, not completed, or a file that cannot be read: the run is done again).
 json done_before(const fs::path& folder, const json& spec) {
   const fs::path results = folder / results::kResultsName, spec_file = folder / "spec.json";
   std::error_code error;
   if (!fs::is_regular_file(results, error) || !fs::is_regular_file(spec_file, error)) return nullptr;
   const json kept_spec = json::parse(std::ifstream(spec_file), nullptr, false);
   const json done = json::parse(std::ifstream(results), nullptr, false);
-  if (kept_spec.is_discarded() || done.is_discarded() || kept_spec != spec || !done.is_object() ||
-      done.value("status", json()) != "completed")
+  if (kept_spec.is_discarded() || done.is_discarded() || without_name(kept_spec) != without_name(spec) ||
+      !done.is_object() || done.value("status", json()) != "completed")
     return nullptr;
   return done;
 }

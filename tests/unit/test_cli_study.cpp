@@ -70,6 +70,15 @@ TEST_F(CliStudy, OneCommandRunsEveryValueAndWritesTheTableAndTheFigure) {
   EXPECT_EQ(read(out / "study.csv"), csv);
   const nlohmann::json kept = nlohmann::json::parse(read(out / "study.json"));
   for (int k = 0; k < 3; ++k) EXPECT_EQ(kept["rows"][k]["state"], "succeeded") << k;
+
+  // renamed, the study keeps them too: a run's name (the study's, with its values) is not its physics
+  // (a study whose labels changed ran 40 minutes of runs again)
+  std::string renamed = kStudy;
+  renamed.replace(renamed.find("closing speed"), 13, "speeds");
+  write_spec("study.json", renamed);
+  const CommandResult third = run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet");
+  ASSERT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_EQ(third.output.find("into"), std::string::npos) << third.output;
 }
 
 // --jobs 2: two runs at once, each with its lines in its folder's run.log; the table and every
