@@ -21,7 +21,8 @@ const char* kPlotUsage =
     "         FILE: columns of numbers (lines that are not are skipped); COLUMN: 1, 2, ..., or 2:NAME\n"
     "       dem plot FILE.json [FILE.json ...] --rows LIST --x KEY --y KEY [--y KEY ...] --out FIGURE.svg [--title T]\n"
     "         LIST: the path of a list of objects in the JSON file (loadedWalls[0].cycles); KEY: their fields,\n"
-    "         or KEY:NAME; several files: a line each, named in the legend by its folder, or NAME=FILE.json\n";
+    "         or KEY:NAME; several files: a line each, named in the legend by its folder, or NAME=FILE.json\n"
+    "         (one file given as NAME=FILE.json: its line so named)\n";
 
 int usage(const std::string& problem) {
   std::fprintf(stderr, "dem plot: %s\n%s", problem.c_str(), kPlotUsage);
@@ -165,9 +166,12 @@ int plot_command(const std::vector<std::string>& args) {
   try {
     std::vector<study::Panel> panels(ys.size());
     if (!rows_path.empty()) {
-      std::vector<NamedFile> named;  // one file: no name (no legend)
-      for (const std::string& text : files)
-        named.push_back(files.size() > 1 ? named_file(text) : NamedFile{"", text, false});
+      std::vector<NamedFile> named;  // one file without NAME=: no name (no legend)
+      for (const std::string& text : files) {
+        NamedFile f = named_file(text);
+        if (files.size() == 1 && !f.given) f.name.clear();  // one file, not named: no legend
+        named.push_back(f);
+      }
       std::vector<bool> shared(named.size());  // a folder's name two lines would have: each named by its path
       for (std::size_t a = 0; a < named.size(); ++a)
         for (std::size_t b = 0; b < named.size(); ++b)

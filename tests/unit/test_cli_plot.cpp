@@ -65,6 +65,12 @@ TEST_F(CliPlot, RowsOfAJsonList) {
       run_dem("plot " + shell_quoted(data) + " --rows loadedWalls[1] --x cycle --y peak --out " + shell_quoted(out));
   EXPECT_EQ(not_list.exit_code, 1);
   EXPECT_NE(not_list.output.find("is not a list in it"), std::string::npos) << not_list.output;
+  // one file named as an overlay's are, NAME=FILE: its line so named (it was "cannot open it")
+  const CommandResult named =
+      run_dem("plot " + shell_quoted("bed 1=" + data.string()) +
+              " --rows 'loadedWalls[0].cycles' --x cycle --y settlement --out " + shell_quoted(out));
+  ASSERT_EQ(named.exit_code, 0) << named.output;
+  EXPECT_NE(read(out).find(">bed 1<"), std::string::npos);
 }
 
 TEST_F(CliPlot, SeveralRunsOverlaidALineEachNamedInTheLegend) {
