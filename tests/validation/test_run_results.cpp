@@ -373,10 +373,8 @@ TEST(RunResults, TheReferenceIsTheLastStagesStart) {
   EXPECT_NEAR(r.motion->com_travel, 0.2, 1e-12);
 }
 
-// Particles a source inserts after the reference count from where they entered: spheres entering
-// at 0.3 m and falling to a floor drop, and the crown is the top of the entry region, not 0 (the
-// centre of mass read 0 -> 0 and H/L was negative: an independent tester).
-TEST(RunResults, ParticlesASourceInsertsCountFromWhereTheyEntered) {
+// A hopper 0.3 m over a floor lets ten spheres of 1 cm fall (200 a second for 0.05 s); 0.4 s: all have landed.
+Scene hopper_over_a_floor() {
   Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.3, 0.5, 1e5);
   s.walls.push_back(plane(Vec3::Zero(), Vec3::UnitZ(), "floor"));
   ParticleSource source;
@@ -389,7 +387,14 @@ TEST(RunResults, ParticlesASourceInsertsCountFromWhereTheyEntered) {
   s.gravity = Vec3(0, 0, -kG);
   s.time.dt = 2e-5;
   s.time.steps = 20000;  // 0.4 s: all have landed
-  Simulation sim(s);
+  return s;
+}
+
+// Particles a source inserts after the reference count from where they entered: spheres entering
+// at 0.3 m and falling to a floor drop, and the crown is the top of the entry region, not 0 (the
+// centre of mass read 0 -> 0 and H/L was negative: an independent tester).
+TEST(RunResults, ParticlesASourceInsertsCountFromWhereTheyEntered) {
+  Simulation sim(hopper_over_a_floor());
   const RunResults r = run_with_recorder(sim, track_path("source"), false);
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_GT(r.particles, 5u);
@@ -403,19 +408,7 @@ TEST(RunResults, ParticlesASourceInsertsCountFromWhereTheyEntered) {
 // What a source put in, and where its particles lie at the end (the sand-infiltration case's depth
 // of the sand): 0.05 s at 200 a second is 10 spheres of 5 mm radius, on the floor or on each other at the end.
 TEST(RunResults, ASourceSaysWhatItInsertedAndHowHighItsParticlesEnd) {
-  Scene s = base_scene(LinearNormal::kName, 2600, 0, 0.25, 0.3, 0.5, 1e5);
-  s.walls.push_back(plane(Vec3::Zero(), Vec3::UnitZ(), "floor"));
-  ParticleSource source;
-  source.name = "hopper";
-  source.box = {Vec3(-0.05, -0.05, 0.28), Vec3(0.05, 0.05, 0.32)};
-  source.sizes.mean = 0.01;
-  source.count_rate = 200;
-  source.end = 0.05;
-  s.sources.push_back(source);
-  s.gravity = Vec3(0, 0, -kG);
-  s.time.dt = 2e-5;
-  s.time.steps = 20000;  // 0.4 s: all have landed
-  Simulation sim(s);
+  Simulation sim(hopper_over_a_floor());
   const RunResults r = run_with_recorder(sim, track_path("source_heights"), false);
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_EQ(r.sources.size(), 1u);
