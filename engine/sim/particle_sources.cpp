@@ -114,13 +114,22 @@ std::vector<ParticleInit> source_extremes(const Scene& scene, const ParticleSour
   return {smallest, largest};
 }
 
+namespace {
+
+// Whether the next particle, of mass `next`, is still within the source's total (to the nearest
+// particle: it may pass a mass total by half itself).
+bool within_total(const ParticleSource& source, const SourceProgress& progress, double next) {
+  return progress.mass + next / 2 <= source.total_mass &&
+         (source.total_count < 0 || progress.inserted < source.total_count);
+}
+
+}  // namespace
+
 std::optional<bool> total_reached(const Scene& scene, const ParticleSource& source, const SourceProgress& progress) {
-  if (source.total_count >= 0) return progress.inserted >= source.total_count;
-  if (!std::isfinite(source.total_mass)) return std::nullopt;
-  // reached when the next particle would take it past the total by more than half itself
+  if (source.total_count < 0 && !std::isfinite(source.total_mass)) return std::nullopt;
   const double next =
       scene.grain().mass(scene.materials[source.material].density, source_radius(source, progress.inserted));
-  return progress.mass + next / 2 > source.total_mass;
+  return !within_total(source, progress, next);
 }
 
 std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource& source, SourceProgress& progress,
@@ -132,9 +141,7 @@ std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource
   double m = scene.grain().mass(density, r);
   // rate times time to the nearest particle: within half a particle of it
   auto owed = [&] {
-    const bool below_total = progress.mass + m / 2 <= source.total_mass &&
-                             (source.total_count < 0 || progress.inserted < source.total_count);
-    return below_total &&
+    return within_total(source, progress, m) &&
            (source.mass_rate > 0 ? progress.mass + m / 2 <= source.mass_rate * active
                                  : static_cast<double>(progress.inserted) + 0.5 <= source.count_rate * active);
   };
