@@ -204,6 +204,7 @@ struct OutputSettings {
   // The PDEM-EGD manual's NLast: the particles' frame files (animation, force chains) keep only the
   // last this many frames; the time series (energy, statistics, walls) keep every frame. 0: all.
   std::int64_t last_frames = 0;
+  bool vtk = true;  // ParaView's files (output/vtk_output.hpp)
 };
 
 struct NumericsSettings {

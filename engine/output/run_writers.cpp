@@ -8,6 +8,7 @@
 #include "output/stage_log_output.hpp"
 #include "output/legacy_output.hpp"
 #include "output/statistics_output.hpp"
+#include "output/vtk_output.hpp"
 #include "output/wall_statistics_output.hpp"
 
 namespace dem {
@@ -60,6 +61,7 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
   if (WallStatisticsWriter::wanted(sim))
     writers.push_back(std::make_unique<WallStatisticsWriter>(dir.string(), append));
   writers.push_back(std::make_unique<EnergyWriter>((dir / "Energy.dat").string(), append));
+  if (scene.outputs.vtk) writers.push_back(particle_frames(std::make_unique<VtkWriter>(dir.string(), sim, append)));
   if (StageLogWriter::wanted(sim))
     writers.push_back(std::make_unique<StageLogWriter>((dir / "Stages.dat").string(), append));
   return writers;

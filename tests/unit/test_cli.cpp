@@ -253,6 +253,14 @@ TEST_F(Cli, RunContinuedFromItsSavedStateWritesTheSameFiles) {
   EXPECT_EQ(bytes(whole / "ANIMATION_3D.dat"), bytes(part / "ANIMATION_3D.dat"));
   EXPECT_EQ(bytes(whole / "ForceChain_3D.dat"), bytes(part / "ForceChain_3D.dat"));
   EXPECT_EQ(bytes(whole / "restart.dat"), bytes(part / "restart.dat"));
+  // ParaView's series lists the frames of both runs, each file as the one run wrote it
+  for (const char* series : {"particles.pvd", "contacts.pvd", "walls.pvd"})
+    EXPECT_EQ(bytes(whole / series), bytes(part / series)) << series;
+  for (const fs::directory_entry& e : fs::directory_iterator(whole)) {
+    if (e.path().extension() == ".vtu" || e.path().extension() == ".vtp") {
+      EXPECT_EQ(bytes(e.path()), bytes(part / e.path().filename())) << e.path().filename();
+    }
+  }
   // a state from another job is refused, and the files are left as they were
   const std::string other = good_with(R"("radius": 0.01, "material": "glass", "velocity": {"x": -1})",
                                       R"("radius": 0.01, "material": "glass", "velocity": {"x": -1}},
