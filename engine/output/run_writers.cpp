@@ -61,6 +61,7 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
   if (WallStatisticsWriter::wanted(sim))
     writers.push_back(std::make_unique<WallStatisticsWriter>(dir.string(), append));
   writers.push_back(std::make_unique<EnergyWriter>((dir / "Energy.dat").string(), append));
+  if (!append) VtkWriter::remove_earlier(dir.string());  // on or off: none of another run's stays
   if (scene.outputs.vtk) writers.push_back(particle_frames(std::make_unique<VtkWriter>(dir.string(), sim, append)));
   if (StageLogWriter::wanted(sim))
     writers.push_back(std::make_unique<StageLogWriter>((dir / "Stages.dat").string(), append));

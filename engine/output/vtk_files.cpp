@@ -125,18 +125,40 @@ void write(const std::string& path, const Dataset& data, double time) {
   write_whole(path, xml, appended.block(), "\n</AppendedData>\n</VTKFile>\n");
 }
 
-void write_series(const std::string& path, const std::vector<SeriesEntry>& entries) {
+namespace {
+
+constexpr const char kSeriesEnd[] = "</Collection>\n</VTKFile>\n";
+
+std::string series_entry(const SeriesEntry& e) {
+  return "<DataSet timestep=\"" + number(e.time) + "\" part=\"0\" file=\"" + escaped(e.file) + "\"/>\n";
+}
+
+}  // namespace
+
+SeriesFile::SeriesFile(std::string path, const std::vector<SeriesEntry>& entries) : path_(std::move(path)) {
   std::string xml =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
       "<Collection>\n";
-  for (const SeriesEntry& e : entries)
-    xml += "<DataSet timestep=\"" + number(e.time) + "\" part=\"0\" file=\"" + escaped(e.file) + "\"/>\n";
-  xml += "</Collection>\n</VTKFile>\n";
-  const std::string beside = path + ".tmp";
-  write_whole(beside, xml, "", "");
+  for (const SeriesEntry& e : entries) xml += series_entry(e);
+  const std::string beside = path_ + ".tmp";
+  write_whole(beside, xml, kSeriesEnd, "");
   std::error_code ec;
-  std::filesystem::rename(beside, path, ec);
-  if (ec) throw std::runtime_error("cannot write " + path + ": " + ec.message());
+  std::filesystem::rename(beside, path_, ec);
+  if (ec) throw std::runtime_error("cannot write " + path_ + ": " + ec.message());
+  file_ = std::fopen(path_.c_str(), "r+b");
+  if (file_ == nullptr) throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(errno));
+}
+
+SeriesFile::~SeriesFile() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+void SeriesFile::add(const SeriesEntry& entry) {
+  const std::string text = series_entry(entry) + kSeriesEnd;
+  errno = 0;
+  const bool ok = std::fseek(file_, -static_cast<long>(sizeof kSeriesEnd - 1), SEEK_END) == 0 &&
+                  std::fwrite(text.data(), 1, text.size(), file_) == text.size() && std::fflush(file_) == 0;
+  if (!ok) throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(errno != 0 ? errno : EIO));
 }
 
 }  // namespace dem::vtk

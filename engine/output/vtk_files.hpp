@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,7 +49,21 @@ struct SeriesEntry {
   double time = 0;
   std::string file;  // relative to the .pvd
 };
-// Written beside and renamed over `path`: a reader never finds half a series.
-void write_series(const std::string& path, const std::vector<SeriesEntry>& entries);
+
+// A .pvd file that grows a frame at a time: written whole at first (beside it, then renamed over
+// it), then each frame is written over the closing tags and followed by them again, so a run of N
+// frames writes N entries, not N^2/2. Throws std::runtime_error naming the file when it cannot.
+class SeriesFile {
+ public:
+  SeriesFile(std::string path, const std::vector<SeriesEntry>& entries);
+  ~SeriesFile();
+  SeriesFile(const SeriesFile&) = delete;
+  SeriesFile& operator=(const SeriesFile&) = delete;
+  void add(const SeriesEntry& entry);
+
+ private:
+  std::string path_;
+  std::FILE* file_ = nullptr;
+};
 
 }  // namespace dem::vtk

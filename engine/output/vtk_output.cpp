@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <numeric>
+#include <optional>
 #include <regex>
 #include <vector>
 
@@ -135,7 +136,10 @@ vtk::Dataset bonds_of(const Simulation& sim) {
                {vtk::uint8("state", state), vtk::float64("normalForce", fn), vtk::float64("shearForce", fs)});
 }
 
-vtk::Dataset walls_of(const Simulation& sim) {
+// The walls of `scene_walls` (scene indices) present now. A mesh's triangles share its vertices.
+vtk::Dataset walls_of(const Simulation& sim, const std::vector<int>& scene_walls) {
+  std::vector<bool> wanted(sim.scene().walls.size(), false);
+  for (int k : scene_walls) wanted[k] = true;
   const Particles& p = sim.particles();
   // An infinite plane is drawn as a square about the particles, 1.5 times their extent across (2 m
   // without particles).
@@ -162,7 +166,7 @@ vtk::Dataset walls_of(const Simulation& sim) {
   };
   for (int k = 0; k < static_cast<int>(sim.walls().size()); ++k) {
     const int scene_wall = sim.boundary_of_plane(k);
-    if (!sim.wall_present(scene_wall)) continue;
+    if (!wanted[scene_wall] || !sim.wall_present(scene_wall)) continue;
     const Wall& w = sim.walls()[k];
     if (w.kind == Wall::Kind::Plate) {
       polygon({w.corners[0], w.corners[1], w.corners[2], w.corners[3]}, scene_wall);
@@ -174,8 +178,14 @@ vtk::Dataset walls_of(const Simulation& sim) {
     polygon({on_plane - u - v, on_plane + u - v, on_plane + u + v, on_plane - u + v}, scene_wall);
   }
   for (const MeshWall& m : sim.meshes()) {
-    if (!sim.wall_present(m.boundary)) continue;
-    for (const auto& t : m.triangles) polygon({m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]}, m.boundary);
+    if (!wanted[m.boundary] || !sim.wall_present(m.boundary)) continue;
+    const auto first = static_cast<std::int64_t>(points.size());
+    points.insert(points.end(), m.vertices.begin(), m.vertices.end());
+    for (const auto& t : m.triangles) {
+      for (int c : t) connectivity.push_back(first + c);
+      offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+      wall.push_back(m.boundary + 1);
+    }
   }
   vtk::Dataset d;
   d.type = "PolyData";
@@ -198,28 +208,71 @@ std::string VtkWriter::frame_name(const std::string& kind, std::int64_t step) {
   return kind + "_" + digits + (kind == "particles" ? ".vtu" : ".vtp");
 }
 
-VtkWriter::VtkWriter(const std::string& folder, const Simulation& sim, bool append) : folder_(folder), dt_(sim.dt()) {
+namespace {
+
+// particles_0000012000.vtu and its kin: the kind and the step, or nothing for another name.
+std::optional<std::pair<std::string, std::int64_t>> frame_file(const std::string& name) {
+  static const std::regex pattern(R"((particles|contacts|bonds|walls)_(\d{10})\.vt[up])");
+  std::smatch m;
+  if (!std::regex_match(name, m, pattern)) return std::nullopt;
+  const std::int64_t step = std::stoll(m[2]);
+  if (name != VtkWriter::frame_name(m[1], step)) return std::nullopt;  // a .vtp of particles, ...
+  return std::make_pair(m[1].str(), step);
+}
+
+constexpr const char* kSeriesNames[] = {"particles.pvd", "contacts.pvd", "bonds.pvd", "walls.pvd", "walls.vtp"};
+
+}  // namespace
+
+void VtkWriter::remove_earlier(const std::string& folder) {
+  std::error_code ec;
+  std::vector<fs::path> earlier;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    const std::string name = e.path().filename().string();
+    bool ours = frame_file(name).has_value();
+    for (const char* series : kSeriesNames) ours = ours || name == series || name == std::string(series) + ".tmp";
+    if (ours && e.is_regular_file(ec)) earlier.push_back(e.path());
+  }
+  for (const fs::path& p : earlier) fs::remove(p, ec);
+}
+
+VtkWriter::VtkWriter(const std::string& folder, const Simulation& sim, bool append) : folder_(folder) {
+  for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k)
+    (sim.wall_varies(k) ? moving_walls_ : fixed_walls_).push_back(k);
+  // Where they are at the start is where they stay (a continued run keeps the file, whose planes
+  // are drawn about where the particles were then).
+  const fs::path fixed = fs::path(folder_) / "walls.vtp";
+  if (!fixed_walls_.empty() && !(append && fs::is_regular_file(fixed)))
+    vtk::write(fixed.string(), walls_of(sim, fixed_walls_), sim.time());
   if (!append) return;
   // The frames a continued run finds (a resumed server job: those up to its checkpoint, the later
-  // ones removed) are the start of its series; its .pvd files may have been cut back mid-way.
-  const std::regex frame_file(R"((particles|contacts|bonds|walls)_(\d{10})\.vt[up])");
+  // ones removed) are the start of its series, with their times (step x dt: the step is fixed).
+  std::map<std::string, std::map<std::int64_t, vtk::SeriesEntry>> found;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(folder_, ec)) {
-    std::smatch m;
     const std::string name = e.path().filename().string();
-    if (!std::regex_match(name, m, frame_file) || name != frame_name(m[1], std::stoll(m[2]))) continue;
-    const std::int64_t step = std::stoll(m[2]);
-    if (step <= sim.step_count()) series_[m[1]][step] = {static_cast<double>(step) * dt_, name};
+    const auto frame = frame_file(name);
+    if (frame && e.is_regular_file(ec) && frame->second <= sim.step_count())
+      found[frame->first][frame->second] = {static_cast<double>(frame->second) * sim.dt(), name};
   }
-  for (const auto& [kind, frames] : series_) add_to_series(kind, frames.begin()->first, frames.begin()->second.time);
+  for (const auto& [kind, frames] : found) {
+    std::vector<vtk::SeriesEntry> entries;
+    for (const auto& [step, entry] : frames) entries.push_back(entry);
+    series_[kind].file = std::make_unique<vtk::SeriesFile>((fs::path(folder_) / (kind + ".pvd")).string(), entries);
+    series_[kind].last_step = frames.rbegin()->first;
+  }
 }
 
 void VtkWriter::add_to_series(const std::string& kind, std::int64_t step, double time) {
-  std::map<std::int64_t, vtk::SeriesEntry>& frames = series_[kind];
-  frames[step] = {time, frame_name(kind, step)};
-  std::vector<vtk::SeriesEntry> entries;
-  for (const auto& [s, entry] : frames) entries.push_back(entry);
-  vtk::write_series((fs::path(folder_) / (kind + ".pvd")).string(), entries);
+  Series& series = series_[kind];
+  if (step <= series.last_step) return;  // a continued run writing again the frame it began at
+  const vtk::SeriesEntry entry{time, frame_name(kind, step)};
+  if (series.file)
+    series.file->add(entry);
+  else
+    series.file = std::make_unique<vtk::SeriesFile>((fs::path(folder_) / (kind + ".pvd")).string(),
+                                                    std::vector<vtk::SeriesEntry>{entry});
+  series.last_step = step;
 }
 
 void VtkWriter::frame(const Simulation& sim) {
@@ -232,7 +285,7 @@ void VtkWriter::frame(const Simulation& sim) {
   put("particles", particles_of(sim));
   if (sim.contacts_recorded()) put("contacts", contacts_of(sim));
   if (!sim.bonds().empty()) put("bonds", bonds_of(sim));
-  if (!sim.walls().empty() || !sim.meshes().empty()) put("walls", walls_of(sim));
+  if (!moving_walls_.empty()) put("walls", walls_of(sim, moving_walls_));
 }
 
 }  // namespace dem

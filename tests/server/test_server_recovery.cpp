@@ -24,7 +24,7 @@ class ServerRecovery : public ServerTest {
 
   void expect_same_files(long id, const fs::path& reference) {
     for (const char* name : {"ANIMATION_3D.dat", "ForceChain_3D.dat", "Masscenter.dat", "Disp_Max.dat", "Coord_OL.dat",
-                             "particles.pvd", "contacts.pvd", "walls.pvd", "particles_0000030000.vtu"}) {
+                             "particles.pvd", "contacts.pvd", "walls.vtp", "particles_0000030000.vtu"}) {
       const client::Response r = client_->get("/api/jobs/" + std::to_string(id) + "/artifacts/" + name);
       ASSERT_EQ(r.status, 200) << name;
       EXPECT_TRUE(r.body == read_bytes(reference / name)) << name << " differs from the uninterrupted run's";

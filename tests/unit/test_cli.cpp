@@ -254,7 +254,7 @@ TEST_F(Cli, RunContinuedFromItsSavedStateWritesTheSameFiles) {
   EXPECT_EQ(bytes(whole / "ForceChain_3D.dat"), bytes(part / "ForceChain_3D.dat"));
   EXPECT_EQ(bytes(whole / "restart.dat"), bytes(part / "restart.dat"));
   // ParaView's series lists the frames of both runs, each file as the one run wrote it
-  for (const char* series : {"particles.pvd", "contacts.pvd", "walls.pvd"})
+  for (const char* series : {"particles.pvd", "contacts.pvd", "walls.vtp"})
     EXPECT_EQ(bytes(whole / series), bytes(part / series)) << series;
   for (const fs::directory_entry& e : fs::directory_iterator(whole)) {
     if (e.path().extension() == ".vtu" || e.path().extension() == ".vtp") {

@@ -18,8 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A bonded cube of 27 spheres with weak bonds dropped onto a floor (a plane) under a roof (a
-// plate): contacts, bonds that break, and both kinds of wall in the frames.
+// A bonded cube of 27 spheres with weak bonds dropped onto a floor (a plane) under a rising roof (a
+// plate): contacts, bonds that break, a wall that stays and one that moves.
 const std::string kBlockSpec = R"({
   "name": "bonded block dropped on a floor",
   "materials": [{"name": "rock", "density": 2500, "youngsModulus": 1e7, "poissonRatio": 0.25},
@@ -32,7 +32,8 @@ const std::string kBlockSpec = R"({
   "bonds": {"youngsModulus": 1e7, "tensileStrength": 2e4, "shearStrength": 2e4, "gapTolerance": 0.01},
   "walls": [{"name": "floor", "material": "steel", "plane": {"point": {"z": 0}, "normal": {"z": 1}}},
             {"name": "roof", "material": "steel", "plate": {"c1": {"x": -0.1, "y": -0.1, "z": 0.3},
-             "c2": {"x": 0.1, "y": -0.1, "z": 0.3}, "c3": {"x": 0.1, "y": 0.1, "z": 0.3}, "c4": {"x": -0.1, "y": 0.1, "z": 0.3}}}],
+             "c2": {"x": 0.1, "y": -0.1, "z": 0.3}, "c3": {"x": 0.1, "y": 0.1, "z": 0.3}, "c4": {"x": -0.1, "y": 0.1, "z": 0.3}},
+             "motion": {"velocity": {"z": 0.5}}}],
   "gravity": {"z": -9.81},
   "time": {"duration": 0.2},
   "outputs": {"interval": 0.04, "forceChains": true, "lengthUnit": "mm", "numberFormat": "FULL"}
@@ -155,22 +156,60 @@ TEST_F(VtkOutput, ParaViewsReadersReadEachFrameAsTheLegacyFilesHaveIt) {
     EXPECT_GE(range[0], 0);
     EXPECT_LE(range[1], 2);
 
-    // the walls: the floor as a square about the particles, the roof's four corners as given
+    // the moving walls in each frame: the roof's four corners where it has risen to
     const nlohmann::json& w = files[walls.string()];
-    EXPECT_EQ(w["cells"], 2);
-    EXPECT_EQ(w["cellData"]["wall"]["all"], nlohmann::json::parse("[[1.0], [2.0]]"));
-    EXPECT_EQ(w["coordinates"][4], nlohmann::json::parse("[-0.1, -0.1, 0.3]"));
-    for (int corner = 0; corner < 4; ++corner) EXPECT_EQ(w["coordinates"][corner][2], 0.0) << "the floor's plane";
+    EXPECT_EQ(w["cells"], 1);
+    EXPECT_EQ(w["cellData"]["wall"]["all"], nlohmann::json::parse("[[2.0]]"));
+    EXPECT_NEAR(w["coordinates"][0][0].get<double>(), -0.1, 1e-15);
+    EXPECT_NEAR(w["coordinates"][0][2].get<double>(), 0.3 + 0.5 * legacy_frame.scalars[0], 1e-12);
   }
+  // the floor, which never moves, once: a square about the particles where they start
+  const nlohmann::json fixed = read_back({out / "walls.vtp"}).begin().value();
+  EXPECT_EQ(fixed["cells"], 1);
+  EXPECT_EQ(fixed["cellData"]["wall"]["all"], nlohmann::json::parse("[[1.0]]"));
+  for (int corner = 0; corner < 4; ++corner) EXPECT_EQ(fixed["coordinates"][corner][2], 0.0) << "the floor's plane";
   // the block hit the floor and its weak bonds broke: some state is 1 or 2 at the end
   const nlohmann::json last = read_back({out / VtkWriter::frame_name("bonds", animation.frames.back().step)});
   EXPECT_GT(last.begin().value()["cellData"]["state"]["range"][1].get<double>(), 0) << "no bond broke";
 }
 
+// A run into a folder another run wrote: none of the other's frames stays, and a continued run's
+// series is the uninterrupted run's (the earlier run's frames were listed in it, with the wrong times).
+TEST_F(VtkOutput, AnEarlierRunsFramesAreNotThisRunsEvenWhenContinued) {
+  auto with = [](std::string steps, std::string every) {  // steps and frames, not seconds (the end a frame)
+    std::string spec = kBlockSpec;
+    spec.replace(spec.find(R"("duration": 0.2)"), 15, R"("steps": )" + steps);
+    spec.replace(spec.find(R"("interval": 0.04)"), 16, R"("everySteps": )" + every);
+    return spec;
+  };
+  const std::string full = with("8000", "1000");
+  const fs::path out = run_block(full, "block");
+  std::ofstream(out / "particles_0000000001.vtu") << "not a frame of this run";
+  fs::create_directory(out / "particles_0000000005.vtu");
+  const fs::path whole = run_block(full, "whole");
+  run_block(with("8000", "500"), "block");   // every frame of another interval
+  run_block(with("4000", "1000"), "block");  // the run to continue, stopped at a frame
+  EXPECT_FALSE(fs::exists(out / "particles_0000000001.vtu"));
+  EXPECT_TRUE(fs::is_directory(out / "particles_0000000005.vtu")) << "only files of ours are removed";
+  const CommandResult r = run_dem("run " + shell_quoted(write_spec("full.json", full)) + " --out " + shell_quoted(out) +
+                                  " --restart " + shell_quoted(out / "restart.dat") + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* series : {"particles.pvd", "contacts.pvd", "bonds.pvd", "walls.pvd"})
+    EXPECT_EQ(read(out / series), read(whole / series)) << series;
+  for (const fs::directory_entry& e : fs::directory_iterator(out)) {
+    const std::string ext = e.path().extension().string();
+    if ((ext == ".vtu" || ext == ".vtp" || ext == ".pvd") && !e.is_directory()) {
+      EXPECT_TRUE(fs::exists(whole / e.path().filename())) << e.path().filename() << " is stale";
+      EXPECT_EQ(read(e.path()), read(whole / e.path().filename())) << e.path().filename();
+    }
+  }
+}
+
 TEST_F(VtkOutput, NoneWhenTheSpecTurnsThemOff) {
   std::string spec = kBlockSpec;
   spec.replace(spec.find(R"("outputs": {)"), 12, R"("outputs": {"vtk": false, )");
-  const fs::path out = run_block(spec, "off");
+  const fs::path out = run_block(kBlockSpec, "off");
+  run_block(spec, "off");  // into the folder of a run that wrote them: none of those stays either
   ASSERT_TRUE(fs::exists(out / "ANIMATION_3D.dat"));
   for (const fs::directory_entry& e : fs::directory_iterator(out)) {
     const std::string ext = e.path().extension().string();
@@ -188,7 +227,7 @@ TEST(VtkFiles, AFullDiskIsAnErrorNamingTheFile) {
   } catch (const std::runtime_error& e) {
     EXPECT_STREQ(e.what(), "cannot write /dev/full: No space left on device");
   }
-  EXPECT_THROW(vtk::write_series("/nonexistent-folder/particles.pvd", {}), std::runtime_error);
+  EXPECT_THROW(vtk::SeriesFile("/nonexistent-folder/particles.pvd", {}), std::runtime_error);
 }
 
 }  // namespace
