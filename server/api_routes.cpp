@@ -228,9 +228,15 @@ http::message_generator artifact(const Request& req, std::int64_t id, const std:
   const bool own = is_own_folder(folder.root) && (tar || is_own_folder(folder.outputs())) && is_own_file(path);
   if (!own)  // a link planted in the job's folder leads anywhere (/etc/shadow): never followed
     return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
+  // the legacy files and results are text; ParaView's series is XML, its frames binary after an XML header
+  const std::string extension = fs::path(name).extension().string();
+  const char* type = tar                                          ? "application/x-tar"
+                     : extension == ".pvd"                        ? "application/xml"
+                     : extension == ".vtu" || extension == ".vtp" ? "application/octet-stream"
+                                                                  : "text/plain; charset=utf-8";
   std::optional<http::message_generator> file =
       file_response(req, path,
-                    {{http::field::content_type, tar ? "application/x-tar" : "text/plain; charset=utf-8"},
+                    {{http::field::content_type, type},
                      {http::field::content_disposition, "attachment; filename=\"" + name + "\""},
                      {http::field::cache_control, "no-store"}});
   if (!file)

@@ -85,10 +85,11 @@ void check_output_size(const JobFolder& folder, double limit) {
   for (const auto& f : std::filesystem::directory_iterator(folder.outputs(), error))
     if (f.is_regular_file(error)) total += f.file_size(error);
   if (static_cast<double>(total) <= limit) return;
-  char buf[300];
+  char buf[400];
   std::snprintf(buf, sizeof buf,
                 "the job's files hold %.1f MB, past the server's limit of %.1f MB (--max-output-mb): write frames less "
-                "often (outputs.interval or outputs.everySteps) or fewer files",
+                "often (outputs.interval or outputs.everySteps) or fewer files (outputs.vtk: false leaves ParaView's "
+                "out)",
                 static_cast<double>(total) / 1048576, limit / 1048576);
   throw std::runtime_error(buf);
 }

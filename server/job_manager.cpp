@@ -43,23 +43,29 @@ fs::path unaccounted_place(const fs::path& data, const std::string& name) {
 
 }  // namespace
 
-// The frames' animation alone, at 100 bytes a sphere (a line is 100 to 300 bytes by the number
-// format): a spec that would pass the limit with that is refused before it runs.
+// The frames' particles alone, at 100 bytes a sphere in the animation (a line is 100 to 300 bytes by
+// the number format) and 169 in ParaView's .vtu: a spec that would pass the limit with that is
+// refused before it runs.
 void JobManager::refuse_outputs_past_limit(const Simulation& sim) const {
   const Scene& scene = sim.scene();
-  if (!scene.outputs.animation || scene.outputs.every_steps <= 0) return;
+  const double per_sphere = (scene.outputs.animation ? 100.0 : 0.0) + (scene.outputs.vtk ? 169.0 : 0.0);
+  if (per_sphere == 0 || scene.outputs.every_steps <= 0) return;
   // and a staged run's frame at the end of each stage
   const double frames =
       std::floor(static_cast<double>(sim.total_steps()) / static_cast<double>(scene.outputs.every_steps)) + 1 +
       static_cast<double>(scene.stages.size());
-  const double bytes = frames * static_cast<double>(sim.particles().size()) * 100.0;
+  const double bytes = frames * static_cast<double>(sim.particles().size()) * per_sphere;
   if (bytes <= options_.max_output_bytes) return;
-  char buf[400];
+  const char* files = !scene.outputs.vtk        ? "ANIMATION_3D.dat"
+                      : scene.outputs.animation ? "ANIMATION_3D.dat and ParaView's .vtu files"
+                                                : "ParaView's .vtu files";
+  char buf[500];
   std::snprintf(buf, sizeof buf,
-                "outputs: %.0f frames of %zu particles would write at least %.1f MB of ANIMATION_3D.dat, past the "
-                "server's limit of %.1f MB for a job's files (--max-output-mb); write frames less often "
-                "(outputs.interval or outputs.everySteps)",
-                frames, sim.particles().size(), bytes / 1048576, options_.max_output_bytes / 1048576);
+                "outputs: %.0f frames of %zu particles would write at least %.1f MB of %s, past the server's limit "
+                "of %.1f MB for a job's files (--max-output-mb); write frames less often (outputs.interval or "
+                "outputs.everySteps)%s",
+                frames, sim.particles().size(), bytes / 1048576, files, options_.max_output_bytes / 1048576,
+                scene.outputs.vtk ? " or leave ParaView's files out (outputs.vtk: false)" : "");
   throw spec::SpecError({buf});
 }
 

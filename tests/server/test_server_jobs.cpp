@@ -44,9 +44,18 @@ TEST_F(ServerJobs, SubmittedAsJsonAndAsProtobufGiveTheBytesOfDemRun) {
     EXPECT_EQ(done["lengthUnit"], "m");
     EXPECT_FALSE(done["startedAt"].get<std::string>().empty());
     EXPECT_FALSE(done["finishedAt"].get<std::string>().empty());
-    for (const char* name : {"ANIMATION_3D.dat", "ForceChain_3D.dat", "Masscenter.dat"}) {
+    // the legacy files as text, ParaView's series as XML and its frames as binary
+    for (const auto& [name, type] :
+         std::vector<std::pair<std::string, std::string>>{{"ANIMATION_3D.dat", "text/plain; charset=utf-8"},
+                                                          {"ForceChain_3D.dat", "text/plain; charset=utf-8"},
+                                                          {"Masscenter.dat", "text/plain; charset=utf-8"},
+                                                          {"particles.pvd", "application/xml"},
+                                                          {"particles_0000000600.vtu", "application/octet-stream"},
+                                                          {"contacts_0000000600.vtp", "application/octet-stream"},
+                                                          {"walls.vtp", "application/octet-stream"}}) {
       const client::Response file = client_->get("/api/jobs/" + std::to_string(id) + "/artifacts/" + name);
       ASSERT_EQ(file.status, 200) << name;
+      EXPECT_EQ(file.header("content-type"), type) << name;
       EXPECT_EQ(file.body, read_bytes(local / name)) << "job " << id << ": " << name << " differs from dem run's";
     }
   }

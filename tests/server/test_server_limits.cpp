@@ -38,7 +38,9 @@ TEST_F(ServerLimits, AJobWhoseFilesGrowPastTheLimitIsStoppedAndFailed) {
   start_server({"--max-output-mb", "2"});
   // 35 frames of 447 spheres: an estimate of 1.6 MB at 100 bytes a sphere, 2.3 MB of animation
   // written at about 150, and the force chains besides
-  const long id = submit_json(pouring_spec(0.012, 3400, 100, true))["id"];
+  std::string spec = pouring_spec(0.012, 3400, 100, true);  // without ParaView's files (the next test's)
+  spec.replace(spec.find(R"("forceChains": true)"), 19, R"("forceChains": true, "vtk": false)");
+  const long id = submit_json(spec)["id"];
   const nlohmann::json j = wait_for(id, "failed,succeeded");
   EXPECT_EQ(j.value("state", ""), "failed") << j.dump();
   EXPECT_NE(j.value("error", "").find("--max-output-mb"), std::string::npos) << j.dump();
@@ -52,6 +54,16 @@ TEST_F(ServerLimits, AJobWhoseFilesGrowPastTheLimitIsStoppedAndFailed) {
   EXPECT_GT(total, 2u << 20);
   EXPECT_LT(total, 3u << 20);  // stopped at the frame that passed it
   EXPECT_FALSE(read_bytes(dir_ / "data" / "jobs" / std::to_string(id) / "outputs" / "ANIMATION_3D.dat").empty());
+}
+
+// ParaView's files, on by default, count: the spec whose animation alone would pass is refused, and
+// the message says how to leave them out.
+TEST_F(ServerLimits, ParaViewsFilesCountInTheEstimateAndTheMessageSaysHowToLeaveThemOut) {
+  start_server({"--max-output-mb", "2"});
+  const client::Response r =
+      client_->request("POST", "/api/jobs", pouring_spec(0.012, 3400, 100, true), "application/json", {});
+  EXPECT_EQ(r.status, 400) << r.body;
+  EXPECT_NE(r.body.find("outputs.vtk: false"), std::string::npos) << r.body;
 }
 
 // A 45-million-sphere lattice took 2.9 GB of the server's memory while it was checked, then failed
