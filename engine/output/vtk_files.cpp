@@ -65,24 +65,6 @@ std::string number(double v) {
   return text;
 }
 
-// The few characters XML does not allow in an attribute's value (names come from the job spec).
-std::string escaped(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '&')
-      out += "&amp;";
-    else if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
-}
-
 }  // namespace
 
 DataArray float64(std::string name, const std::vector<double>& values) {
@@ -130,7 +112,7 @@ namespace {
 constexpr const char kSeriesEnd[] = "</Collection>\n</VTKFile>\n";
 
 std::string series_entry(const SeriesEntry& e) {
-  return "<DataSet timestep=\"" + number(e.time) + "\" part=\"0\" file=\"" + escaped(e.file) + "\"/>\n";
+  return "<DataSet timestep=\"" + number(e.time) + "\" part=\"0\" file=\"" + e.file + "\"/>\n";
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ void write(const std::string& path, const Dataset& data, double time);
 // A series of frames (a .pvd "Collection"): ParaView opens it as one dataset in time.
 struct SeriesEntry {
   double time = 0;
-  std::string file;  // relative to the .pvd
+  std::string file;  // relative to the .pvd; the writer's own names, nothing XML must escape
 };
 
 // A .pvd file that grows a frame at a time: written whole at first (beside it, then renamed over
