@@ -20,7 +20,8 @@ DataArray raw(std::string name, std::string type, int components, const T* value
   return a;
 }
 
-// The XML of the arrays and their bytes in the appended block, offsets counted from its start.
+// The XML of the arrays and where their bytes go in the appended block, offsets counted from its
+// start; the bytes themselves are written from the arrays, not copied into a block first.
 class Appended {
  public:
   // `tuples`: given for field data, whose readers do not infer it
@@ -28,31 +29,36 @@ class Appended {
     std::string xml = "<DataArray type=\"" + a.type + "\" Name=\"" + a.name + "\"";
     if (a.components > 1) xml += " NumberOfComponents=\"" + std::to_string(a.components) + "\"";
     if (tuples >= 0) xml += " NumberOfTuples=\"" + std::to_string(tuples) + "\"";
-    xml += " format=\"appended\" offset=\"" + std::to_string(block_.size()) + "\"/>\n";
-    const std::uint64_t length = a.bytes.size();
-    block_.append(reinterpret_cast<const char*>(&length), sizeof length);
-    block_ += a.bytes;
+    xml += " format=\"appended\" offset=\"" + std::to_string(size_) + "\"/>\n";
+    arrays_.push_back(&a);
+    size_ += sizeof(std::uint64_t) + a.bytes.size();
     return xml;
   }
-  const std::string& block() const { return block_; }
+  const std::vector<const DataArray*>& arrays() const { return arrays_; }
 
  private:
-  std::string block_;
+  std::vector<const DataArray*> arrays_;
+  std::size_t size_ = 0;
 };
 
 struct CloseFile {
   void operator()(std::FILE* f) const { std::fclose(f); }
 };
 
-// Writes `head`, `body` and `tail` to `path`, or throws with the reason (a full disk).
-void write_whole(const std::string& path, const std::string& head, const std::string& body, const std::string& tail) {
+// Writes `head`, each array's length (UInt64) and bytes, and `tail` to `path`, or throws with the
+// reason (a full disk).
+void write_whole(const std::string& path, const std::string& head, const std::vector<const DataArray*>& arrays,
+                 const std::string& tail) {
   std::unique_ptr<std::FILE, CloseFile> f(std::fopen(path.c_str(), "wb"));
   if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
   errno = 0;
-  bool ok = true;
-  for (const std::string* part : {&head, &body, &tail})
-    ok = ok && std::fwrite(part->data(), 1, part->size(), f.get()) == part->size();
-  ok = ok && std::fflush(f.get()) == 0;
+  auto put = [&](const void* data, std::size_t size) { return std::fwrite(data, 1, size, f.get()) == size; };
+  bool ok = put(head.data(), head.size());
+  for (const DataArray* a : arrays) {
+    const std::uint64_t length = a->bytes.size();
+    ok = ok && put(&length, sizeof length) && put(a->bytes.data(), a->bytes.size());
+  }
+  ok = ok && put(tail.data(), tail.size()) && std::fflush(f.get()) == 0;
   const int reason = errno;
   std::FILE* raw_file = f.release();
   ok = std::fclose(raw_file) == 0 && ok;
@@ -81,17 +87,16 @@ DataArray uint8(std::string name, const std::vector<std::uint8_t>& values) {
   return raw(std::move(name), "UInt8", 1, values.data(), values.size());
 }
 DataArray vectors(std::string name, const std::vector<Vec3>& values) {
-  std::vector<double> flat;
-  flat.reserve(3 * values.size());
-  for (const Vec3& v : values) flat.insert(flat.end(), {v.x(), v.y(), v.z()});
-  return raw(std::move(name), "Float64", 3, flat.data(), flat.size());
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "a Vec3 is its three doubles, x y z, unpadded");
+  return raw(std::move(name), "Float64", 3, reinterpret_cast<const double*>(values.data()), 3 * values.size());
 }
 
 void write(const std::string& path, const Dataset& data, double time) {
   Appended appended;
   std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"" + data.type +
                     "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<" + data.type + ">\n";
-  xml += "<FieldData>\n" + appended.element(float64("TimeValue", {time}), 1) + "</FieldData>\n<Piece";
+  const DataArray time_value = float64("TimeValue", {time});
+  xml += "<FieldData>\n" + appended.element(time_value, 1) + "</FieldData>\n<Piece";
   for (const auto& [name, count] : data.counts) xml += " " + name + "=\"" + std::to_string(count) + "\"";
   xml += ">\n<PointData>\n";
   for (const DataArray& a : data.point_data) xml += appended.element(a);
@@ -104,7 +109,7 @@ void write(const std::string& path, const Dataset& data, double time) {
     xml += "</" + section + ">\n";
   }
   xml += "</Piece>\n</" + data.type + ">\n<AppendedData encoding=\"raw\">\n_";
-  write_whole(path, xml, appended.block(), "\n</AppendedData>\n</VTKFile>\n");
+  write_whole(path, xml, appended.arrays(), "\n</AppendedData>\n</VTKFile>\n");
 }
 
 namespace {
@@ -123,7 +128,7 @@ SeriesFile::SeriesFile(std::string path, const std::vector<SeriesEntry>& entries
       "<Collection>\n";
   for (const SeriesEntry& e : entries) xml += series_entry(e);
   const std::string beside = path_ + ".tmp";
-  write_whole(beside, xml, kSeriesEnd, "");
+  write_whole(beside, xml, {}, kSeriesEnd);
   std::error_code ec;
   std::filesystem::rename(beside, path_, ec);
   if (ec) throw std::runtime_error("cannot write " + path_ + ": " + ec.message());

@@ -220,7 +220,8 @@ std::optional<std::pair<std::string, std::int64_t>> frame_file(const std::string
   return std::make_pair(m[1].str(), step);
 }
 
-constexpr const char* kSeriesNames[] = {"particles.pvd", "contacts.pvd", "bonds.pvd", "walls.pvd", "walls.vtp"};
+// the files of a run that are not frames: its series and its walls that stay
+constexpr const char* kRunFiles[] = {"particles.pvd", "contacts.pvd", "bonds.pvd", "walls.pvd", "walls.vtp"};
 
 }  // namespace
 
@@ -230,7 +231,7 @@ void VtkWriter::remove_earlier(const std::string& folder) {
   for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
     const std::string name = e.path().filename().string();
     bool ours = frame_file(name).has_value();
-    for (const char* series : kSeriesNames) ours = ours || name == series || name == std::string(series) + ".tmp";
+    for (const char* file : kRunFiles) ours = ours || name == file || name == std::string(file) + ".tmp";
     if (ours && e.is_regular_file(ec)) earlier.push_back(e.path());
   }
   for (const fs::path& p : earlier) fs::remove(p, ec);
