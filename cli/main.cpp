@@ -1,9 +1,11 @@
 // dem: run a job spec locally, check one, or drive a dem-server.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "dem/version.hpp"
 
 namespace {
 
@@ -56,7 +58,31 @@ const char* kUsage =
     "                                   exit 0: done (the job succeeded), 1: it failed or the server said no,\n"
     "                                   2: bad arguments\n"
     "\n"
-    "  dem help                                               this text\n";
+    "  dem help                                               this text (dem VERB --help: the verb's)\n"
+    "  dem --version                                          the version (also after any verb)\n";
+
+// The usage of the verbs whose own parsers have no --help: their lines of kUsage.
+const char* kRunUsage =
+    "usage: dem run SPEC.json --out DIR [--threads N] [--quiet] [--restart FILE]\n"
+    "  run a job spec, writing the legacy files, ParaView's files, results.json and restart.dat to DIR\n"
+    "  --threads N     OpenMP threads (default: all cores)\n"
+    "  --quiet         no progress line\n"
+    "  --restart FILE  continue from a saved state (e.g. DIR/restart.dat), appending to DIR's files\n"
+    "  exit 0: the run ended; 1: the spec or the run failed; 2: bad arguments\n";
+const char* kValidateUsage =
+    "usage: dem validate SPEC.json\n"
+    "  check a job spec and report every problem (each with its field's path); exit 0 valid, 1 not, 2 bad arguments\n";
+const char* kImportUsage =
+    "usage: dem import INPT.inp [MESH ...] [--out SPEC.json] [--unit METRES] [--program pdem-egd|ballastdem]\n"
+    "  a legacy INPT.inp (PDEM-EGD's: MESH the terrain, then the funnel) as a job spec, with every line's fate\n"
+    "  --out SPEC.json  where to write it (default: standard output)\n"
+    "  --unit METRES    metres per INPT length unit (default 1; 0.001 for mm)\n"
+    "  --program P      which program's INPT.inp it is (default: told from its lines)\n";
+
+bool asks_help(const std::vector<std::string>& args) {
+  return std::find(args.begin(), args.end(), "--help") != args.end() ||
+         std::find(args.begin(), args.end(), "-h") != args.end();
+}
 
 }  // namespace
 
@@ -66,8 +92,18 @@ int main(int argc, char** argv) {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
     return args.empty() ? 2 : 0;
   }
+  if (std::find(args.begin(), args.end(), "--version") != args.end() || args[0] == "version") {
+    std::printf("dem %s\n", dem::kVersion);
+    return 0;
+  }
   const std::string verb = args[0];
   args.erase(args.begin());
+  for (const auto& [name, usage] :
+       {std::pair{"run", kRunUsage}, {"validate", kValidateUsage}, {"import", kImportUsage}})
+    if (verb == name && asks_help(args)) {
+      std::fputs(usage, stdout);
+      return 0;
+    }
   if (verb == "run") return dem::cli::run_command(args);
   if (verb == "validate") return dem::cli::validate_command(args);
   if (verb == "import") return dem::cli::import_command(args);

@@ -1,11 +1,13 @@
 // libFuzzer target: the server's request path before any job is touched: Beast's parser on the raw
 // bytes, then the project's own parsing of what it gave (the target's path and query, the job id,
-// the token, the Host and Origin checks, the transfer coding). Every input is parsed or refused; none crashes.
+// the token, the Host and Origin checks, the transfer coding, the byte range of an artifact). Every
+// input is parsed or refused; none crashes, and a range kept lies inside the file.
 #include <cstdint>
 #include <string>
 
 #include <boost/beast/http.hpp>
 
+#include "server/file_response.hpp"
 #include "server/http_util.hpp"
 #include "server/request_policy.hpp"
 
@@ -32,6 +34,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (const auto origin = authority_of_origin(req[http::field::origin]))
     same_authority(*origin, req[http::field::host]);
   classify_transfer_coding(req[http::field::transfer_encoding]);
+  for (const std::uint64_t file_size : {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{1000}, UINT64_MAX}) {
+    const RangeRequest r = parse_range(req[http::field::range], file_size);
+    if (r.kind == RangeRequest::Part && (r.range.first > r.range.last || r.range.last >= file_size)) __builtin_trap();
+  }
   printable(req.body());
   return 0;
 }

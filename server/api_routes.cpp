@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <system_error>
+#include <variant>
 
 #include "core/errors.hpp"
+#include "dem/version.hpp"
 #include "server/bundled_cases.hpp"
+#include "server/file_response.hpp"
 #include "server/own_files.hpp"
 #include "server/request_policy.hpp"
-#include "server/version.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::server {
@@ -37,7 +39,8 @@ constexpr const char* kJobs = "GET, HEAD, POST, OPTIONS";
 constexpr const char* kJob = "GET, HEAD, DELETE, OPTIONS";
 constexpr const char* kAction = "POST, OPTIONS";
 
-// The methods the API resource at these segments answers; nothing when there is none.
+}  // namespace
+
 const char* allowed_methods(const std::vector<std::string>& s) {
   if (s.size() == 2 && (s[1] == "health" || s[1] == "openapi.json" || s[1] == "cases")) return kReadOnly;
   if (s.size() == 3 && s[1] == "cases") return kReadOnly;
@@ -52,11 +55,18 @@ const char* allowed_methods(const std::vector<std::string>& s) {
     if (s.size() == 2) return kJobs;
     if (s.size() == 3) return kJob;
     if (s.size() == 4 && (s[3] == "cancel" || s[3] == "resume")) return kAction;
-    if (s.size() == 4 && s[3] == "frames") return kReadOnly;
+    if (s.size() == 4 && (s[3] == "frames" || s[3] == "results")) return kReadOnly;
     if (s[3] == "artifacts") return kReadOnly;
   }
   return nullptr;
 }
+
+void drop_api_version(Target& target) {
+  std::vector<std::string>& s = target.segments;
+  if (s.size() >= 2 && s[0] == "api" && s[1] == "v1") s.erase(s.begin() + 1);
+}
+
+namespace {
 
 bool allows(const char* allowed, std::string_view method) {
   std::string_view list = allowed;
@@ -101,7 +111,7 @@ Response submit(const Request& req, ApiContext& ctx) {
                             "Idempotency-Key \"" + key + "\" was used for job " + std::to_string(s.job.id) +
                                 " with another spec: use a new key for a new job");
     Response res = json_response(req, s.created ? http::status::created : http::status::ok, to_json(s.job));
-    res.set(http::field::location, "/api/jobs/" + std::to_string(s.job.id));
+    res.set(http::field::location, std::string(kApiBase) + "/jobs/" + std::to_string(s.job.id));
     if (!s.created) res.set("Idempotent-Replayed", "true");
     return res;
   } catch (const spec::SpecError& e) {
@@ -130,7 +140,7 @@ Response create_study(const Request& req, ApiContext& ctx) {
                                 " with another study: use a new key for a new study");
     Response res =
         json_response(req, made.created ? http::status::created : http::status::ok, ctx.studies.describe(made.study));
-    res.set(http::field::location, "/api/studies/" + std::to_string(made.study.id));
+    res.set(http::field::location, std::string(kApiBase) + "/studies/" + std::to_string(made.study.id));
     if (!made.created) res.set("Idempotent-Replayed", "true");
     return res;
   } catch (const study::StudyError& e) {
@@ -166,19 +176,114 @@ http::message_generator study_resource(const Request& req, const std::vector<std
   return text_response(req, http::status::ok, "image/svg+xml", study::figure_svg(plan, rows));
 }
 
-Response list_jobs(const Request& req, const Target& target, ApiContext& ctx) {
-  std::optional<JobState> only;
-  if (const auto q = target.query.find("state"); q != target.query.end()) {
-    only = job_state_from(q->second);
-    if (!only)
-      return error_response(
-          req, http::status::bad_request,
-          "state=" + q->second + " is not a job state (queued, running, succeeded, failed, cancelled, interrupted)");
+std::vector<std::string> comma_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    items.push_back(text.substr(start, comma - start));
+    start = comma + 1;
   }
+  return items;
+}
+
+// What GET /jobs was asked for: its filters and its page.
+struct JobQuery {
+  std::vector<JobState> states;  // any of them; none: every state
+  std::optional<std::string> name;
+  std::vector<std::string> tags;  // all of them
+  std::optional<std::int64_t> limit;
+  std::int64_t after = 0;  // ids above this one
+
+  bool matches(const JobRecord& j) const {
+    if (!states.empty() && std::find(states.begin(), states.end(), j.state) == states.end()) return false;
+    if (name && j.name != *name) return false;
+    return std::all_of(tags.begin(), tags.end(), [&](const std::string& t) {
+      return std::find(j.tags.begin(), j.tags.end(), t) != j.tags.end();
+    });
+  }
+  // The same query from the job after `last` on.
+  std::string next(std::int64_t last) const {
+    // appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string here
+    std::string q = kApiBase;
+    q.append("/jobs?limit=").append(std::to_string(*limit)).append("&after=").append(std::to_string(last));
+    for (std::size_t k = 0; k < states.size(); ++k) q.append(k == 0 ? "&state=" : ",").append(to_string(states[k]));
+    if (name) q.append("&name=").append(percent_encode(*name));
+    for (std::size_t k = 0; k < tags.size(); ++k) q.append(k == 0 ? "&tag=" : "%2C").append(percent_encode(tags[k]));
+    return q;
+  }
+};
+
+constexpr std::int64_t kMaxPage = 1000;
+
+// The query's problems name the parameter and the value given; the first is answered.
+std::variant<JobQuery, std::string> parse_job_query(const Target& target) {
+  JobQuery q;
+  for (const auto& [key, value] : target.query) {
+    if (key == "state") {
+      for (const std::string& item : comma_list(value)) {
+        const std::optional<JobState> st = job_state_from(item);
+        if (!st)
+          return "state=" + value + ": \"" + item +
+                 "\" is not a job state (queued, running, succeeded, failed, cancelled, interrupted; several "
+                 "separated by commas)";
+        q.states.push_back(*st);
+      }
+    } else if (key == "name") {
+      q.name = value;
+    } else if (key == "tag") {
+      q.tags = comma_list(value);
+      for (const std::string& t : q.tags)
+        if (t.empty()) return "tag=" + value + ": an empty tag (several tags are separated by single commas)";
+    } else if (key == "limit") {
+      const std::optional<std::int64_t> n = parse_job_id(value);
+      if (!n || *n < 1 || *n > kMaxPage)
+        return "limit=" + value + ": the page's length must be a whole number from 1 to " + std::to_string(kMaxPage);
+      q.limit = n;
+    } else if (key == "after") {
+      const std::optional<std::int64_t> n = parse_job_id(value);
+      if (!n) return "after=" + value + ": a job id is expected (the last id of the page before)";
+      q.after = *n;
+    } else if (key != "access_token") {
+      return "\"" + key + "\" is not a parameter of this list (state, name, tag, limit, after)";
+    }
+  }
+  return q;
+}
+
+// GET /jobs: the jobs in id order, filtered; with ?limit=, a page, and "next" (a link, also in the
+// Link header) when more follow.
+Response list_jobs(const Request& req, const Target& target, ApiContext& ctx) {
+  const std::variant<JobQuery, std::string> parsed = parse_job_query(target);
+  if (const std::string* problem = std::get_if<std::string>(&parsed))
+    return error_response(req, http::status::bad_request, *problem);
+  const JobQuery& q = std::get<JobQuery>(parsed);
   nlohmann::json jobs = nlohmann::json::array();
-  for (const JobRecord& j : ctx.jobs.list())
-    if (!only || j.state == *only) jobs.push_back(to_json(j));
-  return json_response(req, http::status::ok, {{"jobs", jobs}});
+  std::optional<std::int64_t> last_shown;
+  bool more = false;
+  for (const JobRecord& j : ctx.jobs.list()) {  // in id order
+    if (j.id <= q.after || !q.matches(j)) continue;
+    if (q.limit && static_cast<std::int64_t>(jobs.size()) == *q.limit) {
+      more = true;
+      break;
+    }
+    jobs.push_back(to_json(j));
+    last_shown = j.id;
+  }
+  nlohmann::json body = {{"jobs", jobs}};
+  if (more) body["next"] = q.next(*last_shown);
+  Response res = json_response(req, http::status::ok, body);
+  if (more) res.set(http::field::link, "<" + q.next(*last_shown) + ">; rel=\"next\"");
+  return res;
+}
+
+// GET /jobs/{id}/results: what the run found (results.json), once it ended.
+Response job_results(const Request& req, const JobRecord& job) {
+  if (job.results.is_null())
+    return error_response(req, http::status::not_found,
+                          "job " + std::to_string(job.id) + " has no results yet: it is " + to_string(job.state) +
+                              (is_final(job.state) ? " and ended without them" : "; they come when it ends"));
+  return json_response(req, http::status::ok, job.results);
 }
 
 Response action(const Request& req, const ActionResult& r, http::status done = http::status::ok) {
@@ -212,8 +317,9 @@ Response list_artifacts(const Request& req, std::int64_t id, ApiContext& ctx) {
     found.emplace_back(JobFolder::kArchiveName, fs::file_size(folder.archive()));
   std::sort(found.begin(), found.end());
   for (const auto& [name, size] : found)
-    files.push_back(
-        {{"name", name}, {"size", size}, {"url", "/api/jobs/" + std::to_string(id) + "/artifacts/" + name}});
+    files.push_back({{"name", name},
+                     {"size", size},
+                     {"url", std::string(kApiBase) + "/jobs/" + std::to_string(id) + "/artifacts/" + name}});
   return json_response(req, http::status::ok, {{"job", id}, {"artifacts", files}});
 }
 
@@ -238,7 +344,7 @@ http::message_generator artifact(const Request& req, std::int64_t id, const std:
       file_response(req, path,
                     {{http::field::content_type, type},
                      {http::field::content_disposition, "attachment; filename=\"" + name + "\""},
-                     {http::field::cache_control, "no-store"}});
+                     {http::field::cache_control, "no-cache"}});  // kept, asked again by its ETag
   if (!file)
     return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
   return std::move(*file);
@@ -300,6 +406,7 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
   }
   if (s[3] == "cancel" || s[3] == "resume")
     return action(req, s[3] == "cancel" ? ctx.jobs.cancel(*id) : ctx.jobs.resume(*id));
+  if (s[3] == "results") return job_results(req, *job);
   if (s[3] == "frames") {
     Response res = error_response(req, http::status::upgrade_required,
                                   "the frames of job " + s[2] + " are a WebSocket stream: connect with ws://");

@@ -241,6 +241,7 @@ void HttpSession::on_read(beast::error_code ec, std::size_t) {
   deadline_.cancel();
   Request req = parser_->release();
   Target target = *parse_target(req.target());  // checked with the header
+  drop_api_version(target);
   const bool api = !target.segments.empty() && target.segments[0] == "api";
   if (api && websocket::is_upgrade(req)) return upgrade(req, target);
   // Checking a submission builds its simulation (dem validate's checks), which for a large scene

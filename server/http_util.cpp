@@ -68,6 +68,22 @@ std::optional<Target> parse_target(std::string_view target) {
   return out;
 }
 
+std::string percent_encode(std::string_view text) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  std::string out;
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') {
+      out += ch;
+    } else {
+      out += '%';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
+}
+
 http::response<http::string_body> text_response(const Request& req, http::status status,
                                                 const std::string& content_type, std::string body) {
   http::response<http::string_body> res{status, req.version()};
@@ -89,35 +105,17 @@ http::response<http::string_body> json_response(const Request& req, http::status
 
 http::response<http::string_body> error_response(const Request& req, http::status status, const std::string& message,
                                                  const std::vector<std::string>& problems) {
-  nlohmann::json body = {{"error", message}};
+  // RFC 9457: "about:blank" says the status is all the type there is, and the title is its phrase.
+  // "error" repeats the detail for the clients written against the first answers ({"error"}).
+  nlohmann::json body = {{"type", "about:blank"},
+                         {"title", std::string(http::obsolete_reason(status))},
+                         {"status", static_cast<unsigned>(status)},
+                         {"detail", message},
+                         {"error", message}};
+  if (!req.target().empty()) body["instance"] = std::string(req.target());
   if (!problems.empty()) body["problems"] = problems;
-  return json_response(req, status, body);
-}
-
-std::optional<http::message_generator> file_response(const Request& req, const std::filesystem::path& path,
-                                                     const Headers& headers) {
-  std::error_code is_file_error;
-  if (!std::filesystem::is_regular_file(path, is_file_error)) return std::nullopt;
-  boost::beast::error_code ec;
-  http::file_body::value_type body;
-  body.open(path.c_str(), boost::beast::file_mode::scan, ec);
-  if (ec) return std::nullopt;
-  const auto size = body.size();
-  auto fill = [&](auto& res) {
-    res.set(http::field::date, http_date_now());
-    for (const auto& [field, value] : headers) res.set(field, value);
-    res.content_length(size);
-    res.keep_alive(req.keep_alive());
-  };
-  if (req.method() == http::verb::head) {
-    http::response<http::empty_body> head{http::status::ok, req.version()};
-    fill(head);
-    return http::message_generator(std::move(head));
-  }
-  http::response<http::file_body> res{std::piecewise_construct, std::make_tuple(std::move(body)),
-                                      std::make_tuple(http::status::ok, req.version())};
-  fill(res);
-  return http::message_generator(std::move(res));
+  return text_response(req, status, "application/problem+json",
+                       body.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 std::optional<std::int64_t> parse_job_id(const std::string& text) {

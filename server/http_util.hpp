@@ -26,23 +26,21 @@ struct Target {
 // to a path separator.
 std::optional<Target> parse_target(std::string_view target);
 std::optional<std::string> percent_decode(std::string_view text);
+// `text` as a query value: anything but letters, digits and - _ . ~ percent-escaped (RFC 3986 2.3).
+std::string percent_encode(std::string_view text);
 
 // A response with `body` (for HEAD: its headers alone, Content-Length included).
 http::response<http::string_body> text_response(const Request& req, http::status status,
                                                 const std::string& content_type, std::string body);
 http::response<http::string_body> json_response(const Request& req, http::status status, const nlohmann::json& body);
-// {"error": message} (plus "problems" when given).
+// RFC 9457 problem details (application/problem+json): type, title, status, detail (= message),
+// instance (the request's target), "error" (= message, as the first answers had it) and "problems"
+// (each a field path and what is wrong with it) when given.
 http::response<http::string_body> error_response(const Request& req, http::status status, const std::string& message,
                                                  const std::vector<std::string>& problems = {});
 
 // A job id as it appears in a path: decimal digits only.
 std::optional<std::int64_t> parse_job_id(const std::string& text);
-
-// The file at `path`, with `headers` (for HEAD: the headers alone, Content-Length included);
-// nothing when it is not a regular file or cannot be opened.
-using Headers = std::vector<std::pair<http::field, std::string>>;
-std::optional<http::message_generator> file_response(const Request& req, const std::filesystem::path& path,
-                                                     const Headers& headers);
 
 // Bytes from a request made safe to quote in an answer: at most 40, anything but printable ASCII as '?'.
 std::string printable(std::string_view bytes);

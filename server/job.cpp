@@ -45,6 +45,7 @@ nlohmann::json to_json(const JobRecord& job) {  // dumped with invalid UTF-8 rep
   nlohmann::json j = {
       {"id", job.id},
       {"name", job.name},
+      {"tags", job.tags},
       {"state", to_string(job.state)},
       {"progress", job.progress()},
       {"step", job.step},
@@ -70,6 +71,9 @@ nlohmann::json to_json(const JobRecord& job) {  // dumped with invalid UTF-8 rep
     j["streamSeconds"] = job.stream_seconds;
   }
   if (!job.results.is_null()) j["results"] = job.results;
+  const std::string self = std::string(kApiBase) + "/jobs/" + std::to_string(job.id);
+  j["links"] = {
+      {"self", self}, {"results", self + "/results"}, {"artifacts", self + "/artifacts"}, {"frames", self + "/frames"}};
   return j;
 }
 

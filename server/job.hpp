@@ -4,12 +4,16 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 namespace dem::server {
 
 // interrupted: it was running when the server died; it can be resumed from its last checkpoint.
+// Where the API's links point: its versioned path (/api/ is an alias of it).
+inline constexpr const char* kApiBase = "/api/v1";
+
 enum class JobState { Queued, Running, Succeeded, Failed, Cancelled, Interrupted };
 
 const char* to_string(JobState state);
@@ -19,6 +23,7 @@ bool is_final(JobState state);  // succeeded, failed or cancelled: nothing more 
 struct JobRecord {
   std::int64_t id = 0;
   std::string name;
+  std::vector<std::string> tags;  // the spec's, to find it by (GET /api/v1/jobs?tag=)
   JobState state = JobState::Queued;
   std::string created_at, started_at, finished_at;  // ISO 8601 UTC; empty until it happens
   std::string error;                                // why it failed or was interrupted

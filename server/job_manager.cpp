@@ -239,6 +239,7 @@ JobRecord JobManager::check(const api::JobSpec& spec) const {
   // the checks of `dem validate`, the time step's included
   const Simulation sim(spec::to_scene(spec, "", limits));
   job.name = spec.name();
+  job.tags.assign(spec.tags().begin(), spec.tags().end());
   job.length_unit = spec.outputs().length_unit().empty() ? "m" : spec.outputs().length_unit();
   job.particles = static_cast<std::int64_t>(sim.particles().size());
   job.total_steps = sim.total_steps();

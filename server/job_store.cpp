@@ -48,7 +48,7 @@ class Statement {
 
 constexpr const char* kColumns =
     "id, name, state, created_at, started_at, finished_at, error, idempotency_key, particles, step, total_steps, "
-    "time_step, checkpoint_step, run_seconds, stream_seconds, length_unit, results";
+    "time_step, checkpoint_step, run_seconds, stream_seconds, length_unit, results, tags";
 
 }  // namespace
 
@@ -87,10 +87,12 @@ JobStore::JobStore(const std::string& path) : path_(path) {
       " run_seconds REAL NOT NULL DEFAULT 0,"
       " stream_seconds REAL NOT NULL DEFAULT 0,"
       " length_unit TEXT NOT NULL DEFAULT 'm',"
-      " results TEXT NOT NULL DEFAULT '')");
+      " results TEXT NOT NULL DEFAULT '',"
+      " tags TEXT NOT NULL DEFAULT '[]')");
   // columns added since the table was first made: a data folder of an older server gains them
   for (const char* column : {"run_seconds REAL NOT NULL DEFAULT 0", "stream_seconds REAL NOT NULL DEFAULT 0",
-                             "length_unit TEXT NOT NULL DEFAULT 'm'", "results TEXT NOT NULL DEFAULT ''"}) {
+                             "length_unit TEXT NOT NULL DEFAULT 'm'", "results TEXT NOT NULL DEFAULT ''",
+                             "tags TEXT NOT NULL DEFAULT '[]'"}) {
     const std::string sql = std::string("ALTER TABLE jobs ADD COLUMN ") + column;
     sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr);  // fails, harmlessly, when it is there
   }
@@ -137,6 +139,10 @@ std::vector<JobRecord> JobStore::load_all() {
     // a results text the table cannot parse (never written by the server) is shown as none
     j.results = nlohmann::json::parse(q.column_text(16), nullptr, false);
     if (j.results.is_discarded()) j.results = nullptr;
+    const nlohmann::json tags = nlohmann::json::parse(q.column_text(17), nullptr, false);
+    if (tags.is_array())
+      for (const nlohmann::json& tag : tags)
+        if (tag.is_string()) j.tags.push_back(tag.get<std::string>());
     jobs.push_back(std::move(j));
   }
   return jobs;
@@ -147,12 +153,13 @@ void JobStore::insert(JobRecord& job, const std::function<void(std::int64_t)>& b
   try {
     Statement q(
         db_,
-        "INSERT INTO jobs (name, state, created_at, idempotency_key, particles, total_steps, time_step, length_unit)"
-        " VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
+        "INSERT INTO jobs (name, state, created_at, idempotency_key, particles, total_steps, time_step, length_unit,"
+        " tags) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
         path_);
     q.text(1, job.name).text(2, to_string(job.state)).text(3, job.created_at);
     if (!job.idempotency_key.empty()) q.text(4, job.idempotency_key);  // unbound stays NULL: unique only when given
     q.integer(5, job.particles).integer(6, job.total_steps).real(7, job.time_step).text(8, job.length_unit);
+    q.text(9, nlohmann::json(job.tags).dump());
     q.row();
     job.id = sqlite3_last_insert_rowid(db_);
     before_commit(job.id);

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "dem/version.hpp"
 #include "server/http_server.hpp"
 #include "server/request_policy.hpp"
 
@@ -16,6 +17,7 @@ const char* kUsage =
     "                  [--request-timeout S]\n"
     "                  [--max-connections N] [--max-connections-per-client N]\n"
     "                  [--keep-finished-days D] [--keep-finished-jobs N]\n"
+    "       dem-server --version | --help\n"
     "  --data DIR              where the job table (jobs.db) and each job's folder live (made if missing)\n"
     "  --port PORT             default 8080; 0 picks a free port (printed)\n"
     "  --address ADDR          default 127.0.0.1; any other address needs a token\n"
@@ -66,6 +68,10 @@ int main(int argc, char** argv) {
     const std::string& a = args[k];
     if (a == "-h" || a == "--help") {
       std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (a == "--version") {
+      std::printf("dem-server %s\n", dem::kVersion);
       return 0;
     }
     if (k + 1 >= args.size()) {

@@ -4,6 +4,7 @@
 #include <map>
 #include <system_error>
 
+#include "server/file_response.hpp"
 #include "server/request_policy.hpp"
 
 namespace dem::server {

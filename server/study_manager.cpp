@@ -205,7 +205,7 @@ json StudyManager::describe(const StudyRecord& study) const {
   for (const auto& [state, n] : counts) summary += (summary.empty() ? "" : ", ") + std::to_string(n) + " " + state;
   json parameters = json::array();
   for (const study::StudyParameter& parameter : p.parameters) parameters.push_back(parameter.path);
-  const std::string base = "/api/studies/" + std::to_string(study.id);
+  const std::string base = std::string(kApiBase) + "/studies/" + std::to_string(study.id);
   return {{"id", study.id},
           {"name", study.name},
           {"createdAt", study.created_at},

@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <regex>
 #include <sstream>
 #include <fstream>
@@ -20,6 +22,13 @@ std::string join(const std::vector<std::string>& lines) {
   return s;
 }
 
+std::string printable_tag(const std::string& tag) {
+  std::string shown = tag.substr(0, 64);
+  for (char& c : shown)
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+  return shown;
+}
+
 void check_triangle_count(const Scene& scene, Checker& check) {
   std::size_t triangles = 0;
   for (const WallInit& w : scene.walls)
@@ -27,6 +36,27 @@ void check_triangle_count(const Scene& scene, Checker& check) {
   if (static_cast<std::int64_t>(triangles) > check.limits.max_triangles)
     check.fail("walls", std::to_string(triangles) + " mesh triangles in all, more than the limit of " +
                             std::to_string(check.limits.max_triangles));
+}
+
+// A tag is matched in a query (?tag=a,b): no commas, spaces or escapes to get wrong, and short.
+void check_tags(const api::JobSpec& spec, Checker& check) {
+  constexpr int kMaxTags = 32;
+  constexpr std::size_t kMaxTagBytes = 64;
+  if (spec.tags_size() > kMaxTags)
+    check.fail("tags", "at most " + std::to_string(kMaxTags) + " tags (got " + std::to_string(spec.tags_size()) + ")");
+  for (int k = 0; k < spec.tags_size() && k < kMaxTags; ++k) {
+    const std::string& tag = spec.tags(k);
+    const std::string path = "tags[" + std::to_string(k) + "]";
+    const bool allowed = std::all_of(tag.begin(), tag.end(), [](unsigned char c) {
+      return std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == ':' || c == '=';
+    });
+    if (tag.empty() || tag.size() > kMaxTagBytes || !allowed)
+      check.fail(path, "\"" + printable_tag(tag) + "\" is not a tag: 1 to " + std::to_string(kMaxTagBytes) +
+                           " letters, digits and - _ . : =");
+    for (int j = 0; j < k; ++j)
+      if (spec.tags(j) == tag)
+        check.fail(path, "\"" + tag + "\" is given twice (also tags[" + std::to_string(j) + "])");
+  }
 }
 
 }  // namespace
@@ -123,6 +153,7 @@ Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const Spec
     check.fail("name", "must be at most " + std::to_string(limits.max_name) + " bytes (got " +
                            std::to_string(spec.name().size()) + ")");
   check.printable_name("name", spec.name());
+  check_tags(spec, check);
   Scene scene;
   scene.name = spec.name();
   SpecContext ctx(check, base_dir, scene);

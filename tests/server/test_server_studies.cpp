@@ -38,7 +38,7 @@ TEST_F(ServerStudies, AStudyIsOneRequestAndItsTableComesFromItsJobsResults) {
   ASSERT_EQ(r.status, 201) << r.body;
   const nlohmann::json created = nlohmann::json::parse(r.body);
   const long id = created["id"];
-  EXPECT_EQ(r.header("location"), "/api/studies/" + std::to_string(id));
+  EXPECT_EQ(r.header("location"), "/api/v1/studies/" + std::to_string(id));
   ASSERT_EQ(created["jobs"].size(), 3u);
   const nlohmann::json done = wait_finished(id);
   EXPECT_EQ(done["counts"]["succeeded"], 3) << done.dump();
