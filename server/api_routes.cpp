@@ -334,11 +334,13 @@ http::message_generator artifact(const Request& req, std::int64_t id, const std:
   const bool own = is_own_folder(folder.root) && (tar || is_own_folder(folder.outputs())) && is_own_file(path);
   if (!own)  // a link planted in the job's folder leads anywhere (/etc/shadow): never followed
     return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
-  // the legacy files and results are text; ParaView's series is XML, its frames binary after an XML header
+  // the legacy files and results are text, the time series' twins CSV; ParaView's series is XML, its frames
+  // binary after an XML header
   const std::string extension = fs::path(name).extension().string();
   const char* type = tar                                          ? "application/x-tar"
                      : extension == ".pvd"                        ? "application/xml"
                      : extension == ".vtu" || extension == ".vtp" ? "application/octet-stream"
+                     : extension == ".csv"                        ? "text/csv; charset=utf-8"
                                                                   : "text/plain; charset=utf-8";
   std::optional<http::message_generator> file =
       file_response(req, path,

@@ -47,6 +47,7 @@ void load_run_settings(const api::JobSpec& spec, SpecContext& ctx) {
   scene.outputs.animation = o.has_animation() ? o.animation() : true;
   scene.outputs.force_chains = o.force_chains();
   scene.outputs.vtk = o.has_vtk() ? o.vtk() : true;
+  scene.outputs.csv = o.has_csv() ? o.csv() : true;
   scene.outputs.length_unit = length_unit(o.length_unit(), check);
   scene.outputs.length_unit_name = o.length_unit().empty() ? "m" : o.length_unit();
   if (!api::Outputs::NumberFormat_IsValid(o.number_format()))

@@ -205,6 +205,7 @@ struct OutputSettings {
   // last this many frames; the time series (energy, statistics, walls) keep every frame. 0: all.
   std::int64_t last_frames = 0;
   bool vtk = true;  // ParaView's files (output/vtk_output.hpp)
+  bool csv = true;  // the time series' CSV twins (output/csv_table.hpp)
 };
 
 struct NumericsSettings {

@@ -2,7 +2,13 @@
 
 namespace dem {
 
-EnergyWriter::EnergyWriter(const std::string& path, bool append) : file_(path, append) {}
+EnergyWriter::EnergyWriter(const std::string& path, bool csv, bool append)
+    : file_(path,
+            {"time (s)", "kinetic translation (J)", "kinetic rotation (J)", "elastic contacts (J)", "elastic bonds (J)",
+             "gravitational (J)", "work of walls (J)", "work of external forces (J)", "work of growth (J)",
+             "dissipated (J)", "momentum x (N s)", "momentum y (N s)", "momentum z (N s)", "angular momentum x (N m s)",
+             "angular momentum y (N m s)", "angular momentum z (N m s)"},
+            csv, append) {}
 
 std::vector<double> EnergyWriter::make_row(const Simulation& sim) {
   const double kinetic = sim.kinetic_energy(), rotation = sim.rotational_energy();
@@ -16,7 +22,7 @@ std::vector<double> EnergyWriter::make_row(const Simulation& sim) {
 }
 
 void EnergyWriter::frame(const Simulation& sim) {
-  legacy::write_row(file_.get(), make_row(sim), counts_format(sim));
+  file_.write(make_row(sim), counts_format(sim));
   file_.flush();
 }
 

@@ -11,20 +11,21 @@
 
 #include <string>
 
+#include "output/csv_table.hpp"
 #include "output/legacy_output.hpp"
 
 namespace dem {
 
 class EnergyWriter final : public Observer {
  public:
-  EnergyWriter(const std::string& path, bool append = false);
+  EnergyWriter(const std::string& path, bool csv, bool append = false);
   void frame(const Simulation& sim) override;
 
   // The row the writer would write now.
   static std::vector<double> make_row(const Simulation& sim);
 
  private:
-  OutputFile file_;
+  SeriesFiles file_;
 };
 
 }  // namespace dem

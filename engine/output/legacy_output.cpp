@@ -191,7 +191,9 @@ void WallForceChainWriter::frame(const Simulation& sim) {
   file_.flush();
 }
 
-ForceDisplacementWriter::ForceDisplacementWriter(const std::string& path, bool append) : file_(path, append) {}
+ForceDisplacementWriter::ForceDisplacementWriter(const std::string& path, const Simulation& sim, bool append)
+    : file_(path, {"time (s)", "displacement (" + sim.scene().outputs.length_unit_name + ")", "force (N)"},
+            sim.scene().outputs.csv, append) {}
 
 bool ForceDisplacementWriter::wanted(const Simulation& sim) {
   for (const WallInit& w : sim.scene().walls)
@@ -212,9 +214,10 @@ void ForceDisplacementWriter::frame(const Simulation& sim) {
   const int k = loading_wall(sim);
   if (k < 0) return;
   const double unit = sim.scene().outputs.length_unit;
-  legacy::write_force_displacement_row(
-      file_.get(), {sim.time(), sim.wall_driver(k).load_displacement() / unit, sim.wall_driver(k).applied_force()},
-      file_format(sim));
+  const legacy::ForceDisplacementRow row{sim.time(), sim.wall_driver(k).load_displacement() / unit,
+                                         sim.wall_driver(k).applied_force()};
+  legacy::write_force_displacement_row(file_.dat(), row, file_format(sim));
+  file_.write_csv({row.time, row.displacement, row.force});
   file_.flush();
 }
 

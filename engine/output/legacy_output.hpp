@@ -8,40 +8,16 @@
 #include <string>
 
 #include "legacy/legacy_formats.hpp"
+#include "output/csv_table.hpp"
+#include "output/output_file.hpp"
 #include "sim/runner.hpp"
 
 namespace dem {
-
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
 // The number format of a run's files (outputs.numberFormat), and of its columns that hold counts and
 // times (never the legacy fixed widths, which would round them).
 legacy::NumberFormat file_format(const Simulation& sim);
 legacy::NumberFormat counts_format(const Simulation& sim);
-
-// Opens `path` for writing (appending: a run continued from a saved state adds to its files);
-// throws std::runtime_error naming the path and the system's reason.
-FilePtr open_for_writing(const std::string& path, bool append = false);
-
-// An output file of a run: flush() (after each frame) throws std::runtime_error naming the file and
-// the system's reason when anything written since it was opened did not reach the system (a full
-// disk, a quota, an I/O error), so that a run never ends "succeeded" with files cut short. What was
-// flushed before stays readable.
-class OutputFile {
- public:
-  OutputFile() = default;
-  OutputFile(const std::string& path, bool append) : file_(open_for_writing(path, append)), path_(path) {}
-  std::FILE* get() const { return file_.get(); }
-  explicit operator bool() const { return file_ != nullptr; }
-  void flush();
-
- private:
-  FilePtr file_;
-  std::string path_;
-};
 
 // ANIMATION_3D.dat: particles (and plates) in the scene's file length unit.
 class AnimationWriter final : public Observer {
@@ -100,14 +76,14 @@ class WallForceChainWriter final : public Observer {
 // load-controlled wall) at each output time.
 class ForceDisplacementWriter final : public Observer {
  public:
-  explicit ForceDisplacementWriter(const std::string& path, bool append = false);
+  ForceDisplacementWriter(const std::string& path, const Simulation& sim, bool append = false);
   void frame(const Simulation& sim) override;
   static int loading_wall(const Simulation& sim);  // index in Scene::walls, or -1 (now)
   // Some wall has a load, from the start or from a stage on (rows are written while one has).
   static bool wanted(const Simulation& sim);
 
  private:
-  OutputFile file_;
+  SeriesFiles file_;
 };
 
 // restart.dat: the whole state at each frame (sim/state_io.hpp), replaced atomically, so that a run

@@ -56,11 +56,12 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
     writers.push_back(
         particle_frames(std::make_unique<WallForceChainWriter>((dir / "Wall_ForceChain_3D.dat").string(), append)));
   if (ForceDisplacementWriter::wanted(sim))
-    writers.push_back(std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string(), append));
+    writers.push_back(
+        std::make_unique<ForceDisplacementWriter>((dir / "Force_Displacement.dat").string(), sim, append));
   writers.push_back(std::make_unique<StatisticsWriter>(dir.string(), sim, append));
   if (WallStatisticsWriter::wanted(sim))
-    writers.push_back(std::make_unique<WallStatisticsWriter>(dir.string(), append));
-  writers.push_back(std::make_unique<EnergyWriter>((dir / "Energy.dat").string(), append));
+    writers.push_back(std::make_unique<WallStatisticsWriter>(dir.string(), scene.outputs.csv, append));
+  writers.push_back(std::make_unique<EnergyWriter>((dir / "Energy.dat").string(), scene.outputs.csv, append));
   if (!append) VtkWriter::remove_earlier(dir.string());  // on or off: none of another run's stays
   if (scene.outputs.vtk) writers.push_back(particle_frames(std::make_unique<VtkWriter>(dir.string(), sim, append)));
   if (StageLogWriter::wanted(sim))

@@ -6,16 +6,34 @@
 
 namespace dem {
 
+namespace {
+std::string in_length(const Simulation& sim, const std::string& name) {
+  return name + " (" + sim.scene().outputs.length_unit_name + ")";
+}
+}  // namespace
+
 StatisticsWriter::StatisticsWriter(const std::string& folder, const Simulation& sim, bool append)
-    : mass_centre_(folder + "/Masscenter.dat", append),
-      max_displacement_(folder + "/Disp_Max.dat", append),
-      coordination_(folder + "/Coord_OL.dat", append) {
+    : mass_centre_(folder + "/Masscenter.dat",
+                   {"time (s)", in_length(sim, "x"), in_length(sim, "y"), in_length(sim, "z")}, sim.scene().outputs.csv,
+                   append),
+      max_displacement_(folder + "/Disp_Max.dat", {"time (s)", in_length(sim, "largest displacement")},
+                        sim.scene().outputs.csv, append),
+      coordination_(folder + "/Coord_OL.dat",
+                    {"time (s)", "coordination number (-)", "mean overlap over radius sum (-)"},
+                    sim.scene().outputs.csv, append) {
+  const bool csv = sim.scene().outputs.csv;
   // bonds now, or from the stage that glues them (the rows before count every sphere as a fragment)
   const bool glued_later = sim.scene().bonds && sim.scene().bonding_stage() >= 0;
   if (!sim.bonds().empty() || glued_later) {
-    fragments_ = OutputFile(folder + "/Fragments.dat", append);
-    fragment_sizes_ = OutputFile(folder + "/Fragment_Sizes.dat", append);
-    breaks_ = OutputFile(folder + "/Bond_Breaks.dat", append);
+    fragments_ = SeriesFiles(folder + "/Fragments.dat",
+                             {"time (s)", "fragments", "particles in the largest", "intact bonds",
+                              "bonds broken in tension", "bonds broken in shear"},
+                             csv, append);
+    fragment_sizes_ = SeriesFiles(folder + "/Fragment_Sizes.dat",
+                                  {"time (s)", "fragment size (particles)", "fragments of that size"}, csv, append);
+    breaks_ =
+        SeriesFiles(folder + "/Bond_Breaks.dat",
+                    {"time of the break (s)", "particle i", "particle j", "mode (1 tension; 2 shear)"}, csv, append);
     // a continued run has written the breaks before its saved state already
     const std::vector<int>& id = sim.particles().id;
     if (append)
@@ -46,8 +64,8 @@ void StatisticsWriter::frame(const Simulation& sim) {
   }
   if (mass > 0) centre /= mass;
   const double t = sim.time();
-  legacy::write_row(mass_centre_.get(), {t, centre.x() / unit, centre.y() / unit, centre.z() / unit}, format);
-  legacy::write_row(max_displacement_.get(), {t, largest / unit}, format);
+  mass_centre_.write({t, centre.x() / unit, centre.y() / unit, centre.z() / unit}, format);
+  max_displacement_.write({t, largest / unit}, format);
 
   const std::vector<int> contacts = sim.contact_counts();
   double coordination = 0, overlap = 0;
@@ -57,10 +75,9 @@ void StatisticsWriter::frame(const Simulation& sim) {
     const double rs = p.radius[c.i] + p.radius[c.j];
     overlap += (rs - (p.x[c.i] - p.x[c.j]).norm()) / rs;
   }
-  legacy::write_row(coordination_.get(),
-                    {t, n > 0 ? coordination / static_cast<double>(n) : 0.0,
-                     pairs.empty() ? 0.0 : overlap / static_cast<double>(pairs.size())},
-                    format);
+  coordination_.write({t, n > 0 ? coordination / static_cast<double>(n) : 0.0,
+                       pairs.empty() ? 0.0 : overlap / static_cast<double>(pairs.size())},
+                      format);
   mass_centre_.flush();
   max_displacement_.flush();
   coordination_.flush();
@@ -72,15 +89,14 @@ void StatisticsWriter::frame(const Simulation& sim) {
     int biggest = 0;
     for (const auto& [f, count] : size) biggest = std::max(biggest, count);
     const BondCounts c = sim.bonds().counts();
-    legacy::write_row(fragments_.get(),
-                      {t, static_cast<double>(size.size()), static_cast<double>(biggest), static_cast<double>(c.intact),
-                       static_cast<double>(c.tension), static_cast<double>(c.shear)},
-                      counts);
+    fragments_.write({t, static_cast<double>(size.size()), static_cast<double>(biggest), static_cast<double>(c.intact),
+                      static_cast<double>(c.tension), static_cast<double>(c.shear)},
+                     counts);
     fragments_.flush();
     std::map<int, int> by_size;  // fragment size -> how many
     for (const auto& [f, count] : size) ++by_size[count];
     for (const auto& [s, count] : by_size)
-      legacy::write_row(fragment_sizes_.get(), {t, static_cast<double>(s), static_cast<double>(count)}, counts);
+      fragment_sizes_.write({t, static_cast<double>(s), static_cast<double>(count)}, counts);
     fragment_sizes_.flush();
     struct Break {
       double time;
@@ -98,9 +114,7 @@ void StatisticsWriter::frame(const Simulation& sim) {
       return x.time != y.time ? x.time < y.time : (x.i != y.i ? x.i < y.i : x.j < y.j);
     });
     for (const Break& b : fresh)
-      legacy::write_row(breaks_.get(),
-                        {b.time, static_cast<double>(b.i), static_cast<double>(b.j), static_cast<double>(b.mode)},
-                        counts);
+      breaks_.write({b.time, static_cast<double>(b.i), static_cast<double>(b.j), static_cast<double>(b.mode)}, counts);
     breaks_.flush();
   }
 }

@@ -15,6 +15,7 @@
 #include <string>
 #include <utility>
 
+#include "output/csv_table.hpp"
 #include "output/legacy_output.hpp"
 
 namespace dem {
@@ -26,7 +27,7 @@ class StatisticsWriter final : public Observer {
   void frame(const Simulation& sim) override;
 
  private:
-  OutputFile mass_centre_, max_displacement_, coordination_, fragments_, fragment_sizes_, breaks_;
+  SeriesFiles mass_centre_, max_displacement_, coordination_, fragments_, fragment_sizes_, breaks_;
   std::set<std::pair<int, int>> break_written_;  // broken bonds already written, by their particles' ids
 };
 

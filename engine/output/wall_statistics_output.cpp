@@ -5,10 +5,14 @@
 
 namespace dem {
 
-WallStatisticsWriter::WallStatisticsWriter(const std::string& folder, bool append)
-    : mean_force_(folder + "/Wall_Mean_Force_CN.dat", append),
-      coordination_pdf_(folder + "/Wall_PDF_CoordN.dat", append),
-      force_pdf_(folder + "/Wall_PDF_ForceChain.dat", append) {}
+WallStatisticsWriter::WallStatisticsWriter(const std::string& folder, bool csv, bool append)
+    : mean_force_(folder + "/Wall_Mean_Force_CN.dat",
+                  {"time (s)", "mean wall contact force (N)", "wall coordination number (-)", "wall contacts"}, csv,
+                  append),
+      coordination_pdf_(folder + "/Wall_PDF_CoordN.dat", {"time (s)", "coordination number", "share of the grains (-)"},
+                        csv, append),
+      force_pdf_(folder + "/Wall_PDF_ForceChain.dat", {"time (s)", "force bin centre (N)", "probability density (1/N)"},
+                 csv, append) {}
 
 std::vector<std::pair<double, double>> WallStatisticsWriter::force_density(const std::vector<double>& forces) {
   double sum = 0, largest = 0;
@@ -46,8 +50,7 @@ void WallStatisticsWriter::frame(const Simulation& sim) {
   const auto wall_count = static_cast<double>(walls.size());
   int present = 0;  // a staged run's walls there now
   for (int k = 0; k < static_cast<int>(sim.scene().walls.size()); ++k) present += sim.wall_present(k);
-  legacy::write_row(mean_force_.get(),
-                    {t, walls.empty() ? 0.0 : wall_force / wall_count,
+  mean_force_.write({t, walls.empty() ? 0.0 : wall_force / wall_count,
                      present > 0 ? wall_count / static_cast<double>(present) : 0.0, wall_count},
                     format);
   mean_force_.flush();
@@ -74,8 +77,7 @@ void WallStatisticsWriter::frame(const Simulation& sim) {
   }
   for (int z : per_body) count_grain(z);
   for (std::size_t z = 0; z < grains_with.size(); ++z)
-    legacy::write_row(coordination_pdf_.get(),
-                      {t, static_cast<double>(z), grains_with[z] / static_cast<double>(grains)}, format);
+    coordination_pdf_.write({t, static_cast<double>(z), grains_with[z] / static_cast<double>(grains)}, format);
   coordination_pdf_.flush();
 
   std::vector<double> forces;
@@ -83,8 +85,7 @@ void WallStatisticsWriter::frame(const Simulation& sim) {
   forces.reserve(pairs.size() + walls.size());
   for (const PairContact& c : pairs) forces.push_back(std::max(c.fn, 0.0));
   for (const WallContact& c : walls) forces.push_back(std::max(c.fn, 0.0));
-  for (const auto& [centre, density] : force_density(forces))
-    legacy::write_row(force_pdf_.get(), {t, centre, density}, format);
+  for (const auto& [centre, density] : force_density(forces)) force_pdf_.write({t, centre, density}, format);
   force_pdf_.flush();
 }
 

@@ -25,7 +25,7 @@ class WallStatisticsWriter final : public Observer {
  public:
   static bool wanted(const Simulation& sim) { return !sim.scene().walls.empty(); }
   // Opens the files in `folder` (appending for a continued run).
-  WallStatisticsWriter(const std::string& folder, bool append = false);
+  WallStatisticsWriter(const std::string& folder, bool csv, bool append = false);
   void frame(const Simulation& sim) override;
 
   // The normal forces' histogram as (bin centre, density) rows: [0, the largest force] in
@@ -33,7 +33,7 @@ class WallStatisticsWriter final : public Observer {
   static std::vector<std::pair<double, double>> force_density(const std::vector<double>& forces);
 
  private:
-  OutputFile mean_force_, coordination_pdf_, force_pdf_;
+  SeriesFiles mean_force_, coordination_pdf_, force_pdf_;
 };
 
 }  // namespace dem

@@ -49,6 +49,7 @@ TEST_F(ServerJobs, SubmittedAsJsonAndAsProtobufGiveTheBytesOfDemRun) {
          std::vector<std::pair<std::string, std::string>>{{"ANIMATION_3D.dat", "text/plain; charset=utf-8"},
                                                           {"ForceChain_3D.dat", "text/plain; charset=utf-8"},
                                                           {"Masscenter.dat", "text/plain; charset=utf-8"},
+                                                          {"Masscenter.csv", "text/csv; charset=utf-8"},
                                                           {"particles.pvd", "application/xml"},
                                                           {"particles_0000000600.vtu", "application/octet-stream"},
                                                           {"contacts_0000000600.vtp", "application/octet-stream"},
