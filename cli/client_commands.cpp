@@ -116,25 +116,71 @@ int status_command(const std::vector<std::string>& args) {
   });
 }
 
+// `text` as a query value (RFC 3986 2.3: anything but letters, digits and - _ . ~ escaped).
+std::string query_value(const std::string& text) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  std::string out;
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~' || c == ',') {
+      out += ch;
+    } else {
+      out += '%';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
+}
+
 int list_command(const std::vector<std::string>& args) {
-  static const Verb verb{"list", "list [--state S] [--json]", "", {"--state"}, {"--json"}, 0, 0};
+  static const Verb verb{"list",     "list [--state S[,S]] [--tag T[,T]] [--name N] [--json]",
+                         "",         {"--state", "--tag", "--name"},
+                         {"--json"}, 0,
+                         0};
   VerbArgs a;
   if (const auto exit = parse_verb_args(verb, args, a)) return *exit;
-  const std::string state = a.value("--state");
   static const std::set<std::string> kStates = {"queued", "running", "succeeded", "failed", "cancelled", "interrupted"};
-  if (a.values.count("--state") && !kStates.count(state))
-    return usage_error(
-        verb, "--state is one of queued, running, succeeded, failed, cancelled, interrupted (got \"" + state + "\")");
+  const std::string states = a.value("--state");
+  for (std::size_t at = 0; a.values.count("--state") && at <= states.size();) {
+    const std::size_t comma = std::min(states.find(',', at), states.size());
+    const std::string state = states.substr(at, comma - at);
+    if (!kStates.count(state))
+      return usage_error(verb,
+                         "--state is one or more of queued, running, succeeded, failed, cancelled, interrupted, "
+                         "separated by commas (got \"" +
+                             state + "\")");
+    at = comma + 1;
+  }
+  // pages of 200 (the server's list of thousands of jobs, each with its results, is megabytes)
+  std::string query = "?limit=200";
+  for (const char* option : {"--state", "--tag", "--name"})
+    if (a.values.count(option)) query += "&" + std::string(option + 2) + "=" + query_value(a.value(option));
   return with_server(verb, a, [&](const ServerApi& api) {
-    const std::string target = state.empty() ? "/api/jobs" : "/api/jobs?state=" + state;
-    const client::Response response = api.send("GET", target);
+    nlohmann::json jobs = nlohmann::json::array();
+    std::set<std::string> read;  // a server's next link back to a page read would list for ever
+    for (std::string target = "/api/v1/jobs" + query; !target.empty();) {
+      if (!read.insert(target).second) {
+        std::fprintf(stderr, "dem list: the server's next page is a page already read: %s\n",
+                     printable(target).c_str());
+        return 1;
+      }
+      const nlohmann::json page = api.json_of(api.send("GET", target), target);
+      for (const nlohmann::json& job : page.value("jobs", nlohmann::json::array())) jobs.push_back(job);
+      const std::string next = page.value("next", "");
+      if (!next.empty() && next.rfind("/api/", 0) != 0) {  // a link elsewhere: not this server's
+        std::fprintf(stderr, "dem list: the server's next page is not under /api/: %s\n", printable(next).c_str());
+        return 1;
+      }
+      target = next;
+    }
     if (a.flag("--json")) {
-      print_body(response.body);
+      print_body(nlohmann::json{{"jobs", jobs}}.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
       return 0;
     }
-    const nlohmann::json jobs = api.json_of(response, target).value("jobs", nlohmann::json::array());
     if (jobs.empty()) {
-      std::fprintf(stderr, "no %sjobs\n", state.empty() ? "" : (state + " ").c_str());
+      const bool filtered = a.values.count("--state") || a.values.count("--tag") || a.values.count("--name");
+      std::fprintf(stderr, "no jobs%s\n", filtered ? " of these filters" : "");
       return 0;
     }
     std::printf("%8s  %-11s  %8s  %-21s  %s\n", "ID", "STATE", "PROGRESS", "STEP", "NAME");

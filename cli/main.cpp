@@ -12,7 +12,8 @@ namespace {
 const char* kUsage =
     "usage:\n"
     "  dem run SPEC.json --out DIR [--threads N] [--quiet] [--restart FILE]\n"
-    "                                   run a job spec, writing the legacy files and restart.dat to DIR;\n"
+    "                                   run a job spec, writing the legacy files, their CSV twins, ParaView's\n"
+    "                                   files, results.json and restart.dat to DIR;\n"
     "                                   --restart FILE continues from a saved state (e.g. DIR/restart.dat),\n"
     "                                   appending to DIR's files\n"
     "  dem validate SPEC.json                                 check a job spec and report every problem\n"
@@ -47,7 +48,9 @@ const char* kUsage =
     "                                   send a job spec to dem-server (mesh files go inline) and print the\n"
     "                                   job id (--quiet: only the id); --wait follows the job to its end\n"
     "  dem status ID [--json]                                 one line on a job (--json: the server's JSON)\n"
-    "  dem list [--state S] [--json]                          the server's jobs, or those in state S\n"
+    "  dem list [--state S[,S]] [--tag T[,T]] [--name N] [--json]\n"
+    "                                   the server's jobs (every page), or those in these states, with all\n"
+    "                                   these tags, of this name\n"
     "  dem cancel ID                                          stop a queued or running job\n"
     "  dem resume ID                                          continue an interrupted job\n"
     "  dem watch ID                                           show a job's progress until it ends\n"
@@ -64,7 +67,8 @@ const char* kUsage =
 // The usage of the verbs whose own parsers have no --help: their lines of kUsage.
 const char* kRunUsage =
     "usage: dem run SPEC.json --out DIR [--threads N] [--quiet] [--restart FILE]\n"
-    "  run a job spec, writing the legacy files, ParaView's files, results.json and restart.dat to DIR\n"
+    "  run a job spec, writing the legacy files, their CSV twins, ParaView's files, results.json and restart.dat\n"
+    "  to DIR\n"
     "  --threads N     OpenMP threads (default: all cores)\n"
     "  --quiet         no progress line\n"
     "  --restart FILE  continue from a saved state (e.g. DIR/restart.dat), appending to DIR's files\n"
@@ -79,6 +83,9 @@ const char* kImportUsage =
     "  --unit METRES    metres per INPT length unit (default 1; 0.001 for mm)\n"
     "  --program P      which program's INPT.inp it is (default: told from its lines)\n";
 
+const std::string kVerbs[] = {"run",    "validate", "import", "study",  "plot",   "chains", "deposits",
+                              "submit", "status",   "list",   "cancel", "resume", "watch",  "fetch"};
+
 bool asks_help(const std::vector<std::string>& args) {
   return std::find(args.begin(), args.end(), "--help") != args.end() ||
          std::find(args.begin(), args.end(), "-h") != args.end();
@@ -92,11 +99,13 @@ int main(int argc, char** argv) {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
     return args.empty() ? 2 : 0;
   }
-  if (std::find(args.begin(), args.end(), "--version") != args.end() || args[0] == "version") {
+  const std::string verb = args[0];
+  const bool known = std::find(std::begin(kVerbs), std::end(kVerbs), verb) != std::end(kVerbs);
+  if (verb == "--version" || verb == "version" ||
+      (known && std::find(args.begin(), args.end(), "--version") != args.end())) {
     std::printf("dem %s\n", dem::kVersion);
     return 0;
   }
-  const std::string verb = args[0];
   args.erase(args.begin());
   for (const auto& [name, usage] :
        {std::pair{"run", kRunUsage}, {"validate", kValidateUsage}, {"import", kImportUsage}})

@@ -219,6 +219,10 @@ constexpr std::int64_t kMaxPage = 1000;
 // The query's problems name the parameter and the value given; the first is answered.
 std::variant<JobQuery, std::string> parse_job_query(const Target& target) {
   JobQuery q;
+  if (!target.repeated.empty())  // which one counts would be a guess: a filter must not loosen silently
+    return target.repeated.front() +
+           "= is given more than once: give it once (several states or tags go in one, "
+           "separated by commas)";
   for (const auto& [key, value] : target.query) {
     if (key == "state") {
       for (const std::string& item : comma_list(value)) {
@@ -233,8 +237,12 @@ std::variant<JobQuery, std::string> parse_job_query(const Target& target) {
       q.name = value;
     } else if (key == "tag") {
       q.tags = comma_list(value);
+      if (static_cast<int>(q.tags.size()) > spec::kMaxTags)
+        return "tag=" + value + ": at most " + std::to_string(spec::kMaxTags) + " tags (a job has no more)";
       for (const std::string& t : q.tags)
-        if (t.empty()) return "tag=" + value + ": an empty tag (several tags are separated by single commas)";
+        if (!spec::is_tag(t))
+          return "tag=" + value + ": \"" + t + "\" is not a tag (1 to " + std::to_string(spec::kMaxTagBytes) +
+                 " letters, digits and - _ . : =; several separated by single commas)";
     } else if (key == "limit") {
       const std::optional<std::int64_t> n = parse_job_id(value);
       if (!n || *n < 1 || *n > kMaxPage)
@@ -281,8 +289,11 @@ Response list_jobs(const Request& req, const Target& target, ApiContext& ctx) {
 Response job_results(const Request& req, const JobRecord& job) {
   if (job.results.is_null())
     return error_response(req, http::status::not_found,
-                          "job " + std::to_string(job.id) + " has no results yet: it is " + to_string(job.state) +
-                              (is_final(job.state) ? " and ended without them" : "; they come when it ends"));
+                          is_final(job.state)
+                              ? "job " + std::to_string(job.id) + " ended (" + to_string(job.state) +
+                                    ") without results: it was cancelled, or stopped before its run could write them"
+                              : "job " + std::to_string(job.id) + " has no results yet: it is " + to_string(job.state) +
+                                    "; they come when it ends");
   return json_response(req, http::status::ok, job.results);
 }
 
@@ -326,7 +337,7 @@ Response list_artifacts(const Request& req, std::int64_t id, ApiContext& ctx) {
 http::message_generator artifact(const Request& req, std::int64_t id, const std::string& name, ApiContext& ctx) {
   if (!is_artifact_name(name))
     return error_response(req, http::status::bad_request,
-                          "\"" + name + "\" is not an artifact name (a file name from GET /api/jobs/" +
+                          "\"" + name + "\" is not an artifact name (a file name from GET /api/v1/jobs/" +
                               std::to_string(id) + "/artifacts; no folders, no '..')");
   const JobFolder folder = ctx.jobs.folder(id);
   const fs::path path = name == JobFolder::kArchiveName ? folder.archive() : folder.outputs() / name;
@@ -367,7 +378,7 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
   const char* allowed = allowed_methods(s);
   if (!allowed)
     return error_response(req, http::status::not_found,
-                          "no API at " + std::string(req.target()) + " (see /api/openapi.json)");
+                          "no API at " + std::string(req.target()) + " (see /api/v1/openapi.json)");
   if (!allows(allowed, req.method_string())) return method_not_allowed(req, allowed);
   if (m == http::verb::options) {
     Response res{http::status::no_content, req.version()};

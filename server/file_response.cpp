@@ -58,12 +58,24 @@ class FileWindow {
 
 using WindowBody = http::basic_file_body<FileWindow>;
 
+// Digits, as many as given: a number past 2^64 - 1 is read as that (a position past any file).
 std::optional<std::uint64_t> parse_position(std::string_view text) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string_view::npos) return std::nullopt;
   std::uint64_t value = 0;
-  if (text.empty() || text.size() > 19) return std::nullopt;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec == std::errc::result_out_of_range) return UINT64_MAX;
   if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
   return value;
+}
+
+// Every line of a header a client may repeat, as one list (RFC 9110 5.3).
+std::string joined(const Request& req, http::field field) {
+  std::string list;
+  for (auto [at, end] = req.equal_range(field); at != end; ++at) {
+    if (!list.empty()) list += ", ";
+    list += std::string(at->value());
+  }
+  return list;
 }
 
 // A strong validator from the file's size and modification time (as nginx and Apache make theirs):
@@ -140,8 +152,7 @@ std::optional<http::message_generator> file_response(const Request& req, const s
     res.set(http::field::accept_ranges, "bytes");
     res.keep_alive(req.keep_alive());
   };
-  const auto if_none_match = req.find(http::field::if_none_match);
-  if (if_none_match != req.end() && names_tag(if_none_match->value(), tag)) {
+  if (req.count(http::field::if_none_match) > 0 && names_tag(joined(req, http::field::if_none_match), tag)) {
     http::response<http::empty_body> not_modified{http::status::not_modified, req.version()};
     fill(not_modified);  // no Content-Length in a 304 (RFC 9110 8.6)
     return http::message_generator(std::move(not_modified));
@@ -149,13 +160,14 @@ std::optional<http::message_generator> file_response(const Request& req, const s
   RangeRequest range;
   const auto range_header = req.find(http::field::range);
   const auto if_range = req.find(http::field::if_range);
-  if (req.method() == http::verb::get && range_header != req.end() &&
+  // one Range and at most one If-Range: several lines are several ranges, answered whole
+  if (req.method() == http::verb::get && req.count(http::field::range) == 1 && req.count(http::field::if_range) <= 1 &&
       (if_range == req.end() || if_range->value() == tag))
     range = parse_range(range_header->value(), size);
   if (range.kind == RangeRequest::Unsatisfiable) {
     http::response<http::string_body> res =
         error_response(req, http::status::range_not_satisfiable,
-                       "the range \"" + printable(range_header->value()) + "\" starts past the file's " +
+                       "the range \"" + printable(range_header->value()) + "\" selects none of the file's " +
                            std::to_string(size) + " bytes");
     res.set(http::field::content_range, "bytes */" + std::to_string(size));
     res.set(http::field::etag, tag);

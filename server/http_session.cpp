@@ -104,6 +104,7 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   // must not be copied: setting it throws, which once took the whole server down)
   Request head_only;
   head_only.version(head.version());
+  head_only.target(head.target());  // the problem's instance
   if (head.method() == http::verb::head) head_only.method(http::verb::head);
   if (head.version() >= 11 && head.find(http::field::host) == head.end())
     return refuse(error_response(head_only, http::status::bad_request, "an HTTP/1.1 request needs a Host header"));

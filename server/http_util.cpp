@@ -2,6 +2,7 @@
 
 #include "server/request_policy.hpp"
 
+#include <algorithm>
 #include <cctype>
 
 namespace dem::server {
@@ -56,11 +57,18 @@ std::optional<Target> parse_target(std::string_view target) {
       const std::size_t amp = query.find('&');
       const std::string_view pair = query.substr(0, amp);
       const std::size_t eq = pair.find('=');
-      std::optional<std::string> key = percent_decode(pair.substr(0, eq));
-      std::optional<std::string> value =
-          eq == std::string_view::npos ? std::optional<std::string>("") : percent_decode(pair.substr(eq + 1));
+      std::string form(pair);
+      std::replace(form.begin(), form.end(), '+', ' ');  // before decoding: "%2B" stays a '+'
+      std::optional<std::string> key = percent_decode(std::string_view(form).substr(0, eq));
+      std::optional<std::string> value = eq == std::string_view::npos
+                                             ? std::optional<std::string>("")
+                                             : percent_decode(std::string_view(form).substr(eq + 1));
       if (!key || !value) return std::nullopt;
-      out.query[*key] = *value;
+      if (!pair.empty() && !out.query.emplace(*key, *value).second) {
+        out.query[*key] = *value;
+        if (std::find(out.repeated.begin(), out.repeated.end(), *key) == out.repeated.end())
+          out.repeated.push_back(*key);
+      }
       if (amp == std::string_view::npos) break;
       query = query.substr(amp + 1);
     }

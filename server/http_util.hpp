@@ -19,7 +19,10 @@ using Request = http::request<http::string_body>;
 
 struct Target {
   std::vector<std::string> segments;  // the path's segments, percent-decoded
+  // The query's parameters, percent-decoded, '+' read as a space (HTML's form encoding, which
+  // browsers, curl --data-urlencode and Python's urlencode send); empty pairs ("a=1&&b=2") skipped.
   std::map<std::string, std::string> query;
+  std::vector<std::string> repeated;  // parameters given more than once (query keeps the last)
 };
 
 // Empty optional when the path has a bad escape ("%zz"), an encoded NUL, or a segment that decodes

@@ -84,6 +84,88 @@ class KeyWalker : public nlohmann::json_sax<nlohmann::json> {
 
 }  // namespace
 
+namespace {
+
+const char* json_kind(const nlohmann::json& v) {
+  switch (v.type()) {
+    case nlohmann::json::value_t::null:
+      return "null";
+    case nlohmann::json::value_t::object:
+      return "an object";
+    case nlohmann::json::value_t::array:
+      return "a list";
+    case nlohmann::json::value_t::string:
+      return "a string";
+    case nlohmann::json::value_t::boolean:
+      return "true or false";
+    default:
+      return "a number";
+  }
+}
+
+// What one element of a repeated field is, in the words of the parser's own messages.
+std::string expected_item(const google::protobuf::FieldDescriptor& field) {
+  using google::protobuf::FieldDescriptor;
+  switch (field.cpp_type()) {
+    case FieldDescriptor::CPPTYPE_MESSAGE:
+      return "an object";
+    case FieldDescriptor::CPPTYPE_STRING:
+      return "a string";
+    case FieldDescriptor::CPPTYPE_DOUBLE:
+    case FieldDescriptor::CPPTYPE_FLOAT:
+      return "a number";
+    case FieldDescriptor::CPPTYPE_BOOL:
+      return "true or false";
+    case FieldDescriptor::CPPTYPE_ENUM:
+      return "a name";
+    default:
+      return "a whole number";
+  }
+}
+
+// The field a key names, by either spelling the parser accepts.
+const google::protobuf::FieldDescriptor* field_named(const google::protobuf::Descriptor& message,
+                                                     const std::string& key) {
+  if (const auto* f = message.FindFieldByName(key)) return f;
+  return message.FindFieldByCamelcaseName(key);
+}
+
+void check_lists(const nlohmann::json& object, const google::protobuf::Descriptor& message, const std::string& at,
+                 std::vector<std::string>& problems) {
+  using google::protobuf::FieldDescriptor;
+  for (const auto& [key, value] : object.items()) {
+    const FieldDescriptor* field = field_named(message, key);
+    if (field == nullptr || field->is_map()) continue;  // unknown: the parser names it
+    const std::string path = at.empty() ? key : at + "." + key;
+    const bool nested = field->type() == FieldDescriptor::TYPE_MESSAGE &&
+                        field->message_type()->full_name().rfind("google.protobuf.", 0) != 0;
+    if (!field->is_repeated()) {
+      if (nested && value.is_object()) check_lists(value, *field->message_type(), path, problems);
+      continue;
+    }
+    if (!value.is_array()) {
+      if (!value.is_null()) problems.push_back(path + ": expected a list, got " + json_kind(value));
+      continue;
+    }
+    for (std::size_t k = 0; k < value.size(); ++k) {
+      const std::string item = path + "[" + std::to_string(k) + "]";
+      if (value[k].is_null() || value[k].is_array())
+        problems.push_back(item + ": expected " + expected_item(*field) + ", got " + json_kind(value[k]));
+      else if (nested && value[k].is_object())
+        check_lists(value[k], *field->message_type(), item, problems);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> list_problems(const std::string& json, const google::protobuf::Descriptor& message) {
+  std::vector<std::string> problems;
+  const nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
+  if (document.is_object()) check_lists(document, message, "", problems);
+  return problems;
+}
+
 std::vector<std::string> repeated_keys(const std::string& json) {
   KeyWalker walker;
   nlohmann::json::sax_parse(json, &walker);

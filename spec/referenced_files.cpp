@@ -49,7 +49,9 @@ std::vector<std::string> file_references(const api::JobSpec& spec) {
 void inline_files(api::JobSpec& spec, const std::string& base_dir) {
   std::vector<std::string> problems;
   for_each_mesh(spec, [&](api::Mesh& mesh, const std::string& path) {
-    if (mesh.file().empty()) return;
+    // both given: left as it is, for the loader to say so (appended, the file's triangles would
+    // number the wrong vertices)
+    if (mesh.file().empty() || mesh.vertices_size() > 0 || mesh.triangles_size() > 0) return;
     const std::filesystem::path file = resolve_file(mesh.file(), base_dir);
     TriangleMesh read;
     try {

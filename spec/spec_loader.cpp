@@ -38,19 +38,13 @@ void check_triangle_count(const Scene& scene, Checker& check) {
                             std::to_string(check.limits.max_triangles));
 }
 
-// A tag is matched in a query (?tag=a,b): no commas, spaces or escapes to get wrong, and short.
 void check_tags(const api::JobSpec& spec, Checker& check) {
-  constexpr int kMaxTags = 32;
-  constexpr std::size_t kMaxTagBytes = 64;
   if (spec.tags_size() > kMaxTags)
     check.fail("tags", "at most " + std::to_string(kMaxTags) + " tags (got " + std::to_string(spec.tags_size()) + ")");
   for (int k = 0; k < spec.tags_size() && k < kMaxTags; ++k) {
     const std::string& tag = spec.tags(k);
     const std::string path = "tags[" + std::to_string(k) + "]";
-    const bool allowed = std::all_of(tag.begin(), tag.end(), [](unsigned char c) {
-      return std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == ':' || c == '=';
-    });
-    if (tag.empty() || tag.size() > kMaxTagBytes || !allowed)
+    if (!is_tag(tag))
       check.fail(path, "\"" + printable_tag(tag) + "\" is not a tag: 1 to " + std::to_string(kMaxTagBytes) +
                            " letters, digits and - _ . : =");
     for (int j = 0; j < k; ++j)
@@ -112,6 +106,8 @@ api::JobSpec parse_json(const std::string& text) {
     for (std::string& path : repeated) path += ": is given twice in its object (the parser would keep the last one)";
     throw SpecError(repeated);
   }
+  if (std::vector<std::string> lists = list_problems(text, *api::JobSpec::descriptor()); !lists.empty())
+    throw SpecError(lists);
   api::JobSpec spec;
   google::protobuf::util::JsonParseOptions options;
   options.ignore_unknown_fields = false;
@@ -145,6 +141,12 @@ api::JobSpec read_json_file(const std::string& path) {
   } catch (const SpecError& e) {
     throw SpecError({path + ": " + e.what()});
   }
+}
+
+bool is_tag(std::string_view tag) {
+  return !tag.empty() && tag.size() <= kMaxTagBytes && std::all_of(tag.begin(), tag.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == ':' || c == '=';
+  });
 }
 
 Scene to_scene(const api::JobSpec& spec, const std::string& base_dir, const SpecLimits& limits) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -52,6 +53,12 @@ struct SpecLimits {
 // with every touching pair bonded (docs/architecture.md, "What one job may cost").
 inline constexpr double kEstimatedBytesPerParticle = 1600;
 inline constexpr double kEstimatedBytesPerBondedParticle = 3500;
+
+// A job's tags (JobSpec.tags): at most kMaxTags, each 1 to kMaxTagBytes letters, digits and
+// - _ . : = (a tag is matched in a query, ?tag=a,b: no commas, spaces or escapes to get wrong).
+inline constexpr int kMaxTags = 32;
+inline constexpr std::size_t kMaxTagBytes = 64;
+bool is_tag(std::string_view tag);
 
 // Checks the spec and builds the scene; throws SpecError listing every problem found. Mesh files
 // are read relative to `base_dir` (the spec file's folder; empty: the working directory).

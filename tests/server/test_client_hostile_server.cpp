@@ -111,7 +111,7 @@ TEST_F(ClientAgainstHostileServer, ListAndStatusPrintNoControlCharacters) {
       R"({"id": 1, "name": "a\u001b]0;owned\u0007\u001b[2Jname\r\nfake line\u202etxt.exe", "state": "succeeded", "step": 1,)"
       R"( "totalSteps": 1, "progress": 1})";
   ScriptedServer server([&](const std::string& target) -> std::string {
-    if (target == "/api/jobs") return R"({"jobs": [)" + job + "]}";
+    if (target.rfind("/api/v1/jobs?", 0) == 0) return R"({"jobs": [)" + job + "]}";
     return job;
   });
   for (const std::string verb : {"list", "status 1"}) {
@@ -123,6 +123,18 @@ TEST_F(ClientAgainstHostileServer, ListAndStatusPrintNoControlCharacters) {
     EXPECT_EQ(r.output.find("\xe2\x80\xae"), std::string::npos) << verb << ": a right-to-left override";
     EXPECT_NE(r.output.find("name"), std::string::npos) << verb << ": " << r.output;
   }
+}
+
+// A job list whose next page is one already read (a loop) is an error, not an endless listing.
+TEST_F(ClientAgainstHostileServer, ListStopsAtANextPageThatLoops) {
+  ScriptedServer server([&](const std::string& target) -> std::string {
+    if (target.find("after=2") != std::string::npos)
+      return R"({"jobs": [{"id": 3}], "next": "/api/v1/jobs?limit=200&after=1"})";
+    return R"({"jobs": [{"id": 1}], "next": "/api/v1/jobs?limit=200&after=2"})";
+  });
+  const CommandResult r = dem("list", server.url());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("a page already read"), std::string::npos) << r.output;
 }
 
 // A server that accepts and never answers, or answers without end: the client gives up with a

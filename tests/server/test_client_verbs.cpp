@@ -150,6 +150,48 @@ TEST_F(ClientVerbs, ASpecTheServerRefusesListsItsProblems) {
   EXPECT_TRUE(has(r.err, "\n  lattices[0].radius: ")) << r.err;
 }
 
+// A mesh given both as a file and inline is the spec's mistake, for the server to name: dem submit
+// appended the file's triangles to the inline ones, numbering the wrong vertices, and the job ran
+// (an independent tester's finding).
+TEST_F(ClientVerbs, AMeshGivenAsAFileAndInlineIsRefusedNotMerged) {
+  start_server();
+  write_file("floor.dat", "4 2\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n1 2 3\n1 3 4\n");
+  nlohmann::json spec = nlohmann::json::parse(short_demo_spec());
+  spec["walls"].push_back(nlohmann::json::parse(R"({"name": "both", "material": "steel", "mesh": {"file": "floor.dat",
+      "vertices": [{"x": 0}, {"x": 1}, {"y": 1}], "triangles": [{"i": 1, "j": 2, "k": 3}]}})"));
+  spec["materials"].push_back(nlohmann::json::parse(R"({"name": "steel", "rigid": true})"));
+  const Result r = dem("submit " + shell_quoted(write_file("both.json", spec.dump())));
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_TRUE(has(r.err, "walls[5].mesh.file: the server reads no files")) << r.err;  // left as given
+}
+
+// dem list takes the list's filters, several states at once, and reads every page.
+TEST_F(ClientVerbs, ListFiltersByStateTagAndName) {
+  start_server({"--jobs", "1"});
+  nlohmann::json spec = nlohmann::json::parse(short_demo_spec());
+  spec["time"]["duration"] = 0.01;
+  const long plain = submit(write_file("plain.json", spec.dump()));
+  spec["tags"] = {"bed:1"};
+  spec["name"] = "tagged run";
+  const long tagged = submit(write_file("tagged.json", spec.dump()));
+  wait_for(plain, "succeeded,failed");
+  wait_for(tagged, "succeeded,failed");
+  const Result by_tag = dem("list --tag bed:1 --state succeeded,failed --json");
+  ASSERT_EQ(by_tag.exit_code, 0) << by_tag.err;
+  const nlohmann::json jobs = nlohmann::json::parse(by_tag.out)["jobs"];
+  ASSERT_EQ(jobs.size(), 1u) << by_tag.out;
+  EXPECT_EQ(jobs[0]["id"], tagged);
+  const Result by_name = dem("list --name 'tagged run'");
+  EXPECT_EQ(by_name.exit_code, 0) << by_name.err;
+  EXPECT_TRUE(has(by_name.out, "tagged run")) << by_name.out;
+  EXPECT_FALSE(has(by_name.out, std::to_string(plain) + "  ")) << by_name.out;
+  EXPECT_EQ(nlohmann::json::parse(dem("list --json").out)["jobs"].size(), 2u);
+  const Result none = dem("list --tag nothing");
+  EXPECT_EQ(none.exit_code, 0);
+  EXPECT_TRUE(has(none.err, "no jobs of these filters")) << none.err;
+  EXPECT_EQ(dem("list --state done").exit_code, 2);
+}
+
 TEST_F(ClientVerbs, ACancelledJobEndsItsWatchWithStatusOne) {
   start_server();
   nlohmann::json spec = nlohmann::json::parse(short_demo_spec());

@@ -4,6 +4,7 @@
 #include "dem/version.hpp"
 #include "server/api_routes.hpp"
 #include "support/command.hpp"
+#include "support/raw_http.hpp"
 #include "support/server_test.hpp"
 
 namespace dem::test {
@@ -107,7 +108,7 @@ TEST_F(ServerRest, ABadQueryOrSpecIsAProblemDetailNamingWhatIsWrong) {
                                                         {"?after=-3", "after=-3"},
                                                         {"?state=done", "\"done\" is not a job state"},
                                                         {"?state=succeeded,,failed", "\"\" is not a job state"},
-                                                        {"?tag=a,,b", "an empty tag"},
+                                                        {"?tag=a,,b", "\"\" is not a tag"},
                                                         {"?stat=running", "\"stat\" is not a parameter"}}) {
     const client::Response r = client_->get("/api/v1/jobs" + query);
     EXPECT_EQ(r.status, 400) << query;
@@ -140,6 +141,55 @@ TEST_F(ServerRest, ABadQueryOrSpecIsAProblemDetailNamingWhatIsWrong) {
   EXPECT_EQ(nlohmann::json::parse(wrong.body)["title"], "Method Not Allowed");
 }
 
+// An independent tester's findings: a filter given twice kept the last silently (dropping the
+// other); '+' (form encoding: curl --data-urlencode, Python's urlencode) was not read as a space; a
+// tag no job can have was accepted; empty pairs were refused or not depending on where they stood.
+TEST_F(ServerRest, AFilterGivenTwiceOrNotATagIsRefusedAndPlusIsASpace) {
+  start_server({"--jobs", "1"});
+  const long spaced = submit_tagged("a b", "[]");
+  const long plus = submit_tagged("a+b", "[]");
+  wait_for(spaced, "succeeded,failed");
+  wait_for(plus, "succeeded,failed");
+  EXPECT_EQ(ids(list("?name=a+b")), std::vector<long>{spaced});
+  EXPECT_EQ(ids(list("?name=a%20b")), std::vector<long>{spaced});
+  EXPECT_EQ(ids(list("?name=a%2Bb")), std::vector<long>{plus});
+  EXPECT_EQ(ids(list("?limit=5&")).size(), 2u);  // empty pairs are nothing, wherever they stand
+  EXPECT_EQ(ids(list("?&limit=5")).size(), 2u);
+  EXPECT_EQ(ids(list("?&&")).size(), 2u);
+  const std::string many_tags = [] {
+    std::string t;
+    for (int k = 0; k < 33; ++k) t.append(k ? "," : "").append(std::to_string(k));  // GCC 12: no "," + string
+    return t;
+  }();
+  for (const auto& [query, says] : std::vector<std::pair<std::string, std::string>>{
+           {"?state=succeeded&state=queued", "state= is given more than once"},
+           {"?name=a&name=b", "name= is given more than once"},
+           {"?tag=x&tag=y", "tag= is given more than once"},
+           {"?limit=5&limit=1000", "limit= is given more than once"},
+           {"?tag=a%20b", "\"a b\" is not a tag"},
+           {"?tag=" + std::string(65, 'x'), "is not a tag"},
+           {"?tag=%C3%A9", "is not a tag"},
+           {"?tag=" + many_tags, "at most 32 tags"}}) {
+    const client::Response r = client_->get("/api/v1/jobs" + query);
+    EXPECT_EQ(r.status, 400) << query;
+    EXPECT_NE(nlohmann::json::parse(r.body)["detail"].get<std::string>().find(says), std::string::npos)
+        << query << ": " << r.body;
+  }
+}
+
+// Refusals made before the request is routed carry its path too (they had no instance).
+TEST_F(ServerRest, ARefusalBeforeRoutingNamesTheRequestsPath) {
+  start_server();
+  RawConnection raw(server_->port());
+  raw.send("FOO /api/v1/jobs HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+  const std::string unknown = raw.receive(10);
+  EXPECT_EQ(unknown.rfind("HTTP/1.1 501", 0), 0u) << unknown;
+  EXPECT_NE(unknown.find("\"instance\": \"/api/v1/jobs\""), std::string::npos) << unknown;
+  const client::Response expect = client_->request("GET", "/api/v1/health", "", "", {{"Expect", "foo"}});
+  EXPECT_EQ(expect.status, 417);
+  EXPECT_EQ(nlohmann::json::parse(expect.body).value("instance", ""), "/api/v1/health") << expect.body;
+}
+
 TEST_F(ServerRest, AJobsResultsAreItsResultsJsonOnceItEnds) {
   start_server({"--jobs", "1"});
   const long first = submit_tagged("long", "[]");
@@ -161,6 +211,13 @@ TEST_F(ServerRest, AJobsResultsAreItsResultsJsonOnceItEnds) {
     EXPECT_EQ(results, nlohmann::json::parse(file.body));
   }
   EXPECT_EQ(client_->request("POST", "/api/v1/jobs/" + std::to_string(first) + "/results").status, 405);
+  // a job that ended without results says so, not "yet"
+  const long cancelled = submit_tagged("cancelled", "[]");
+  client_->request("POST", "/api/v1/jobs/" + std::to_string(cancelled) + "/cancel");
+  ASSERT_EQ(wait_for(cancelled, "cancelled,succeeded")["state"], "cancelled");
+  const client::Response none = client_->get("/api/v1/jobs/" + std::to_string(cancelled) + "/results");
+  EXPECT_EQ(none.status, 404);
+  EXPECT_NE(none.body.find("ended (cancelled) without results"), std::string::npos) << none.body;
   EXPECT_EQ(client_->get("/api/v1/jobs/999/results").status, 404);
 }
 
@@ -195,7 +252,11 @@ TEST_F(ServerRest, AnArtifactIsAskedAgainByItsETagAndReadInRanges) {
                                          {"bytes=50-", 50, bytes.size() - 50},
                                          {"bytes=-7", bytes.size() - 7, 7},
                                          {"bytes=-999999999", 0, bytes.size()},
-                                         {"bytes=20-999999999", 20, bytes.size() - 20}}) {
+                                         {"bytes=20-999999999", 20, bytes.size() - 20},
+                                         // past 2^64 - 1 (they were answered whole): read as the largest number
+                                         {"bytes=20-99999999999999999999999", 20, bytes.size() - 20},
+                                         {"bytes=-99999999999999999999999", 0, bytes.size()},
+                                         {"bytes=000000000000000000000003-4", 3, 2}}) {
     const client::Response part = get({{"Range", c.range}});
     ASSERT_EQ(part.status, 206) << c.range;
     EXPECT_EQ(part.body, bytes.substr(c.first, c.length)) << c.range;
@@ -211,6 +272,17 @@ TEST_F(ServerRest, AnArtifactIsAskedAgainByItsETagAndReadInRanges) {
   }
   EXPECT_EQ(get({{"Range", "bytes=0-1"}, {"If-Range", "\"stale\""}}).status, 200);
   EXPECT_EQ(get({{"Range", "bytes=0-1"}, {"If-Range", tag}}).status, 206);
+  EXPECT_EQ(get({{"Range", "bytes=99999999999999999999-"}}).status, 416);
+  EXPECT_EQ(get({{"Range", "bytes=18446744073709551615-"}}).status, 416);
+  // a header given on two lines is one list (RFC 9110 5.3); two Range lines are two ranges: whole
+  auto status_of = [&](const std::string& headers) {
+    RawConnection raw(server_->port());
+    raw.send("GET " + url + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n" + headers + "\r\n");
+    return raw.receive(10, nullptr, "\r\n").substr(0, 12);
+  };
+  EXPECT_EQ(status_of("If-None-Match: \"other\"\r\nIf-None-Match: " + tag + "\r\n"), "HTTP/1.1 304");
+  EXPECT_EQ(status_of("Range: bytes=0-9\r\nRange: bytes=10-19\r\n"), "HTTP/1.1 200");
+  EXPECT_EQ(status_of("Range: bytes=0-9\r\n"), "HTTP/1.1 206");
   const client::Response past = get({{"Range", "bytes=" + size + "-"}});
   EXPECT_EQ(past.status, 416);
   EXPECT_EQ(past.header("content-range"), "bytes */" + size);

@@ -99,7 +99,8 @@ TEST_F(CliClient, VerbsOfOneJobNeedItsId) {
 }
 
 TEST_F(CliClient, ListOfAnUnknownStateIsAUsageError) {
-  expect_usage_error("list --state done", {"--state is one of queued, running", "(got \"done\")"});
+  expect_usage_error("list --state done", {"--state is one or more of queued, running", "(got \"done\")"});
+  expect_usage_error("list --state succeeded,,failed", {"(got \"\")"});
 }
 
 TEST_F(CliClient, FetchRefusesANameOutsideTheOutputFolder) {

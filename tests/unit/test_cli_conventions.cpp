@@ -30,6 +30,10 @@ TEST_F(CliConventions, VersionIsAnsweredAloneAndAfterAnyVerb) {
   const std::string expected = std::string("dem ") + kVersion + "\n";
   EXPECT_EQ(run_dem("--version").output, expected);
   EXPECT_EQ(run_dem("version").output, expected);
+  // not after a verb there is not (an independent tester's finding: it printed the version, exit 0)
+  const CommandResult unknown = run_dem("nosuchverb --version 2>&1");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.output.find("unknown command \"nosuchverb\""), std::string::npos) << unknown.output;
   for (const char* verb : kVerbs) {
     const CommandResult r = run_command(shell_quoted(kDem) + " " + verb + " --version 2>&1");
     EXPECT_EQ(r.exit_code, 0) << verb;

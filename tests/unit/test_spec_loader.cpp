@@ -207,6 +207,30 @@ TEST(SpecLoader, AKeyGivenTwiceIsNamed) {
   EXPECT_NO_THROW(to_scene(parse_json(kGoodSpec)));
 }
 
+// A list given as one value, a list inside a list or a null element is named: protobuf's parser
+// would take the value as a list of one, flatten the inner list and drop the null (an independent
+// tester's finding: "tags": "abc" was accepted as ["abc"]).
+TEST(SpecLoader, AListThatIsNotAListIsNamed) {
+  const auto single = problems_of(std::string(kGoodSpec).replace(1, 0, R"("tags": "abc",)"));
+  EXPECT_TRUE(has_problem(single, "tags", "expected a list, got a string")) << listing(single);
+  const auto nested = problems_of(std::string(kGoodSpec).replace(1, 0, R"("tags": [["a"]],)"));
+  EXPECT_TRUE(has_problem(nested, "tags[0]", "expected a string, got a list")) << listing(nested);
+  const auto null = problems_of(std::string(kGoodSpec).replace(1, 0, R"("tags": ["a", null],)"));
+  EXPECT_TRUE(has_problem(null, "tags[1]", "expected a string, got null")) << listing(null);
+  const auto object =
+      problems_of(good_with(R"("walls": [
+    {"name": "floor", "material": "steel", "plane": {"point": {"z": 0}, "normal": {"z": 2}}}
+  ],)",
+                            R"("walls": {"name": "floor", "material": "steel", "plane": {"normal": {"z": 1}}},)"));
+  EXPECT_TRUE(has_problem(object, "walls", "expected a list, got an object")) << listing(object);
+  const auto deep = problems_of(good_with(R"("plane": {"point": {"z": 0}, "normal": {"z": 2}})",
+                                          R"("mesh": {"vertices": [null], "triangles": {"i": 1}})"));
+  EXPECT_TRUE(has_problem(deep, "walls[0].mesh.vertices[0]", "expected an object, got null")) << listing(deep);
+  EXPECT_TRUE(has_problem(deep, "walls[0].mesh.triangles", "expected a list, got an object")) << listing(deep);
+  // a list given as null is a list left out, as the parser reads it
+  EXPECT_NO_THROW(to_scene(parse_json(std::string(kGoodSpec).replace(1, 0, R"("tags": null,)"))));
+}
+
 // A normal of any length is made unit, a tiny one too (its square underflowed: refused as zero).
 TEST(SpecLoader, ATinyNormalIsADirection) {
   const Scene s = to_scene(parse_json(good_with(R"("normal": {"z": 2})", R"("normal": {"z": 1e-300})")));
