@@ -9,24 +9,34 @@
 // contract's frame (docs/viewer.md, "The run model"); FrameDecoder keeps the last radii across
 // frames, since the server sends them only in a viewer's first frame and when they change.
 
-// Field numbers of Frame.
-const F_JOB = 1;
-const F_STEP = 2;
-const F_TOTAL_STEPS = 3;
-const F_TIME = 4;
-const F_PARTICLE_COUNT = 5;
-const F_POSITIONS = 6;
-const F_VELOCITIES = 7;
-const F_RADII = 8;
-const F_FRAGMENTS = 9;
-const F_FORCE_CHAINS = 10;
-const F_WALLS = 11;
-const F_KINETIC_ENERGY = 12;
-const F_STAGE = 15;
-const F_PLANAR = 17; // a 2D run: discs in the x-z plane
-// Field numbers of WallShape.
-const W_WALL = 1;
-const W_TRIANGLES = 2;
+// Field numbers of Frame and WallShape, by their proto names: the browser test reads
+// proto/dem.proto and checks every field of both messages is here with its number (this table once
+// drifted: clump positions and orientations were sent and silently skipped).
+export const FRAME_FIELDS = Object.freeze({
+  job: 1, step: 2, total_steps: 3, time: 4, particle_count: 5, positions: 6, velocities: 7, radii: 8,
+  fragments: 9, force_chains: 10, walls: 11, kinetic_energy: 12, clump_positions: 13,
+  clump_orientations: 14, stage: 15, absent_walls: 16, planar: 17,
+});
+export const WALL_SHAPE_FIELDS = Object.freeze({ wall: 1, triangles: 2 });
+const F_JOB = FRAME_FIELDS.job;
+const F_STEP = FRAME_FIELDS.step;
+const F_TOTAL_STEPS = FRAME_FIELDS.total_steps;
+const F_TIME = FRAME_FIELDS.time;
+const F_PARTICLE_COUNT = FRAME_FIELDS.particle_count;
+const F_POSITIONS = FRAME_FIELDS.positions;
+const F_VELOCITIES = FRAME_FIELDS.velocities;
+const F_RADII = FRAME_FIELDS.radii;
+const F_FRAGMENTS = FRAME_FIELDS.fragments;
+const F_FORCE_CHAINS = FRAME_FIELDS.force_chains;
+const F_WALLS = FRAME_FIELDS.walls;
+const F_KINETIC_ENERGY = FRAME_FIELDS.kinetic_energy;
+const F_CLUMP_POSITIONS = FRAME_FIELDS.clump_positions;
+const F_CLUMP_ORIENTATIONS = FRAME_FIELDS.clump_orientations;
+const F_STAGE = FRAME_FIELDS.stage;
+const F_ABSENT_WALLS = FRAME_FIELDS.absent_walls;
+const F_PLANAR = FRAME_FIELDS.planar; // a 2D run: discs in the x-z plane
+const W_WALL = WALL_SHAPE_FIELDS.wall;
+const W_TRIANGLES = WALL_SHAPE_FIELDS.triangles;
 
 // Wire types.
 const VARINT = 0;
@@ -174,6 +184,7 @@ export function decodeFrameMessage(data) {
     job: 0, step: 0, totalSteps: 0, time: 0, particleCount: 0,
     positions: null, velocities: null, radii: null, fragments: null, forceChains: null,
     walls: [], kineticEnergy: 0, stage: '', planar: false,
+    clumpPositions: null, clumpOrientations: null, absentWalls: [],
     present: new Set(),
   };
   while (!r.done()) {
@@ -190,14 +201,27 @@ export function decodeFrameMessage(data) {
       case F_TIME: if (wt === FIXED64) raw.time = r.double(); else known = false; break;
       case F_KINETIC_ENERGY: if (wt === FIXED64) raw.kineticEnergy = r.double(); else known = false; break;
       case F_PLANAR: if (wt === VARINT) raw.planar = r.varint() !== 0; else known = false; break;
+      case F_ABSENT_WALLS: {  // repeated uint32: packed (proto3's way) or one varint each
+        if (wt === VARINT) raw.absentWalls.push(r.varint() >>> 0);
+        else if (wt === LEN) {
+          const [s, e] = r.span();
+          const packed = new Reader(bytes, s, e);
+          while (!packed.done()) raw.absentWalls.push(packed.varint() >>> 0);
+        } else known = false;
+        break;
+      }
       case F_POSITIONS:
       case F_VELOCITIES:
       case F_RADII:
       case F_FRAGMENTS:
-      case F_FORCE_CHAINS: {
+      case F_FORCE_CHAINS:
+      case F_CLUMP_POSITIONS:
+      case F_CLUMP_ORIENTATIONS: {
         if (wt !== LEN) { known = false; break; }
         const [s, e] = r.span();
-        if (field === F_POSITIONS) raw.positions = typedCopy(bytes, s, e, Float32Array);
+        if (field === F_CLUMP_POSITIONS) raw.clumpPositions = typedCopy(bytes, s, e, Float32Array);
+        else if (field === F_CLUMP_ORIENTATIONS) raw.clumpOrientations = typedCopy(bytes, s, e, Float32Array);
+        else if (field === F_POSITIONS) raw.positions = typedCopy(bytes, s, e, Float32Array);
         else if (field === F_VELOCITIES) raw.velocities = typedCopy(bytes, s, e, Float32Array);
         else if (field === F_RADII) raw.radii = typedCopy(bytes, s, e, Float32Array);
         else if (field === F_FRAGMENTS) raw.fragments = typedCopy(bytes, s, e, Int32Array);
