@@ -16,7 +16,8 @@ class CsvTable {
  public:
   CsvTable() = default;  // writes nothing
   // The header is written when the file starts empty (a new run, or a continued one whose file
-  // was not there).
+  // was not there); a continued run's file must have this header (the same columns and units),
+  // else std::runtime_error.
   CsvTable(const std::string& path, const std::vector<std::string>& columns, bool append);
   explicit operator bool() const { return static_cast<bool>(file_); }
   void write(const std::vector<double>& row);
@@ -37,6 +38,8 @@ class SeriesFiles {
   void write(const std::vector<double>& row, legacy::NumberFormat format);
   void write_csv(const std::vector<double>& row);  // after dat() was written by such a writer
   void flush();
+  // Removes the twins another run left in `folder` (a new run's writers make their own again).
+  static void remove_earlier(const std::string& folder);
 
  private:
   OutputFile dat_;

@@ -38,6 +38,7 @@ std::vector<std::unique_ptr<Observer>> make_run_writers(const Simulation& sim, c
   const std::filesystem::path dir(folder);
   const Scene& scene = sim.scene();
   std::vector<std::unique_ptr<Observer>> writers;
+  if (!append) SeriesFiles::remove_earlier(dir.string());  // before this run's writers make theirs
   auto particle_frames = [&](std::unique_ptr<Observer> writer) -> std::unique_ptr<Observer> {
     if (scene.outputs.last_frames > 0) return std::make_unique<LastFramesOnly>(std::move(writer));
     return writer;

@@ -34,6 +34,10 @@ const std::string kSpec = R"({
   "outputs": {"everySteps": 1000, "lengthUnit": "mm", "numberFormat": "FULL"}
 })";
 
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  return text.replace(text.find(from), from.size(), to);
+}
+
 std::vector<std::string> lines_of(const fs::path& p) {
   std::ifstream in(p);
   std::vector<std::string> lines;
@@ -100,6 +104,63 @@ TEST_F(CsvOutput, AContinuedRunAppendsWithoutASecondHeader) {
   for (const char* name : {"Energy.csv", "Masscenter.csv", "Fragments.csv", "Wall_PDF_ForceChain.csv",
                            "Force_Displacement.csv", "Bond_Breaks.csv"})
     EXPECT_EQ(read(out / name), read(whole / name)) << name;
+}
+
+// An independent tester's findings: twins of series another run wrote stayed in a reused folder
+// (with outputs.csv false, or of a scene without bonds or walls); a continued run with another
+// length unit wrote metres under a header in mm; one begun without twins gave them only the rows
+// from the restart on, and one continued without them left a twin of part of the rows.
+TEST_F(CsvOutput, AReusedFolderKeepsNoTwinOfAnotherRunAndAContinuedRunKeepsItsUnits) {
+  const std::string plain = R"({"name": "one sphere falling", "materials": [{"name": "rock", "density": 2500,
+    "youngsModulus": 1e7, "poissonRatio": 0.25}], "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5,
+    "friction": 0.5}], "contact": {"normal": "HERTZ"}, "particles": [{"position": {"z": 1}, "radius": 0.01,
+    "material": "rock"}], "gravity": {"z": -9.81}, "time": {"steps": 100}, "outputs": {"everySteps": 50}})";
+  for (const std::string& second :
+       {plain, replaced(plain, R"("everySteps": 50)", R"("everySteps": 50, "csv": false)")}) {
+    const fs::path out = run(kSpec, "reused");  // every series, with bonds and walls
+    ASSERT_TRUE(fs::exists(out / "Wall_PDF_ForceChain.csv"));
+    run(second, "reused");
+    for (const fs::directory_entry& e : fs::directory_iterator(out)) {
+      if (e.path().extension() != ".csv") continue;
+      EXPECT_TRUE(second.find("\"csv\": false") == std::string::npos) << e.path().filename() << " stayed";
+      EXPECT_TRUE(fs::exists(fs::path(e.path()).replace_extension(".dat"))) << e.path().filename();
+      for (const char* other : {"Fragments.csv", "Bond_Breaks.csv", "Wall_Mean_Force_CN.csv", "Force_Displacement.csv"})
+        EXPECT_NE(e.path().filename(), other) << "another run's twin stayed";
+    }
+  }
+
+  std::string half = kSpec;
+  half.replace(half.find(R"("steps": 6000)"), 13, R"("steps": 3000)");
+  // another length unit: refused, naming the columns
+  const fs::path units = run(half, "units");
+  std::string in_metres = kSpec;
+  in_metres.replace(in_metres.find(R"("lengthUnit": "mm")"), 18, R"("lengthUnit": "m")");
+  const CommandResult refused =
+      run_dem("run " + shell_quoted(write_spec("m.json", in_metres)) + " --out " + shell_quoted(units) +
+              " --quiet --restart " + shell_quoted(units / "restart.dat"));
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_NE(refused.output.find("its columns are \"time (s),displacement (mm),force (N)\", this run's"),
+            std::string::npos)
+      << refused.output;
+
+  // begun without twins, continued with them: a twin of every row; the other way: no twin
+  const fs::path whole = run(kSpec, "whole");
+  std::string half_off = half;
+  half_off.replace(half_off.find(R"("outputs": {)"), 12, R"("outputs": {"csv": false, )");
+  const fs::path late = run(half_off, "late");
+  run(kSpec, "late", " --restart " + shell_quoted(late / "restart.dat"));
+  for (const char* name : {"Energy", "Masscenter", "Fragments"}) {
+    const std::vector<std::string> csv = lines_of(late / (std::string(name) + ".csv"));
+    const std::vector<std::string> full = lines_of(whole / (std::string(name) + ".csv"));
+    ASSERT_EQ(csv.size(), full.size()) << name;
+    EXPECT_EQ(csv.front(), full.front()) << name;
+    for (std::size_t k = 1; k < csv.size(); ++k) EXPECT_EQ(numbers_of(csv[k], ','), numbers_of(full[k], ',')) << name;
+  }
+  const fs::path dropped = run(half, "dropped");
+  std::string full_off = kSpec;
+  full_off.replace(full_off.find(R"("outputs": {)"), 12, R"("outputs": {"csv": false, )");
+  run(full_off, "dropped", " --restart " + shell_quoted(dropped / "restart.dat"));
+  EXPECT_FALSE(fs::exists(dropped / "Energy.csv")) << "a twin of part of the rows";
 }
 
 TEST_F(CsvOutput, NoneWhenTheSpecTurnsThemOffAndNoneOfAnEarlierRunStays) {

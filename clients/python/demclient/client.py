@@ -94,6 +94,8 @@ class Client:
         the same spec gives the job it made (`Job.replayed`) instead of a new one."""
         if isinstance(spec, dict):
             body, folder = spec, base_dir or ""
+        elif not isinstance(spec, (str, os.PathLike)):  # an int would be opened as a file descriptor
+            raise TypeError(f"spec: a dict or the path of a JSON file, not {type(spec).__name__}")
         else:
             body = _as_object(_read_json_file(spec), os.fspath(spec))
             folder = base_dir if base_dir is not None else os.path.dirname(os.fspath(spec))
@@ -117,13 +119,17 @@ class Client:
         if not 1 <= page_size <= 1000:  # checked here, not when the first page is fetched
             raise ValueError(f"page_size must be 1 to 1000, got {page_size}")
         query = {"limit": str(page_size), "state": _csv(state), "name": name, "tag": _csv(tag)}
-        # quote, not urlencode's default quote_plus: the server reads "+" as a plus, not a space
+        # quote: a space as %20 (the server reads "+" as a space too, as form encoding has it)
         present = {k: v for k, v in query.items() if v is not None}
         return self._pages(f"{API}/jobs?" + urlencode(present, quote_via=quote))
 
     def _pages(self, first: str) -> Iterator[Job]:
         target: str | None = first
+        read: set[str] = set()  # a next link back to a page read would list its jobs for ever
         while target:
+            if target in read:
+                raise ProtocolError(f"job list: the next page is a page already read: {target!r}")
+            read.add(target)
             page = _as_object(self._http.get_json(target), "job list")
             for job in page.get("jobs", []):
                 yield Job.from_json(job)
@@ -183,8 +189,11 @@ class Client:
         if not _ARTIFACT_NAME.fullmatch(name):
             raise ValueError(f"not an artifact name (letters, digits, . _ -, not starting with .): {name!r}")
         dest = Path(path)
-        if dest.is_dir():
+        if os.fspath(path).endswith(("/", os.sep)) or dest.is_dir():  # a folder: made if missing
+            dest.mkdir(parents=True, exist_ok=True)
             dest = dest / name
+        else:
+            dest.parent.mkdir(parents=True, exist_ok=True)
         return _download(self._http, f"{API}/jobs/{_job_id(id)}/artifacts/{quote(name)}", dest)
 
     def frames(self, id: int | Job, force_chains: bool = False, idle_timeout: float | None = None) -> FrameStream:

@@ -15,7 +15,7 @@ from unittest import mock
 from pathlib import Path
 from typing import Any
 
-from demclient import ApiError, Client, Frame, Job, SpecFileError, Study
+from demclient import ApiError, Client, Frame, Job, ProtocolError, SpecFileError, Study
 
 from .support import BINARY_DIR, ServerProcess, dem_run, pouring_spec, require_binaries, temporary_folder
 from .test_inline import SQUARE_DAT, binary_stl
@@ -135,6 +135,41 @@ class FinishedJobTest(unittest.TestCase):
                 self.assertEqual(path.stat().st_size, artifacts[name].size)
                 self.assertEqual(path.read_bytes(), (self.folder / "local" / name).read_bytes())
         self.assertEqual(list(into.glob("*.part*")), [])
+
+    def test_a_download_into_a_folder_not_there_yet_makes_it(self) -> None:
+        # an independent tester's finding: "runs/demo/" (the README's example) raised
+        # FileNotFoundError, and "out/" wrote a file named out
+        whole = (self.folder / "local" / "Energy.dat").read_bytes()
+        into = self.folder / "new" / "folder"
+        path = self.client.download(self.job, "Energy.dat", str(into) + "/")
+        self.assertEqual(path, into / "Energy.dat")
+        self.assertEqual(path.read_bytes(), whole)
+        deep = self.folder / "deep" / "missing" / "energy.txt"
+        self.assertEqual(self.client.download(self.job, "Energy.dat", deep).read_bytes(), whole)
+
+    def test_a_spec_of_another_type_is_refused_and_nothing_is_read(self) -> None:
+        read_end, write_end = os.pipe()
+        os.write(write_end, b"{}")
+        os.close(write_end)
+        try:
+            with self.assertRaises(TypeError):
+                self.client.submit(read_end)  # type: ignore[arg-type]
+            os.fstat(read_end)  # still open: it was not taken for a file to read
+        finally:
+            os.close(read_end)
+
+    def test_a_next_link_back_to_a_page_read_is_a_protocol_error(self) -> None:
+        calls = []
+
+        def page(target: str) -> dict[str, Any]:
+            calls.append(target)
+            if len(calls) > 10:  # the loop the client must stop: fail, not hang
+                raise AssertionError("the client followed a looping next link 10 times")
+            return {"jobs": [], "next": "/api/v1/jobs?after=1"}
+
+        with mock.patch.object(self.client._http, "get_json", side_effect=page):
+            with self.assertRaises(ProtocolError):
+                list(self.client.jobs())
 
     def test_a_partial_download_is_continued_with_a_range_request(self) -> None:
         whole = (self.folder / "local" / "ANIMATION_3D.dat").read_bytes()
