@@ -83,8 +83,26 @@ const char* kImportUsage =
     "  --unit METRES    metres per INPT length unit (default 1; 0.001 for mm)\n"
     "  --program P      which program's INPT.inp it is (default: told from its lines)\n";
 
-const std::string kVerbs[] = {"run",    "validate", "import", "study",  "plot",   "chains", "deposits",
-                              "submit", "status",   "list",   "cancel", "resume", "watch",  "fetch"};
+// Each verb, its command, and the usage main prints for --help when the verb's own parser has none.
+struct VerbEntry {
+  const char* name;
+  int (*command)(const std::vector<std::string>&);
+  const char* usage = nullptr;
+};
+const VerbEntry kVerbs[] = {{"run", dem::cli::run_command, kRunUsage},
+                            {"validate", dem::cli::validate_command, kValidateUsage},
+                            {"import", dem::cli::import_command, kImportUsage},
+                            {"study", dem::cli::study_command},
+                            {"plot", dem::cli::plot_command},
+                            {"chains", dem::cli::chains_command},
+                            {"deposits", dem::cli::deposits_command},
+                            {"submit", dem::cli::submit_command},
+                            {"status", dem::cli::status_command},
+                            {"list", dem::cli::list_command},
+                            {"cancel", dem::cli::cancel_command},
+                            {"resume", dem::cli::resume_command},
+                            {"watch", dem::cli::watch_command},
+                            {"fetch", dem::cli::fetch_command}};
 
 bool asks_help(const std::vector<std::string>& args) {
   return std::find(args.begin(), args.end(), "--help") != args.end() ||
@@ -100,33 +118,22 @@ int main(int argc, char** argv) {
     return args.empty() ? 2 : 0;
   }
   const std::string verb = args[0];
-  const bool known = std::find(std::begin(kVerbs), std::end(kVerbs), verb) != std::end(kVerbs);
+  const VerbEntry* entry =
+      std::find_if(std::begin(kVerbs), std::end(kVerbs), [&](const VerbEntry& v) { return verb == v.name; });
+  const bool known = entry != std::end(kVerbs);
   if (verb == "--version" || verb == "version" ||
       (known && std::find(args.begin(), args.end(), "--version") != args.end())) {
     std::printf("dem %s\n", dem::kVersion);
     return 0;
   }
   args.erase(args.begin());
-  for (const auto& [name, usage] :
-       {std::pair{"run", kRunUsage}, {"validate", kValidateUsage}, {"import", kImportUsage}})
-    if (verb == name && asks_help(args)) {
-      std::fputs(usage, stdout);
+  if (known) {
+    if (entry->usage != nullptr && asks_help(args)) {
+      std::fputs(entry->usage, stdout);
       return 0;
     }
-  if (verb == "run") return dem::cli::run_command(args);
-  if (verb == "validate") return dem::cli::validate_command(args);
-  if (verb == "import") return dem::cli::import_command(args);
-  if (verb == "study") return dem::cli::study_command(args);
-  if (verb == "plot") return dem::cli::plot_command(args);
-  if (verb == "chains") return dem::cli::chains_command(args);
-  if (verb == "deposits") return dem::cli::deposits_command(args);
-  if (verb == "submit") return dem::cli::submit_command(args);
-  if (verb == "status") return dem::cli::status_command(args);
-  if (verb == "list") return dem::cli::list_command(args);
-  if (verb == "cancel") return dem::cli::cancel_command(args);
-  if (verb == "resume") return dem::cli::resume_command(args);
-  if (verb == "watch") return dem::cli::watch_command(args);
-  if (verb == "fetch") return dem::cli::fetch_command(args);
+    return entry->command(args);
+  }
   std::fprintf(stderr, "dem: unknown command \"%s\"\n%s", verb.c_str(), kUsage);
   return 2;
 }

@@ -159,9 +159,8 @@ void check_lists(const nlohmann::json& object, const google::protobuf::Descripto
 
 }  // namespace
 
-std::vector<std::string> list_problems(const std::string& json, const google::protobuf::Descriptor& message) {
+std::vector<std::string> list_problems(const nlohmann::json& document, const google::protobuf::Descriptor& message) {
   std::vector<std::string> problems;
-  const nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
   if (document.is_object()) check_lists(document, message, "", problems);
   return problems;
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <google/protobuf/descriptor.h>
+#include <nlohmann/json.hpp>
 
 namespace dem::spec {
 
@@ -17,7 +18,7 @@ std::vector<std::string> repeated_keys(const std::string& json);
 // The lists of a spec that are not lists: protobuf's JSON parser reads a single value given for a
 // repeated field ("tags": "a", "materials": {...}) as a list of one, flattens a list inside a
 // list, and drops a null element; each is a mistake to name ("tags: expected a list, got a
-// string"). The text must be well-formed JSON; `message` is the descriptor it is read as.
-std::vector<std::string> list_problems(const std::string& json, const google::protobuf::Descriptor& message);
+// string"). `message` is the descriptor the document is read as.
+std::vector<std::string> list_problems(const nlohmann::json& document, const google::protobuf::Descriptor& message);
 
 }  // namespace dem::spec

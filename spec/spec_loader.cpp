@@ -93,9 +93,9 @@ std::string reword_protobuf_error(const std::string& message) {
 
 api::JobSpec parse_json(const std::string& text) {
   // Syntax first, with a line and column (protobuf's parser gives neither).
+  nlohmann::json document;
   try {
-    const auto syntax_only = nlohmann::json::parse(text);
-    (void)syntax_only;
+    document = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw SpecError({std::string("spec: malformed JSON: ") + e.what()});
   } catch (const nlohmann::json::exception& e) {  // a number too large for a double (1e999)
@@ -106,7 +106,7 @@ api::JobSpec parse_json(const std::string& text) {
     for (std::string& path : repeated) path += ": is given twice in its object (the parser would keep the last one)";
     throw SpecError(repeated);
   }
-  if (std::vector<std::string> lists = list_problems(text, *api::JobSpec::descriptor()); !lists.empty())
+  if (std::vector<std::string> lists = list_problems(document, *api::JobSpec::descriptor()); !lists.empty())
     throw SpecError(lists);
   api::JobSpec spec;
   google::protobuf::util::JsonParseOptions options;
