@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "cli/commands.hpp"
+#include "cli/verb_args.hpp"
 #include "cli/run_frames.hpp"
 #include "legacy/legacy_formats.hpp"
 #include "study/chain_figure.hpp"
@@ -17,19 +18,6 @@ namespace dem::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-const char* kChainsUsage =
-    "usage: dem chains RUN_DIR --times T[,T...] --out FIGURE.svg [--view x|y|z] [--unit U] [--title T]\n"
-    "         the force chains of the run in RUN_DIR (its ANIMATION_3D.dat and ForceChain_3D.dat: a spec with\n"
-    "         outputs.forceChains) at the frames nearest the times T (s), one panel each, seen along the\n"
-    "         axis --view (default y: x to the right, z up); --unit names the files' length unit. A 2D run\n"
-    "         (ANIMATION_2D.dat) is drawn in its x-z plane. At most 16 times; a frame both files hold is drawn,\n"
-    "         the nearest to each time (a word when it is more than half a frame interval away)\n";
-
-int chains_usage(const std::string& problem) {
-  std::fprintf(stderr, "dem chains: %s\n%s", problem.c_str(), kChainsUsage);
-  return 2;
-}
 
 std::vector<double> parse_times(const std::string& list) {
   if (!list.empty() && list.back() == ',') throw std::invalid_argument("--times: \"\" is not a time in seconds");
@@ -94,27 +82,30 @@ std::vector<PlaneFrame> frames_2d(const fs::path& file) {
 
 }  // namespace
 
+const Verb kChainsVerb{
+    "chains",
+    "chains RUN_DIR --times T[,T...] --out FIGURE.svg [--view x|y|z] [--unit U] [--title T]",
+    "the force chains of the run in RUN_DIR (its ANIMATION_3D.dat and ForceChain_3D.dat: a spec with "
+    "outputs.forceChains) at the frames nearest the times T (s), one panel each",
+    "the run's folder",
+    {{"--times", "T[,T...]", "the times (s), at most 16"},
+     {"--out", "FIGURE.svg", "the figure"},
+     {"--view", "x|y|z", "the axis it is seen along (default y: x to the right, z up)"},
+     {"--unit", "U", "the name of the files' length unit"},
+     {"--title", "T", "the figure's title"}},
+    1,
+    1,
+    false,
+    "A 2D run (ANIMATION_2D.dat) is drawn in its x-z plane. A frame both files hold is drawn, the nearest to each "
+    "time (a word when it is more than half a frame interval away)"};
+
 int chains_command(const std::vector<std::string>& args) {
-  std::string dir, out, times_text, view = "y", unit, title;
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    if (a == "-h" || a == "--help") {
-      std::fputs(kChainsUsage, stdout);
-      return 0;
-    }
-    if (a == "--times" || a == "--out" || a == "--view" || a == "--unit" || a == "--title") {
-      if (k + 1 >= args.size()) return chains_usage(a + " needs a value");
-      const std::string& v = args[++k];
-      (a == "--times" ? times_text : a == "--out" ? out : a == "--view" ? view : a == "--unit" ? unit : title) = v;
-    } else if (!a.empty() && a[0] == '-') {
-      return chains_usage("unknown option " + a);
-    } else if (dir.empty()) {
-      dir = a;
-    } else {
-      return chains_usage("one run folder only (got \"" + dir + "\" and \"" + a + "\")");
-    }
-  }
-  if (dir.empty()) return chains_usage("give the run's folder");
+  VerbArgs a;
+  if (const auto exit = parse_verb_args(kChainsVerb, args, a)) return *exit;
+  auto chains_usage = [](const std::string& problem) { return usage_error(kChainsVerb, problem); };
+  const std::string dir = a.positional[0], out = a.value("--out"), times_text = a.value("--times"),
+                    view = a.has("--view") ? a.value("--view") : "y", unit = a.value("--unit"),
+                    title = a.value("--title");
   if (times_text.empty()) return chains_usage("give --times");
   if (out.empty()) return chains_usage("give --out FIGURE.svg");
   std::vector<double> times;

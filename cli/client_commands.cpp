@@ -46,6 +46,19 @@ void print_body(const std::string& body) {
   if (body.empty() || body.back() != '\n') std::fputc('\n', stdout);
 }
 
+// The server's text may hold invalid UTF-8: replaced, not thrown on.
+void print_json(const nlohmann::json& value) {
+  print_body(value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));
+}
+
+// A job the server answered with: its JSON (--json) or its summary line.
+void print_job(const nlohmann::json& job, const VerbArgs& a) {
+  if (a.json)
+    print_json(job);
+  else
+    std::printf("%s\n", job_summary(job).c_str());
+}
+
 // An artifact is a plain file name of letters, digits, '.', '_' and '-', not starting with '.': the
 // server's own rule, kept here because the list comes from a server, which might not be ours (a
 // name with ESC, a line break or a right-to-left mark made files of those names).
@@ -57,14 +70,19 @@ bool is_artifact_name(const std::string& name) {
 
 }  // namespace
 
+const Verb kSubmitVerb{"submit",
+                       "submit SPEC.json [--wait] [--idempotency-key K] [--quiet] [--json]",
+                       "send a job spec to dem-server (mesh files go inline) and print the job id",
+                       "the spec file",
+                       {{"--wait", nullptr, "follow the job to its end (exit 1 if it does not succeed)"},
+                        {"--idempotency-key", "K", "the same key again gives the job first made, not a second one"},
+                        {"--quiet", nullptr, "only the job id (and nothing while waiting)"}},
+                       1,
+                       1,
+                       true};
+
 int submit_command(const std::vector<std::string>& args) {
-  static const Verb verb{"submit",
-                         "submit SPEC.json [--wait] [--idempotency-key K] [--quiet]",
-                         "the spec file",
-                         {"--idempotency-key"},
-                         {"--wait", "--quiet"},
-                         1,
-                         1};
+  static const Verb& verb = kSubmitVerb;
   VerbArgs a;
   if (const auto exit = parse_verb_args(verb, args, a)) return *exit;
   const std::string& path = a.positional[0];
@@ -93,22 +111,27 @@ int submit_command(const std::vector<std::string>& args) {
     }
     const nlohmann::json job = api.json_of(response, "/api/jobs");
     const std::int64_t id = job.value("id", std::int64_t{-1});
-    if (quiet)
+    if (a.json)
+      print_json(job);
+    else if (quiet)
       std::printf("%lld\n", static_cast<long long>(id));
     else if (response.header("idempotent-replayed") == "true")
       std::printf("already submitted with idempotency key %s: %s\n", key.c_str(), job_summary(job).c_str());
     else
       std::printf("submitted %s\n", job_summary(job).c_str());
     std::fflush(stdout);  // a script reading our output learns the id before the wait
-    return a.flag("--wait") ? watch_job(api, id, verb.name, quiet) : 0;
+    if (!a.flag("--wait")) return 0;
+    return watch_job(api, id, verb.name, quiet ? WatchOutput::quiet : a.json ? WatchOutput::json : WatchOutput::lines);
   });
 }
 
+const Verb kStatusVerb{"status", "status ID [--json]", "one line on a job", "the job id", {}, 1, 1, true};
+
 int status_command(const std::vector<std::string>& args) {
-  static const Verb verb{"status", "status ID [--json]", "the job id", {}, {"--json"}, 1, 1};
+  static const Verb& verb = kStatusVerb;
   return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
     const client::Response response = api.send("GET", job_target(id));
-    if (a.flag("--json"))
+    if (a.json)
       print_body(response.body);
     else
       std::printf("%s\n", job_summary(api.json_of(response, job_target(id))).c_str());
@@ -133,16 +156,25 @@ std::string query_value(const std::string& text) {
   return out;
 }
 
+const Verb kListVerb{
+    "list",
+    "list [--state S[,S]] [--tag T[,T]] [--name N] [--json]",
+    "the server's jobs (every page), or those in these states, with all these tags, of this name",
+    "",
+    {{"--state", "S[,S]", "queued, running, succeeded, failed, cancelled or interrupted; several: any of them"},
+     {"--tag", "T[,T]", "jobs with every one of these tags"},
+     {"--name", "N", "jobs of this name"}},
+    0,
+    0,
+    true};
+
 int list_command(const std::vector<std::string>& args) {
-  static const Verb verb{"list",     "list [--state S[,S]] [--tag T[,T]] [--name N] [--json]",
-                         "",         {"--state", "--tag", "--name"},
-                         {"--json"}, 0,
-                         0};
+  static const Verb& verb = kListVerb;
   VerbArgs a;
   if (const auto exit = parse_verb_args(verb, args, a)) return *exit;
   static const std::set<std::string> kStates = {"queued", "running", "succeeded", "failed", "cancelled", "interrupted"};
   const std::string states = a.value("--state");
-  for (std::size_t at = 0; a.values.count("--state") && at <= states.size();) {
+  for (std::size_t at = 0; a.has("--state") && at <= states.size();) {
     const std::size_t comma = std::min(states.find(',', at), states.size());
     const std::string state = states.substr(at, comma - at);
     if (!kStates.count(state))
@@ -155,7 +187,7 @@ int list_command(const std::vector<std::string>& args) {
   // pages of 200 (the server's list of thousands of jobs, each with its results, is megabytes)
   std::string query = "?limit=200";
   for (const char* option : {"--state", "--tag", "--name"})
-    if (a.values.count(option)) query += "&" + std::string(option + 2) + "=" + query_value(a.value(option));
+    if (a.has(option)) query += "&" + std::string(option + 2) + "=" + query_value(a.value(option));
   return with_server(verb, a, [&](const ServerApi& api) {
     nlohmann::json jobs = nlohmann::json::array();
     std::set<std::string> read;  // a server's next link back to a page read would list for ever
@@ -174,12 +206,12 @@ int list_command(const std::vector<std::string>& args) {
       }
       target = next;
     }
-    if (a.flag("--json")) {
-      print_body(nlohmann::json{{"jobs", jobs}}.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    if (a.json) {
+      print_json(nlohmann::json{{"jobs", jobs}});
       return 0;
     }
     if (jobs.empty()) {
-      const bool filtered = a.values.count("--state") || a.values.count("--tag") || a.values.count("--name");
+      const bool filtered = a.has("--state") || a.has("--tag") || a.has("--name");
       std::fprintf(stderr, "no jobs%s\n", filtered ? " of these filters" : "");
       return 0;
     }
@@ -194,39 +226,66 @@ int list_command(const std::vector<std::string>& args) {
   });
 }
 
+const Verb kCancelVerb{"cancel", "cancel ID [--json]", "stop a queued or running job", "the job id", {}, 1, 1, true};
+
 int cancel_command(const std::vector<std::string>& args) {
-  static const Verb verb{"cancel", "cancel ID", "the job id", {}, {}, 1, 1};
-  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs&, std::int64_t id) {
-    std::printf("%s\n", job_summary(api.call("POST", job_target(id) + "/cancel")).c_str());
+  static const Verb& verb = kCancelVerb;
+  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
+    print_job(api.call("POST", job_target(id) + "/cancel"), a);
     return 0;
   });
 }
+
+const Verb kResumeVerb{
+    "resume", "resume ID [--json]", "continue an interrupted job from its last checkpoint", "the job id", {}, 1, 1,
+    true};
 
 int resume_command(const std::vector<std::string>& args) {
-  static const Verb verb{"resume", "resume ID", "the job id", {}, {}, 1, 1};
-  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs&, std::int64_t id) {
-    std::printf("%s\n", job_summary(api.call("POST", job_target(id) + "/resume")).c_str());
+  static const Verb& verb = kResumeVerb;
+  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
+    print_job(api.call("POST", job_target(id) + "/resume"), a);
     return 0;
   });
 }
 
+const Verb kWatchVerb{"watch",
+                      "watch ID [--json]",
+                      "show a job's progress until it ends (--json: then the job's JSON)",
+                      "the job id",
+                      {},
+                      1,
+                      1,
+                      true};
+
 int watch_command(const std::vector<std::string>& args) {
-  static const Verb verb{"watch", "watch ID", "the job id", {}, {}, 1, 1};
-  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs&, std::int64_t id) {
-    return watch_job(api, id, verb.name, false);
+  static const Verb& verb = kWatchVerb;
+  return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
+    return watch_job(api, id, verb.name, a.json ? WatchOutput::json : WatchOutput::lines);
   });
 }
 
+const Verb kFetchVerb{"fetch",
+                      "fetch ID [NAME ...] [--out DIR] [--json]",
+                      "download a job's files to DIR (no NAME: every file but outputs.tar, which NAME may be)",
+                      "the job id",
+                      {{"--out", "DIR", "where the files go (default: here; made if missing)"}},
+                      1,
+                      SIZE_MAX,
+                      true,
+                      "--json: a list of the files fetched ({name, path, bytes}) and of those that were not "
+                      "({name, error})"};
+
 int fetch_command(const std::vector<std::string>& args) {
-  static const Verb verb{"fetch", "fetch ID [NAME ...] [--out DIR]", "the job id", {"--out"}, {}, 1, SIZE_MAX};
+  static const Verb& verb = kFetchVerb;
   return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
     std::vector<std::string> names(a.positional.begin() + 1, a.positional.end());
     for (const std::string& name : names)
       if (!is_artifact_name(name))
         return usage_error(verb, "\"" + name + "\" is not an artifact name (a file name, no folders)");
-    const fs::path out = a.values.count("--out") ? fs::path(a.value("--out")) : fs::path(".");
+    const fs::path out = a.has("--out") ? fs::path(a.value("--out")) : fs::path(".");
     const std::string artifacts = job_target(id) + "/artifacts";
     int failed = 0;
+    nlohmann::json fetched = nlohmann::json::array(), not_fetched = nlohmann::json::array();
     if (names.empty()) {
       const nlohmann::json listed = api.call("GET", artifacts).value("artifacts", nlohmann::json::array());
       for (const nlohmann::json& file : listed) {
@@ -239,6 +298,7 @@ int fetch_command(const std::vector<std::string>& args) {
         // the list is the server's: a name that leads out of --out is never written
         std::fprintf(stderr, "dem fetch: the server listed \"%s\", which is not a plain file name: not fetched\n",
                      printable(name).c_str());
+        not_fetched.push_back({{"name", name}, {"error", "not a plain file name"}});
         ++failed;
       }
       if (names.empty() && failed == 0) {
@@ -251,12 +311,21 @@ int fetch_command(const std::vector<std::string>& args) {
       const fs::path path = out / name;
       const client::Response response = api.http().download(artifacts + "/" + name, path.string());
       if (response.status != 200) {
-        std::fprintf(stderr, "dem fetch: %s: %s\n", printable(name).c_str(), describe(api_error(response)).c_str());
+        const std::string why = describe(api_error(response));
+        std::fprintf(stderr, "dem fetch: %s: %s\n", printable(name).c_str(), why.c_str());
+        not_fetched.push_back({{"name", name}, {"error", why}});
         ++failed;
         continue;
       }
-      std::printf("%s\n", printable(path.string()).c_str());
+      if (a.json) {
+        std::error_code error;
+        const auto bytes = fs::file_size(path, error);
+        fetched.push_back({{"name", name}, {"path", path.string()}, {"bytes", error ? std::uintmax_t{0} : bytes}});
+      } else {
+        std::printf("%s\n", printable(path.string()).c_str());
+      }
     }
+    if (a.json) print_json({{"fetched", fetched}, {"notFetched", not_fetched}});
     return failed > 0 ? 1 : 0;
   });
 }

@@ -4,9 +4,14 @@
 #include <string>
 #include <vector>
 
+#include "cli/verb_args.hpp"
 #include "core/scene.hpp"
 
 namespace dem::cli {
+
+// Each verb's command line (cli/verb_args.hpp), defined beside its command.
+extern const Verb kRunVerb, kValidateVerb, kImportVerb, kStudyVerb, kPlotVerb, kChainsVerb, kDepositsVerb;
+extern const Verb kSubmitVerb, kStatusVerb, kListVerb, kCancelVerb, kResumeVerb, kWatchVerb, kFetchVerb;
 
 int run_command(const std::vector<std::string>& args);
 int validate_command(const std::vector<std::string>& args);

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "cli/commands.hpp"
+#include "cli/verb_args.hpp"
 #include "cli/run_frames.hpp"
 #include "legacy/legacy_formats.hpp"
 #include "mesh/mesh_io.hpp"
@@ -18,22 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kDepositsUsage =
-    "usage: dem deposits RUN_DIR [RUN_DIR ...] --out FIGURE.svg [--time T] [--view x|y|z] [--terrain MESH]\n"
-    "                    [--contour STEP] [--unit U] [--title T]\n"
-    "         the particles of each run (its ANIMATION_3D.dat) at its last frame, or the frame nearest T (s),\n"
-    "         one panel each at one scale, seen along --view (default z: from above, x to the right, y up),\n"
-    "         each sphere coloured by the piece it belongs to (the eight largest pieces their own colours);\n"
-    "         NAME=RUN_DIR names a panel (default: the folder's name). --terrain draws a mesh file's contour\n"
-    "         lines under every panel (the legacy format or STL), every --contour STEP (default: a round\n"
-    "         step giving 10 to 25 levels); --unit names the length unit. At most 20 runs\n";
-
 constexpr int kMostContourLevels = 1000;
-
-int deposits_usage(const std::string& problem) {
-  std::fprintf(stderr, "dem deposits: %s\n%s", problem.c_str(), kDepositsUsage);
-  return 2;
-}
 
 struct NamedRun {
   std::string name, dir;
@@ -59,32 +45,34 @@ double number_option(const std::string& name, const std::string& text) {
 
 }  // namespace
 
+const Verb kDepositsVerb{
+    "deposits",
+    "deposits RUN_DIR [RUN_DIR ...] --out FIGURE.svg [--time T] [--view x|y|z] [--terrain MESH] [--contour STEP] "
+    "[--unit U] [--title T]",
+    "the particles of each run (its ANIMATION_3D.dat) at its last frame, or the frame nearest T (s), one panel each "
+    "at one scale, each sphere coloured by the piece it belongs to (the eight largest pieces their own colours)",
+    "the runs' folders",
+    {{"--out", "FIGURE.svg", "the figure"},
+     {"--time", "T", "the frame nearest this time (s) (default: each run's last)"},
+     {"--view", "x|y|z", "the axis it is seen along (default z: from above, x to the right, y up)"},
+     {"--terrain", "MESH", "a mesh file (the legacy format or STL) whose contour lines go under every panel"},
+     {"--contour", "STEP", "the contours' step (default: a round step giving 10 to 25 levels)"},
+     {"--unit", "U", "the name of the length unit"},
+     {"--title", "T", "the figure's title"}},
+    1,
+    SIZE_MAX,
+    false,
+    "NAME=RUN_DIR names a panel (default: the folder's name). At most 20 runs"};
+
 int deposits_command(const std::vector<std::string>& args) {
-  std::string out, view = "z", terrain, unit, title, time_text_given, contour_text;
+  VerbArgs a;
+  if (const auto exit = parse_verb_args(kDepositsVerb, args, a)) return *exit;
+  auto deposits_usage = [](const std::string& problem) { return usage_error(kDepositsVerb, problem); };
+  const std::string out = a.value("--out"), view = a.has("--view") ? a.value("--view") : "z",
+                    terrain = a.value("--terrain"), unit = a.value("--unit"), title = a.value("--title"),
+                    time_text_given = a.value("--time"), contour_text = a.value("--contour");
   std::vector<NamedRun> runs;
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    if (a == "-h" || a == "--help") {
-      std::fputs(kDepositsUsage, stdout);
-      return 0;
-    }
-    if (a == "--out" || a == "--time" || a == "--view" || a == "--terrain" || a == "--contour" || a == "--unit" ||
-        a == "--title") {
-      if (k + 1 >= args.size()) return deposits_usage(a + " needs a value");
-      const std::string& v = args[++k];
-      (a == "--out"       ? out
-       : a == "--time"    ? time_text_given
-       : a == "--view"    ? view
-       : a == "--terrain" ? terrain
-       : a == "--contour" ? contour_text
-       : a == "--unit"    ? unit
-                          : title) = v;
-    } else if (!a.empty() && a[0] == '-') {
-      return deposits_usage("unknown option " + a);
-    } else {
-      runs.push_back(named_run(a));
-    }
-  }
+  for (const std::string& text : a.positional) runs.push_back(named_run(text));
   if (runs.empty()) return deposits_usage("give at least one run's folder");
   if (runs.size() > 20) return deposits_usage("at most 20 runs (got " + std::to_string(runs.size()) + ")");
   if (out.empty()) return deposits_usage("give --out FIGURE.svg");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/verb_args.hpp"
 #include "import/inpt_import.hpp"
 #include "legacy/inpt_file.hpp"
 #include "sim/simulation.hpp"
@@ -15,9 +16,6 @@
 namespace dem::cli {
 namespace {
 
-constexpr const char* kImportUsage =
-    "usage: dem import INPT.inp [MESH ...] [--out SPEC.json] [--unit METRES] [--program pdem-egd|ballastdem]\n";
-
 struct ImportArgs {
   std::string inpt;
   std::vector<std::string> meshes;
@@ -25,63 +23,48 @@ struct ImportArgs {
   import::ImportOptions options;
 };
 
-bool parse(const std::vector<std::string>& args, ImportArgs& a) {
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    const std::string& s = args[k];
-    auto value = [&]() -> const std::string* {
-      if (k + 1 >= args.size()) {
-        std::fprintf(stderr, "dem import: %s needs a value\n%s", s.c_str(), kImportUsage);
-        return nullptr;
-      }
-      return &args[++k];
-    };
-    if (s == "--out") {
-      const std::string* v = value();
-      if (!v) return false;
-      a.out = *v;
-    } else if (s == "--unit") {
-      const std::string* v = value();
-      if (!v) return false;
-      try {
-        std::size_t used = 0;
-        a.options.length_unit = std::stod(*v, &used);
-        if (used != v->size()) throw std::invalid_argument(*v);
-      } catch (const std::exception&) {
-        std::fprintf(stderr, "dem import: --unit must be a number of metres (got \"%.40s\")\n", v->c_str());
-        return false;
-      }
-    } else if (s == "--program") {
-      const std::string* v = value();
-      if (!v) return false;
-      if (*v == "pdem-egd") {
-        a.options.program = import::Program::PdemEgd;
-      } else if (*v == "ballastdem") {
-        a.options.program = import::Program::BallastDem;
-      } else {
-        std::fprintf(stderr, "dem import: --program is pdem-egd or ballastdem (got \"%s\")\n", v->c_str());
-        return false;
-      }
-    } else if (s.rfind("--", 0) == 0) {
-      std::fprintf(stderr, "dem import: unknown option %s\n%s", s.c_str(), kImportUsage);
-      return false;
-    } else if (a.inpt.empty()) {
-      a.inpt = s;
-    } else {
-      a.meshes.push_back(s);
-    }
-  }
-  if (a.inpt.empty()) {
-    std::fputs(kImportUsage, stderr);
-    return false;
-  }
-  return true;
-}
-
 }  // namespace
 
+const Verb kImportVerb{
+    "import",
+    "import INPT.inp [MESH ...] [--out SPEC.json] [--unit METRES] [--program pdem-egd|ballastdem]",
+    "a legacy INPT.inp as a job spec, with every line's fate (PDEM-EGD's: MESH the terrain, then the funnel)",
+    "the INPT.inp file",
+    {{"--out", "SPEC.json", "where the spec goes (default: standard output)"},
+     {"--unit", "METRES", "metres per INPT length unit (default 1; 0.001 for mm)"},
+     {"--program", "pdem-egd|ballastdem", "which program's INPT.inp it is (default: told from its lines)"}},
+    1,
+    SIZE_MAX,
+    false,
+    "exit status: 0 written, 1 the file cannot be read or its spec does not validate (nothing written), 2 bad "
+    "arguments"};
+
 int import_command(const std::vector<std::string>& args) {
+  VerbArgs parsed;
+  if (const auto exit = parse_verb_args(kImportVerb, args, parsed)) return *exit;
   ImportArgs a;
-  if (!parse(args, a)) return 2;
+  a.inpt = parsed.positional[0];
+  a.meshes.assign(parsed.positional.begin() + 1, parsed.positional.end());
+  a.out = parsed.value("--out");
+  if (parsed.has("--unit")) {
+    const std::string v = parsed.value("--unit");
+    try {
+      std::size_t used = 0;
+      a.options.length_unit = std::stod(v, &used);
+      if (used != v.size()) throw std::invalid_argument(v);
+    } catch (const std::exception&) {
+      return usage_error(kImportVerb, "--unit must be a number of metres (got \"" + v.substr(0, 40) + "\")");
+    }
+  }
+  if (parsed.has("--program")) {
+    const std::string v = parsed.value("--program");
+    if (v == "pdem-egd")
+      a.options.program = import::Program::PdemEgd;
+    else if (v == "ballastdem")
+      a.options.program = import::Program::BallastDem;
+    else
+      return usage_error(kImportVerb, "--program is pdem-egd or ballastdem (got \"" + v + "\")");
+  }
   namespace fs = std::filesystem;
   std::ifstream file(a.inpt, std::ios::binary);
   if (!file) {

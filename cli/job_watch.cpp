@@ -55,7 +55,8 @@ std::string job_summary(const nlohmann::json& job) {
   return printable(text);  // the name and the error are the server's (and the submitter's) text
 }
 
-int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, bool quiet) {
+int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, WatchOutput output) {
+  const bool quiet = output == WatchOutput::quiet;
   const bool terminal = isatty(STDERR_FILENO) == 1;
   std::function<void(const Progress&)> show;
   if (!quiet) show = make_progress_printer(terminal);
@@ -87,8 +88,10 @@ int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, bo
     else if (terminal)
       std::fputc('\n', stderr);
   }
+  if (output == WatchOutput::json)
+    std::printf("%s\n", job.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
   if (job.value("state", "") == "succeeded") {
-    if (!quiet) std::printf("%s\n", job_summary(job).c_str());
+    if (output == WatchOutput::lines) std::printf("%s\n", job_summary(job).c_str());
     return 0;
   }
   std::fprintf(stderr, "dem %s: %s\n", verb.c_str(), job_summary(job).c_str());

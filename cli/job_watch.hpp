@@ -13,10 +13,13 @@ namespace dem::cli {
 // "job 12 "demo": running 42.0% (step 32000/77988, 1203 steps/s, 0m38s left)", from the job JSON.
 std::string job_summary(const nlohmann::json& job);
 
-// Polls the job about twice a second until it has ended, drawing its progress on stderr unless
-// `quiet`. Returns the exit status: 0 when it succeeded (its summary then goes to stdout unless
-// `quiet`), 1 when it failed, was cancelled or interrupted (its summary, with the error, goes to
-// stderr). Throws what ServerApi throws.
-int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, bool quiet);
+// What following a job shows: its progress on stderr and a summary line at the end (lines), nothing
+// but the error (quiet), or its progress and then the job's JSON at its end on stdout (json).
+enum class WatchOutput { lines, quiet, json };
+
+// Polls the job about twice a second until it has ended. Returns the exit status: 0 when it
+// succeeded (its summary then goes to stdout unless quiet), 1 when it failed, was cancelled or
+// interrupted (its summary, with the error, goes to stderr). Throws what ServerApi throws.
+int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, WatchOutput output);
 
 }  // namespace dem::cli

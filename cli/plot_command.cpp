@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/verb_args.hpp"
 #include "study/study_plan.hpp"
 #include "study/svg_chart.hpp"
 
@@ -15,19 +16,6 @@ namespace dem::cli {
 namespace {
 
 using json = nlohmann::json;
-
-const char* kPlotUsage =
-    "usage: dem plot FILE --x COLUMN --y COLUMN [--y COLUMN ...] --out FIGURE.svg [--title T]\n"
-    "         FILE: columns of numbers (lines that are not are skipped); COLUMN: 1, 2, ..., or 2:NAME\n"
-    "       dem plot FILE.json [FILE.json ...] --rows LIST --x KEY --y KEY [--y KEY ...] --out FIGURE.svg [--title T]\n"
-    "         LIST: the path of a list of objects in the JSON file (loadedWalls[0].cycles); KEY: their fields,\n"
-    "         or KEY:NAME; several files: a line each, named in the legend by its folder, or NAME=FILE.json\n"
-    "         (one file given as NAME=FILE.json: its line so named)\n";
-
-int usage(const std::string& problem) {
-  std::fprintf(stderr, "dem plot: %s\n%s", problem.c_str(), kPlotUsage);
-  return 2;
-}
 
 // An axis given as "3:force (N)" or "travel:travel (m)": the column or key before the first colon,
 // and the label after it (none: `unlabelled` and the column or key, "column 3" or "travel").
@@ -126,36 +114,32 @@ study::Series json_rows_series(const std::string& file, const std::string& rows_
 
 }  // namespace
 
+const Verb kPlotVerb{
+    "plot",
+    "plot FILE --x COLUMN --y COLUMN [--y COLUMN ...] --out FIGURE.svg [--title T]\n"
+    "       dem plot FILE.json [FILE.json ...] --rows LIST --x KEY --y KEY [--y KEY ...] --out FIGURE.svg [--title T]",
+    "a figure of a run's columns (Force_Displacement.dat: --x 2 --y 3), or of a list's rows in JSON files "
+    "(--rows loadedWalls[0].cycles --x cycle --y settlement)",
+    "the file to plot",
+    {{"--x", "COLUMN", "the x axis: a column 1, 2, ... (or KEY with --rows), or COLUMN:NAME to name the axis"},
+     {"--y", "COLUMN", "a y axis, as --x; each --y a line", true},
+     {"--out", "FIGURE.svg", "the figure"},
+     {"--title", "T", "its title (default: the file's name)"},
+     {"--rows", "LIST", "the path of a list of objects in the JSON files (loadedWalls[0].cycles)"}},
+    1,
+    SIZE_MAX,
+    false,
+    "FILE: columns of numbers (lines that are not are skipped). With --rows, several files: a line each, named in "
+    "the legend by its folder, or NAME=FILE.json (one file given as NAME=FILE.json: its line so named)"};
+
 int plot_command(const std::vector<std::string>& args) {
-  std::string out, title, rows_path, x;
-  std::vector<std::string> files;
-  std::vector<std::string> ys;
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    if (a == "-h" || a == "--help") {
-      std::fputs(kPlotUsage, stdout);
-      return 0;
-    }
-    const bool takes_value = a == "--x" || a == "--y" || a == "--out" || a == "--title" || a == "--rows";
-    if (takes_value) {
-      if (k + 1 >= args.size()) return usage(a + " needs a value");
-      const std::string& v = args[++k];
-      if (a == "--x")
-        x = v;
-      else if (a == "--y")
-        ys.push_back(v);
-      else if (a == "--out")
-        out = v;
-      else if (a == "--title")
-        title = v;
-      else
-        rows_path = v;
-    } else if (!a.empty() && a[0] == '-') {
-      return usage("unknown option " + a);
-    } else {
-      files.push_back(a);
-    }
-  }
+  VerbArgs a;
+  if (const auto exit = parse_verb_args(kPlotVerb, args, a)) return *exit;
+  auto usage = [](const std::string& problem) { return usage_error(kPlotVerb, problem); };
+  const std::vector<std::string>& files = a.positional;
+  const std::vector<std::string> ys = a.all("--y");
+  const std::string out = a.value("--out"), rows_path = a.value("--rows"), x = a.value("--x");
+  std::string title = a.value("--title");
   if (files.empty()) return usage("missing the file to plot");
   if (files.size() > 1 && rows_path.empty())
     return usage("one file only without --rows (got \"" + files[0] + "\" and \"" + files[1] + "\")");

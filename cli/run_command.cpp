@@ -7,6 +7,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/progress_bar.hpp"
+#include "cli/verb_args.hpp"
 #include "core/errors.hpp"
 #include "output/legacy_output.hpp"
 #include "output/run_results.hpp"
@@ -19,62 +20,15 @@
 namespace dem::cli {
 namespace {
 
-struct RunArgs {
-  std::string spec;
-  std::string out;
-  int threads = -1;
-  bool quiet = false;
-  std::string restart;  // a saved state to continue from
-};
-
-// Returns false (after saying why) when the arguments are wrong.
-bool parse_run_args(const std::vector<std::string>& args, RunArgs& out) {
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    auto value = [&](const char* name) -> const std::string* {
-      if (k + 1 >= args.size()) {
-        std::fprintf(stderr, "dem run: %s needs a value\n", name);
-        return nullptr;
-      }
-      return &args[++k];
-    };
-    if (a == "--out") {
-      const std::string* v = value("--out");
-      if (!v) return false;
-      out.out = *v;
-    } else if (a == "--threads") {
-      const std::string* v = value("--threads");
-      if (!v) return false;
-      try {
-        out.threads = std::stoi(*v);
-      } catch (...) {
-        out.threads = -2;
-      }
-      if (out.threads < 0) {
-        std::fprintf(stderr, "dem run: --threads must be a whole number >= 0 (got \"%s\")\n", v->c_str());
-        return false;
-      }
-    } else if (a == "--restart") {
-      const std::string* v = value("--restart");
-      if (v == nullptr) return false;
-      out.restart = *v;
-    } else if (a == "--quiet") {
-      out.quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "dem run: unknown option %s\n", a.c_str());
-      return false;
-    } else if (out.spec.empty()) {
-      out.spec = a;
-    } else {
-      std::fprintf(stderr, "dem run: only one spec file, got \"%s\" and \"%s\"\n", out.spec.c_str(), a.c_str());
-      return false;
-    }
+// The whole text of --threads as a count >= 0, or -1.
+int thread_count(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const int n = std::stoi(text, &used);
+    return used == text.size() && n >= 0 ? n : -1;
+  } catch (const std::exception&) {
+    return -1;
   }
-  if (out.spec.empty() || out.out.empty()) {
-    std::fprintf(stderr, "usage: dem run SPEC.json --out DIR [--threads N] [--quiet] [--restart FILE]\n");
-    return false;
-  }
-  return true;
 }
 
 Scene load(const std::string& path) {
@@ -84,11 +38,36 @@ Scene load(const std::string& path) {
 
 }  // namespace
 
-int validate_command(const std::vector<std::string>& args) {
-  if (args.size() != 1) {
-    std::fprintf(stderr, "usage: dem validate SPEC.json\n");
-    return 2;
-  }
+const Verb kRunVerb{"run",
+                    "run SPEC.json --out DIR [--threads N] [--quiet] [--restart FILE]",
+                    "run a job spec, writing the legacy files, their CSV twins, ParaView's files, results.json and "
+                    "restart.dat to DIR",
+                    "the spec file",
+                    {{"--out", "DIR", "where the run's files go (made if missing)"},
+                     {"--threads", "N", "OpenMP threads (default: the spec's, else all cores)"},
+                     {"--quiet", nullptr, "no progress line"},
+                     {"--restart", "FILE",
+                      "continue from a saved state (e.g. DIR/restart.dat), appending to DIR's "
+                      "files"}},
+                    1,
+                    1,
+                    false,
+                    "exit status: 0 the run ended, 1 the spec or the run failed, 2 bad arguments"};
+
+const Verb kValidateVerb{"validate",
+                         "validate SPEC.json",
+                         "check a job spec and report every problem, each with its field's path",
+                         "the spec file",
+                         {},
+                         1,
+                         1,
+                         false,
+                         "exit status: 0 valid, 1 not, 2 bad arguments"};
+
+int validate_command(const std::vector<std::string>& arguments) {
+  VerbArgs parsed;
+  if (const auto exit = parse_verb_args(kValidateVerb, arguments, parsed)) return *exit;
+  const std::vector<std::string>& args = parsed.positional;
   try {
     const Scene scene = load(args[0]);
     Simulation sim(scene);  // also checks what needs the scene assembled (the time step)
@@ -171,12 +150,17 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, int
 }
 
 int run_command(const std::vector<std::string>& args) {
-  RunArgs a;
-  if (!parse_run_args(args, a)) return 2;
+  VerbArgs a;
+  if (const auto exit = parse_verb_args(kRunVerb, args, a)) return *exit;
+  const std::string& spec = a.positional[0];
+  if (!a.has("--out")) return usage_error(kRunVerb, "missing --out DIR: where the run's files go");
+  int threads = -1;
+  if (a.has("--threads") && (threads = thread_count(a.value("--threads"))) < 0)
+    return usage_error(kRunVerb, "--threads must be a whole number >= 0 (got \"" + a.value("--threads") + "\")");
   try {
-    return run_scene(load(a.spec), a.spec, a.out, a.threads, a.quiet, a.restart);
+    return run_scene(load(spec), spec, a.value("--out"), threads, a.flag("--quiet"), a.value("--restart"));
   } catch (const spec::SpecError& e) {
-    std::fprintf(stderr, "%s: invalid spec:\n", a.spec.c_str());
+    std::fprintf(stderr, "%s: invalid spec:\n", spec.c_str());
     for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dem run: %s\n", e.what());

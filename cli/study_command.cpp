@@ -26,15 +26,36 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-const Verb kVerb{"study",
-                 "study STUDY.json --out DIR [--jobs N] [--threads N] [--quiet] [--plan] | study STUDY.json --out DIR "
-                 "--submit "
-                 "[--detach] | study --id ID --out DIR",
-                 "the study file",
-                 {"--out", "--threads", "--jobs", "--id"},
-                 {"--quiet", "--plan", "--submit", "--detach"},
-                 0,
-                 1};
+}  // namespace
+
+const Verb kStudyVerb{
+    "study",
+    "study STUDY.json --out DIR [--jobs N] [--threads N] [--quiet] [--plan]\n"
+    "       dem study STUDY.json --out DIR --submit [--detach] [--json]\n"
+    "       dem study --id ID --out DIR [--json]",
+    "a parameter study: the base spec's runs for each value (or combination of values) of the fields it names, "
+    "into DIR/run-NNN, then DIR/study.csv, study.json (one row per run: its values and its results.json) and "
+    "study.svg (each result against the first parameter); runs done before with the same spec are kept; with --submit "
+    "the runs are jobs of a dem-server",
+    "the study file",
+    {{"--out", "DIR", "where the runs, the table and the figure go"},
+     {"--jobs", "N", "N runs at once (1-64), each with cores/N threads and its lines in its run.log"},
+     {"--threads", "N", "OpenMP threads of each run (default: the cores, shared by --jobs)"},
+     {"--quiet", nullptr, "no progress lines"},
+     {"--plan", nullptr, "list the runs and check every spec, run nothing"},
+     {"--submit", nullptr,
+      "run the study on a dem-server (its jobs run there); wait for them and download the table "
+      "and the figure into DIR"},
+     {"--detach", nullptr, "with --submit: do not wait"},
+     {"--id", "ID", "follow a study already on the server to its end, then download its table and figure"}},
+    0,
+    1,
+    true,
+    "--server, --token, --timeout and --json go with --submit and --id; --json prints the study's JSON at the end "
+    "(with --detach: as submitted) and its progress lines on stderr"};
+
+namespace {
+const Verb& kVerb = kStudyVerb;
 
 json read_json(const fs::path& path, const std::string& what) {
   std::error_code error;
@@ -252,7 +273,8 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
 }
 
 // Follows a server's study until every job has ended, then downloads its table and figure.
-int follow(const ServerApi& api, std::int64_t id, const fs::path& out) {
+int follow(const ServerApi& api, std::int64_t id, const fs::path& out, bool as_json) {
+  std::FILE* lines = as_json ? stderr : stdout;  // --json: stdout has the study's JSON only
   const std::string target = "/api/studies/" + std::to_string(id);
   std::string last;
   json study;
@@ -260,8 +282,8 @@ int follow(const ServerApi& api, std::int64_t id, const fs::path& out) {
     study = api.call("GET", target);
     const std::string line = "study " + std::to_string(id) + ": " + study.value("summary", std::string());
     if (line != last) {
-      std::printf("%s\n", line.c_str());
-      std::fflush(stdout);
+      std::fprintf(lines, "%s\n", line.c_str());
+      std::fflush(lines);
       last = line;
     }
     if (study.value("finished", false)) break;
@@ -273,8 +295,9 @@ int follow(const ServerApi& api, std::int64_t id, const fs::path& out) {
   write_text(out / "study.svg", api.send("GET", target + "/figure.svg").body);
   int failed = 0;
   for (const json& job : study.value("jobs", json::array())) failed += job.value("state", "") != "succeeded";
-  std::printf("study %lld: table %s, figure %s\n", static_cast<long long>(id), (out / "study.csv").c_str(),
-              (out / "study.svg").c_str());
+  std::fprintf(lines, "study %lld: table %s, figure %s\n", static_cast<long long>(id), (out / "study.csv").c_str(),
+               (out / "study.svg").c_str());
+  if (as_json) std::printf("%s\n", study.dump(2, ' ', false, json::error_handler_t::replace).c_str());
   return failed == 0 ? 0 : 1;
 }
 
@@ -296,18 +319,18 @@ int study_command(const std::vector<std::string>& args) {
   if (const auto exit = parse_verb_args(kVerb, args, a)) return *exit;
   const std::string out = a.value("--out");
   const bool plan_only = a.flag("--plan");
-  if (a.values.count("--id")) {
+  if (a.has("--id")) {
     const std::optional<std::int64_t> id = job_id(a.value("--id"));
     if (!id) return usage_error(kVerb, "a study id is a whole number (got \"" + a.value("--id") + "\")");
     if (!a.positional.empty()) return usage_error(kVerb, "--id follows a study on the server: give no study file");
     if (out.empty()) return usage_error(kVerb, "--out DIR: where the table and the figure go");
-    return with_server(kVerb, a, [&](const ServerApi& api) { return follow(api, *id, out); });
+    return with_server(kVerb, a, [&](const ServerApi& api) { return follow(api, *id, out, a.json); });
   }
   if (a.positional.empty()) return usage_error(kVerb, "missing the study file");
   if (out.empty() && !plan_only && !a.flag("--detach"))
     return usage_error(kVerb, "--out DIR: where the runs, the table and the figure go");
   int threads = -1;
-  if (a.values.count("--threads")) {
+  if (a.has("--threads")) {
     try {
       std::size_t used = 0;
       threads = std::stoi(a.value("--threads"), &used);
@@ -319,7 +342,7 @@ int study_command(const std::vector<std::string>& args) {
       return usage_error(kVerb, "--threads is a whole number >= 0 (got \"" + a.value("--threads") + "\")");
   }
   int jobs = 1;
-  if (a.values.count("--jobs")) {
+  if (a.has("--jobs")) {
     const std::string& text = a.value("--jobs");
     const bool digits = !text.empty() && text.size() <= 2 &&
                         std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
@@ -343,6 +366,7 @@ int study_command(const std::vector<std::string>& args) {
     }
     if (!a.flag("--submit")) {
       if (a.flag("--detach")) return usage_error(kVerb, "--detach goes with --submit (a study on the server)");
+      if (a.json) return usage_error(kVerb, "--json goes with --submit or --id (a study on the server)");
       return run_here(plan, in, out, threads, a.flag("--quiet"), jobs);
     }
     const json study = for_server(in);
@@ -350,11 +374,14 @@ int study_command(const std::vector<std::string>& args) {
       const client::Response response = api.send("POST", "/api/studies", study.dump(), "application/json");
       const json created = api.json_of(response, "/api/studies");
       const std::int64_t id = created.value("id", std::int64_t{-1});
-      std::printf("submitted study %lld: %zu jobs\n", static_cast<long long>(id),
-                  created.value("jobs", json::array()).size());
+      std::fprintf(a.json ? stderr : stdout, "submitted study %lld: %zu jobs\n", static_cast<long long>(id),
+                   created.value("jobs", json::array()).size());
       std::fflush(stdout);
-      if (a.flag("--detach")) return 0;
-      return follow(api, id, out);
+      if (a.flag("--detach")) {
+        if (a.json) std::printf("%s\n", created.dump(2, ' ', false, json::error_handler_t::replace).c_str());
+        return 0;
+      }
+      return follow(api, id, out, a.json);
     });
   } catch (const study::StudyError& e) {
     std::fprintf(stderr, "%s: invalid study:\n", path.c_str());

@@ -1,60 +1,129 @@
 #include "cli/verb_args.hpp"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 
 #include "cli/terminal_text.hpp"
 
 namespace dem::cli {
 
-const char* kCommonUsage = " [--server URL] [--token T] [--timeout S]";
+const std::vector<VerbOption>& client_options() {
+  static const std::vector<VerbOption> options = {
+      {"--server", "URL", "the dem-server (default: $DEM_SERVER, else http://127.0.0.1:8080)"},
+      {"--token", "T", "its token (default: $DEM_SERVER_TOKEN)"},
+      {"--timeout", "S", "seconds to wait for the server's answer (a download: for its next bytes; default 300)"},
+      {"--json", nullptr, "the server's JSON on standard output instead of lines of text"},
+  };
+  return options;
+}
+
+namespace {
+
+std::vector<VerbOption> every_option(const Verb& verb) {
+  std::vector<VerbOption> options = verb.options;
+  if (verb.client) options.insert(options.end(), client_options().begin(), client_options().end());
+  return options;
+}
+
+}  // namespace
+
+// `text` broken into lines of at most `width` characters, each after `indent` spaces but the first.
+std::string wrap_words(const std::string& text, std::size_t indent, std::size_t width) {
+  std::istringstream words(text);
+  std::string out, line, word;
+  while (words >> word) {
+    if (!line.empty() && line.size() + 1 + word.size() > width) {
+      out += line + "\n" + std::string(indent, ' ');
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  return out + line;
+}
+
+std::string verb_help(const Verb& verb) {
+  constexpr std::size_t kColumn = 22, kWidth = 78;
+  std::string help = std::string("usage: dem ") + verb.usage + "\n  " + wrap_words(verb.summary, 2, kWidth) + "\n";
+  auto line = [&](const std::string& left, const std::string& text) {
+    std::string row = "  " + left;
+    row += row.size() < kColumn ? std::string(kColumn - row.size(), ' ') : "\n" + std::string(kColumn, ' ');
+    help += row + wrap_words(text, kColumn, kWidth - kColumn) + "\n";
+  };
+  help += "options:\n";
+  for (const VerbOption& o : every_option(verb))
+    line(std::string(o.name) + (o.value ? std::string(" ") + o.value : "") + (o.repeated ? " ..." : ""), o.help);
+  line("-h, --help", "this help");
+  line("--version", "dem's version");
+  if (verb.details != nullptr) help += "\n  " + wrap_words(verb.details, 2, kWidth) + "\n";
+  if (verb.client)
+    help += "exit status: 0 done (a followed job succeeded), 1 the job failed or the server said no, 2 bad arguments\n";
+  return help;
+}
 
 int usage_error(const Verb& verb, const std::string& problem) {
-  std::fprintf(stderr, "dem %s: %s\nusage: dem %s%s\n", verb.name, problem.c_str(), verb.usage, kCommonUsage);
+  std::fprintf(stderr, "dem %s: %s\nusage: dem %s\n(dem %s --help: every option)\n", verb.name, problem.c_str(),
+               verb.usage, verb.name);
   return 2;
 }
 
-// Fills `out`, or returns the exit status: 0 after --help, 2 after saying what is wrong.
 std::optional<int> parse_verb_args(const Verb& verb, const std::vector<std::string>& args, VerbArgs& out) {
   if (const char* server = std::getenv("DEM_SERVER"); server && *server) out.server = server;
   if (const char* token = std::getenv("DEM_SERVER_TOKEN")) out.token = token;
-  auto listed = [](const std::vector<std::string>& list, const std::string& a) {
-    return std::find(list.begin(), list.end(), a) != list.end();
-  };
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    if (a == "-h" || a == "--help") {
-      std::printf("usage: dem %s%s\n", verb.usage, kCommonUsage);
-      return 0;
-    }
-    const bool takes_value = a == "--server" || a == "--token" || a == "--timeout" || listed(verb.value_options, a);
-    if (takes_value) {
-      if (k + 1 >= args.size()) return usage_error(verb, a + " needs a value");
-      const std::string& v = args[++k];
-      if (a == "--server")
-        out.server = v;
-      else if (a == "--token")
-        out.token = v;
-      else if (a == "--timeout") {
-        char* end = nullptr;
-        out.timeout_seconds = std::strtod(v.c_str(), &end);
-        if (end == v.c_str() || *end != '\0' || !(out.timeout_seconds > 0) || out.timeout_seconds > 1e6)
-          return usage_error(verb, "--timeout is a number of seconds in (0, 1e6] (got \"" + v + "\")");
-      } else
-        out.values[a] = v;
-    } else if (listed(verb.flags, a)) {
-      out.flags.insert(a);
-    } else if (a.size() > 1 && a[0] == '-') {
-      return usage_error(verb, "unknown option " + a);
-    } else {
-      out.positional.push_back(a);
-    }
+  CLI::App app{verb.summary, std::string("dem ") + verb.name};
+  app.allow_extras();  // an unknown option is told below in dem's words, naming it
+  std::vector<std::string> positional;
+  app.add_option("positional", positional);
+  const std::vector<VerbOption> options = every_option(verb);
+  std::map<std::string, std::vector<std::string>> given;
+  for (const VerbOption& o : options) {
+    if (o.value == nullptr)
+      app.add_flag(o.name);
+    else  // one value per occurrence, never the next positional argument
+      app.add_option(o.name, given[o.name])->expected(1)->allow_extra_args(false)->take_all();
   }
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 reads the arguments from the back
+  try {
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(verb_help(verb).c_str(), stdout);
+    return 0;
+  } catch (const CLI::ArgumentMismatch& e) {  // CLI11's "--out: 1 required TEXT missing"
+    const std::string what = e.what();
+    return usage_error(verb, what.substr(0, what.find(':')) + " needs a value");
+  } catch (const CLI::ParseError& e) {
+    return usage_error(verb, e.what());
+  }
+  for (const std::string& extra : app.remaining())
+    if (extra != "--") return usage_error(verb, "unknown option " + extra);
+  for (const VerbOption& o : options) {
+    std::vector<std::string>& values = given[o.name];
+    if (o.value == nullptr && app.count(o.name) > 0) out.flags.insert(o.name);
+    if (values.empty()) continue;
+    if (values.size() > 1 && !o.repeated)
+      return usage_error(verb,
+                         std::string(o.name) + " is given " + std::to_string(values.size()) + " times (once at most)");
+    out.values[o.name] = values;
+  }
+  out.positional = positional;
   if (out.positional.size() < verb.min_positional) return usage_error(verb, std::string("missing ") + verb.first);
   if (out.positional.size() > verb.max_positional)
-    return usage_error(verb, "unexpected \"" + out.positional.back() + "\"");
+    return usage_error(verb, "unexpected \"" + out.positional[verb.max_positional] + "\"");
+  if (verb.client) {
+    if (out.has("--server")) out.server = out.value("--server");
+    if (out.has("--token")) out.token = out.value("--token");
+    out.json = out.flag("--json");
+    if (out.has("--timeout")) {
+      const std::string v = out.value("--timeout");
+      char* end = nullptr;
+      out.timeout_seconds = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(out.timeout_seconds > 0) || out.timeout_seconds > 1e6)
+        return usage_error(verb, "--timeout is a number of seconds in (0, 1e6] (got \"" + v + "\")");
+    }
+  }
   return std::nullopt;
 }
 

@@ -1,48 +1,22 @@
 // dem-server: the simulation service (REST jobs, live frames, legacy archives). See docs/api.md.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "dem/version.hpp"
 #include "server/http_server.hpp"
+#include "server/install_paths.hpp"
 #include "server/request_policy.hpp"
 
 namespace {
 
 const char* kUsage =
-    "usage: dem-server --data DIR [--port PORT] [--address ADDR] [--token TOKEN] [--jobs N]\n"
-    "                  [--threads-per-job N] [--max-body-mb MB] [--web DIR] [--checkpoint-seconds S]\n"
-    "                  [--max-frame-rate HZ] [--max-output-mb MB] [--max-job-memory-mb MB] [--cases DIR]\n"
-    "                  [--request-timeout S]\n"
-    "                  [--max-connections N] [--max-connections-per-client N]\n"
-    "                  [--keep-finished-days D] [--keep-finished-jobs N]\n"
+    "usage: dem-server --data DIR [--port PORT] [--address ADDR] [--token TOKEN] [--jobs N] [OPTIONS]\n"
     "       dem-server --version | --help\n"
-    "  --data DIR              where the job table (jobs.db) and each job's folder live (made if missing)\n"
-    "  --port PORT             default 8080; 0 picks a free port (printed)\n"
-    "  --address ADDR          default 127.0.0.1; any other address needs a token\n"
-    "  --token TOKEN           every request must carry \"Authorization: Bearer TOKEN\" (or\n"
-    "                          ?access_token=TOKEN); also from DEM_SERVER_TOKEN\n"
-    "  --jobs N                jobs running at once (default 1, with all cores)\n"
-    "  --threads-per-job N     OpenMP threads of a job (default: the cores shared among running jobs)\n"
-    "  --max-body-mb MB        largest request body (default 64)\n"
-    "  --web DIR               the viewer's files (default: web/dist of the source tree)\n"
-    "  --cases DIR             the bundled cases offered to the viewer (default: cases/ of the source tree)\n"
-    "  --checkpoint-seconds S  a checkpoint of a running job every S seconds (default 10)\n"
-    "  --max-frame-rate HZ     live frames a second per job at most (default 30; 0: every output frame)\n"
-    "  --max-output-mb MB      what one job's files may hold (default 10000): a spec whose frames alone\n"
-    "                          would pass it is refused, a job whose files pass it is stopped\n"
-    "  --max-job-memory-mb MB  the memory one job may need, estimated from its particle count before\n"
-    "                          any is made (default: half the machine's memory); past it a 400\n"
-    "  --request-timeout S     a request's header must arrive within S seconds (default 10; its body\n"
-    "                          gets 60 s more), else 408 and the connection closes\n"
-    "  --max-connections N     connections at once (default 512), WebSockets included; past it 503\n"
-    "  --max-connections-per-client N   from one address (default 128)\n"
-    "  --keep-finished-days D  delete a job that succeeded, failed or was cancelled more than D days\n"
-    "                          ago, with its files (fractions allowed; default: keep every job)\n"
-    "  --keep-finished-jobs N  keep only the newest N finished jobs, deleting older ones with their\n"
-    "                          files (default: keep every job); queued, running and interrupted jobs\n"
-    "                          are never deleted by either\n";
+    "  the simulation service: REST jobs, live frames to the viewer, every output archived (docs/api.md)\n";
 
 // A decimal number (std::stod alone also takes hexadecimal, "inf" and "nan").
 bool number(const std::string& text, double& out) {
@@ -56,96 +30,147 @@ bool number(const std::string& text, double& out) {
   }
 }
 
+// A check of an option's text: a decimal number in [lo, hi] (above lo when `above`), whole when
+// `whole`; CLI11 reports what it returns as "--option: must be ...".
+CLI::Validator number_in(double lo, double hi, bool whole, bool above, const std::string& what) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double x = 0;
+        const bool ok = number(text, x) && (above ? x > lo : x >= lo) && x <= hi &&
+                        (!whole || x == static_cast<double>(static_cast<long long>(x)));
+        return ok ? "" : "must be " + what + " (got \"" + text + "\")";
+      },
+      "", "");
+}
+
+// dem-server --help begins with kUsage, not CLI11's "Usage:" line.
+class HelpWithoutUsageLine : public CLI::Formatter {
+ public:
+  std::string make_usage(const CLI::App*, std::string) const override { return ""; }
+};
+
+// The options, bound to `options` (numbers through doubles, whose text the checks above have read).
+struct NumberOptions {
+  double port = 8080, jobs = 1, threads_per_job = 0, max_body_mb = 64, max_output_mb = 10000, max_job_memory_mb = 0,
+         request_timeout = 10, max_connections = 512, max_connections_per_client = 128, keep_finished_days = 0,
+         keep_finished_jobs = 0, max_frame_rate = 30, checkpoint_seconds = 10;
+};
+
+void define_options(CLI::App& app, dem::server::ServerOptions& o, NumberOptions& n, std::string& web,
+                    std::string& cases) {
+  app.add_option("--data", o.data, "where the job table (jobs.db) and each job's folder live (made if missing)")
+      ->required()
+      ->type_name("DIR");
+  app.add_option("--port", n.port, "default 8080; 0 picks a free port (printed)")
+      ->check(number_in(0, 65535, true, false, "a port number 0-65535"))
+      ->type_name("PORT");
+  app.add_option("--address", o.address, "default 127.0.0.1; any other address needs a token")->type_name("ADDR");
+  app.add_option("--token", o.token,
+                 "every request must carry \"Authorization: Bearer TOKEN\" (or ?access_token=TOKEN); also from "
+                 "DEM_SERVER_TOKEN")
+      ->type_name("TOKEN");
+  app.add_option("--jobs", n.jobs, "jobs running at once (default 1, with all cores)")
+      ->check(number_in(1, 64, true, false, "a whole number 1-64"))
+      ->type_name("N");
+  app.add_option("--threads-per-job", n.threads_per_job,
+                 "OpenMP threads of a job (default: the cores shared among running jobs)")
+      ->check(number_in(0, 1024, true, false, "a whole number from 0 to 1024"))
+      ->type_name("N");
+  app.add_option("--max-body-mb", n.max_body_mb, "largest request body (default 64)")
+      ->check(number_in(0, 4096, false, true, "a size in MB, > 0 and at most 4096"))
+      ->type_name("MB");
+  app.add_option("--web", web, "the viewer's files (default: ../share/dem/web beside the executable, else ../web/dist)")
+      ->type_name("DIR");
+  app.add_option("--cases", cases,
+                 "the bundled cases offered to the viewer (default: ../share/dem/cases beside the executable, else "
+                 "../cases)")
+      ->type_name("DIR");
+  app.add_option("--checkpoint-seconds", n.checkpoint_seconds,
+                 "a checkpoint of a running job every S seconds (default 10)")
+      ->check(number_in(0, 1e9, false, false, "a number of seconds >= 0"))
+      ->type_name("S");
+  app.add_option("--max-frame-rate", n.max_frame_rate,
+                 "live frames a second per job at most (default 30; 0: every output frame)")
+      ->check(number_in(0, 1e9, false, false, "a rate in Hz >= 0"))
+      ->type_name("HZ");
+  app.add_option("--max-output-mb", n.max_output_mb,
+                 "what one job's files may hold (default 10000): a spec whose frames alone would pass it is refused, "
+                 "a job whose files pass it is stopped")
+      ->check(number_in(0, 1e9, false, true, "a size in MB, > 0 and at most 1e9"))
+      ->type_name("MB");
+  app.add_option("--max-job-memory-mb", n.max_job_memory_mb,
+                 "the memory one job may need, estimated from its particle count before any is made (default: half "
+                 "the machine's memory); past it a 400")
+      ->check(number_in(0, 1e9, false, true, "a size in MB, > 0 and at most 1e9"))
+      ->type_name("MB");
+  app.add_option("--request-timeout", n.request_timeout,
+                 "a request's header must arrive within S seconds (default 10; its body gets 60 s more), else 408 "
+                 "and the connection closes")
+      ->check(number_in(0, 86400, false, true, "a number of seconds > 0 and at most 86400"))
+      ->type_name("S");
+  app.add_option("--max-connections", n.max_connections,
+                 "connections at once (default 512), WebSockets included; past it 503")
+      ->check(number_in(1, 1e6, true, false, "a whole number from 1 to 1e6"))
+      ->type_name("N");
+  app.add_option("--max-connections-per-client", n.max_connections_per_client, "from one address (default 128)")
+      ->check(number_in(1, 1e6, true, false, "a whole number from 1 to 1e6"))
+      ->type_name("N");
+  app.add_option("--keep-finished-days", n.keep_finished_days,
+                 "delete a job that succeeded, failed or was cancelled more than D days ago, with its files "
+                 "(fractions allowed; default: keep every job)")
+      ->check(number_in(0, 1e6, false, true, "a number of days > 0 and at most 1e6"))
+      ->type_name("D");
+  app.add_option("--keep-finished-jobs", n.keep_finished_jobs,
+                 "keep only the newest N finished jobs, deleting older ones with their files (default: keep every "
+                 "job); queued, running and interrupted jobs are never deleted by either")
+      ->check(number_in(1, 1e9, true, false, "a whole number from 1 to 1e9"))
+      ->type_name("N");
+  app.set_version_flag("--version", std::string("dem-server ") + dem::kVersion, "the version");
+}
+
+void apply(const NumberOptions& n, dem::server::ServerOptions& o) {
+  o.port = static_cast<unsigned short>(n.port);
+  o.concurrency = static_cast<int>(n.jobs);
+  o.threads_per_job = static_cast<int>(n.threads_per_job);
+  o.max_body = static_cast<std::size_t>(n.max_body_mb * 1024 * 1024);
+  o.max_output_bytes = n.max_output_mb * 1024 * 1024;
+  o.max_job_memory_bytes = n.max_job_memory_mb * 1024 * 1024;
+  o.request_timeout = n.request_timeout;
+  o.max_connections = static_cast<std::size_t>(n.max_connections);
+  o.max_connections_per_client = static_cast<std::size_t>(n.max_connections_per_client);
+  o.keep_finished_days = n.keep_finished_days;
+  o.keep_finished_jobs = static_cast<std::size_t>(n.keep_finished_jobs);
+  o.max_frame_rate = n.max_frame_rate;
+  o.checkpoint_seconds = n.checkpoint_seconds;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   dem::server::ServerOptions options;
-  options.web = DEM_WEB_DIR;
-  options.cases = DEM_CASES_DIR;
   if (const char* token = std::getenv("DEM_SERVER_TOKEN")) options.token = token;
-  std::vector<std::string> args(argv + 1, argv + argc);
-  for (std::size_t k = 0; k < args.size(); ++k) {
-    const std::string& a = args[k];
-    if (a == "-h" || a == "--help") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (a == "--version") {
-      std::printf("dem-server %s\n", dem::kVersion);
-      return 0;
-    }
-    if (k + 1 >= args.size()) {
-      std::fprintf(stderr, "dem-server: %s\n%s",
-                   a.rfind("--", 0) == 0 ? (a + " needs a value").c_str() : ("unexpected " + a).c_str(), kUsage);
-      return 2;
-    }
-    const std::string& v = args[++k];
-    double x = 0;
-    auto whole = [&](double lo, double hi) {
-      return number(v, x) && x == static_cast<long long>(x) && x >= lo && x <= hi;
-    };
-    auto bad = [&](const char* what) {
-      std::fprintf(stderr, "dem-server: %s must be %s (got \"%s\")\n", a.c_str(), what, v.c_str());
-      return 2;
-    };
-    if (a == "--data")
-      options.data = v;
-    else if (a == "--address")
-      options.address = v;
-    else if (a == "--token")
-      options.token = v;
-    else if (a == "--web")
-      options.web = v;
-    else if (a == "--cases")
-      options.cases = v;
-    else if (a == "--port") {
-      if (!whole(0, 65535)) return bad("a port number 0-65535");
-      options.port = static_cast<unsigned short>(x);
-    } else if (a == "--jobs") {
-      if (!whole(1, 64)) return bad("a whole number 1-64");
-      options.concurrency = static_cast<int>(x);
-    } else if (a == "--threads-per-job") {
-      if (!whole(0, 1024)) return bad("a whole number from 0 to 1024");
-      options.threads_per_job = static_cast<int>(x);
-    } else if (a == "--max-body-mb") {
-      if (!number(v, x) || !(x > 0) || x > 4096) return bad("a size in MB, > 0 and at most 4096");
-      options.max_body = static_cast<std::size_t>(x * 1024 * 1024);
-    } else if (a == "--max-output-mb") {
-      if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0 and at most 1e9");
-      options.max_output_bytes = x * 1024 * 1024;
-    } else if (a == "--max-job-memory-mb") {
-      if (!number(v, x) || !(x > 0) || x > 1e9) return bad("a size in MB, > 0 and at most 1e9");
-      options.max_job_memory_bytes = x * 1024 * 1024;
-    } else if (a == "--request-timeout") {
-      if (!number(v, x) || !(x > 0) || x > 86400) return bad("a number of seconds > 0 and at most 86400");
-      options.request_timeout = x;
-    } else if (a == "--max-connections") {
-      if (!whole(1, 1e6)) return bad("a whole number from 1 to 1e6");
-      options.max_connections = static_cast<std::size_t>(x);
-    } else if (a == "--max-connections-per-client") {
-      if (!whole(1, 1e6)) return bad("a whole number from 1 to 1e6");
-      options.max_connections_per_client = static_cast<std::size_t>(x);
-    } else if (a == "--keep-finished-days") {
-      if (!number(v, x) || !(x > 0) || x > 1e6) return bad("a number of days > 0 and at most 1e6");
-      options.keep_finished_days = x;
-    } else if (a == "--keep-finished-jobs") {
-      if (!whole(1, 1e9)) return bad("a whole number from 1 to 1e9");
-      options.keep_finished_jobs = static_cast<std::size_t>(x);
-    } else if (a == "--max-frame-rate") {
-      if (!number(v, x) || !(x >= 0)) return bad("a rate in Hz >= 0");
-      options.max_frame_rate = x;
-    } else if (a == "--checkpoint-seconds") {
-      if (!number(v, x) || !(x >= 0)) return bad("a number of seconds >= 0");
-      options.checkpoint_seconds = x;
-    } else {
-      std::fprintf(stderr, "dem-server: unknown option %s\n%s", a.c_str(), kUsage);
-      return 2;
-    }
-  }
-  if (options.data.empty()) {
-    std::fprintf(stderr, "dem-server: --data DIR is required\n%s", kUsage);
+  NumberOptions numbers;
+  std::string web, cases;
+  CLI::App app{"", "dem-server"};
+  app.formatter(std::make_shared<HelpWithoutUsageLine>());
+  define_options(app, options, numbers, web, cases);
+  app.footer("Queued, running and interrupted jobs are never deleted by --keep-finished-days or --keep-finished-jobs.");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(kUsage, stdout);
+    std::fputs(app.help("", CLI::AppFormatMode::Normal).c_str(), stdout);
+    return 0;
+  } catch (const CLI::CallForVersion& e) {
+    std::printf("%s\n", e.what());
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "dem-server: %s\n%s(dem-server --help: every option)\n", e.what(), kUsage);
     return 2;
   }
+  apply(numbers, options);
+  options.web = web.empty() ? dem::server::default_web_dir() : std::filesystem::path(web);
+  options.cases = cases.empty() ? dem::server::default_cases_dir() : std::filesystem::path(cases);
   // the viewer's page keeps the token in a cookie, where it must go unquoted
   if (!options.token.empty() && !dem::server::is_cookie_safe(options.token)) {
     std::fprintf(stderr,

@@ -224,5 +224,62 @@ TEST_F(ClientVerbs, TheTokenComesFromTheOptionOrTheEnvironment) {
   EXPECT_EQ(dem("list", "DEM_SERVER_TOKEN=s3cret").exit_code, 0);
 }
 
+// Every client verb takes --json and prints the server's JSON, one document a script can parse
+// (submit, cancel, resume, watch and fetch printed only lines of text, and refused --json).
+TEST_F(ClientVerbs, EveryClientVerbPrintsJsonWhenAsked) {
+  start_server();
+  const fs::path spec = write_file("demo.json", short_demo_spec());
+  const Result submitted = dem("submit " + shell_quoted(spec) + " --json --wait");
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.out << submitted.err;
+  // --wait --json: the job as submitted, then as it ended, each a JSON document
+  std::istringstream documents(submitted.out);
+  nlohmann::json first, last;
+  documents >> first >> last;
+  const long id = first.at("id").get<long>();
+  EXPECT_EQ(last.at("id").get<long>(), id);
+  EXPECT_EQ(last.at("state"), "succeeded");
+
+  const Result watched = dem("watch " + std::to_string(id) + " --json");
+  EXPECT_EQ(watched.exit_code, 0) << watched.err;
+  EXPECT_EQ(nlohmann::json::parse(watched.out).at("state"), "succeeded") << watched.out;
+
+  const Result fetched =
+      dem("fetch " + std::to_string(id) + " results.json --out " + shell_quoted(dir_ / "got") + " --json");
+  EXPECT_EQ(fetched.exit_code, 0) << fetched.err;
+  const nlohmann::json files = nlohmann::json::parse(fetched.out);
+  ASSERT_EQ(files.at("fetched").size(), 1u) << fetched.out;
+  EXPECT_EQ(files["fetched"][0].at("name"), "results.json");
+  EXPECT_EQ(files["fetched"][0].at("bytes").get<std::uintmax_t>(), fs::file_size(dir_ / "got" / "results.json"));
+  EXPECT_TRUE(files.at("notFetched").empty());
+
+  const Result missing =
+      dem("fetch " + std::to_string(id) + " nothere.dat --out " + shell_quoted(dir_ / "got") + " --json");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(nlohmann::json::parse(missing.out).at("notFetched")[0].at("name"), "nothere.dat") << missing.out;
+
+  nlohmann::json long_spec = nlohmann::json::parse(short_demo_spec());
+  long_spec["time"]["duration"] = 20;  // still running when cancelled
+  const long queued = submit(write_file("long.json", long_spec.dump()));
+  const Result cancelled = dem("cancel " + std::to_string(queued) + " --json");
+  EXPECT_EQ(cancelled.exit_code, 0) << cancelled.err;
+  EXPECT_EQ(nlohmann::json::parse(cancelled.out).at("id").get<long>(), queued) << cancelled.out;
+  for (const char* verb : {"status", "list"}) {
+    const Result r =
+        dem(std::string(verb) + (std::string(verb) == "status" ? " " + std::to_string(id) : "") + " --json");
+    EXPECT_EQ(r.exit_code, 0) << verb << r.err;
+    EXPECT_TRUE(nlohmann::json::accept(r.out)) << verb << ": " << r.out;
+  }
+}
+
+// CLI11 reads the command lines: --option=value is taken, and an option given twice is refused
+// naming it (the last one was kept, silently).
+TEST_F(ClientVerbs, AnOptionTakesEqualsAndIsRefusedTwice) {
+  start_server();
+  EXPECT_EQ(dem("list --state=queued").exit_code, 0);
+  const Result twice = dem("list --name a --name b");
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_TRUE(has(twice.err, "--name is given 2 times (once at most)")) << twice.err;
+}
+
 }  // namespace
 }  // namespace dem::test

@@ -88,7 +88,7 @@ TEST_F(ServerLimits, ASpecNeedingMoreMemoryThanTheLimitIsRefusedBeforeItIsBuilt)
 
 TEST_F(ServerLimits, TheLimitMustBeAPositiveSize) {
   const std::string said = refused_start("--max-output-mb 0");
-  EXPECT_NE(said.find("--max-output-mb must be"), std::string::npos) << said;
+  EXPECT_NE(said.find("--max-output-mb: must be"), std::string::npos) << said;
 }
 
 }  // namespace

@@ -76,12 +76,12 @@ TEST_F(ServerRetention, WithoutAPolicyNothingIsDeleted) {
 }
 
 TEST_F(ServerRetention, APolicyMustBeAPositiveAgeOrAWholeCount) {
-  EXPECT_NE(refusal_of({"--keep-finished-days", "-1"}).find("--keep-finished-days must be"), std::string::npos);
-  EXPECT_NE(refusal_of({"--keep-finished-days", "0"}).find("--keep-finished-days must be"), std::string::npos);
-  EXPECT_NE(refusal_of({"--keep-finished-jobs", "1.5"}).find("--keep-finished-jobs must be"), std::string::npos);
-  EXPECT_NE(refusal_of({"--keep-finished-jobs", "0"}).find("--keep-finished-jobs must be"), std::string::npos);
+  EXPECT_NE(refusal_of({"--keep-finished-days", "-1"}).find("--keep-finished-days: must be"), std::string::npos);
+  EXPECT_NE(refusal_of({"--keep-finished-days", "0"}).find("--keep-finished-days: must be"), std::string::npos);
+  EXPECT_NE(refusal_of({"--keep-finished-jobs", "1.5"}).find("--keep-finished-jobs: must be"), std::string::npos);
+  EXPECT_NE(refusal_of({"--keep-finished-jobs", "0"}).find("--keep-finished-jobs: must be"), std::string::npos);
   // decimal only: std::stod alone took 0x10 as 16 (an independent tester's finding)
-  EXPECT_NE(refusal_of({"--keep-finished-jobs", "0x10"}).find("--keep-finished-jobs must be"), std::string::npos);
+  EXPECT_NE(refusal_of({"--keep-finished-jobs", "0x10"}).find("--keep-finished-jobs: must be"), std::string::npos);
   EXPECT_NE(refusal_of({"--keep-finished-days", "1e9"}).find("at most 1e6"), std::string::npos);
 }
 

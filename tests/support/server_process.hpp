@@ -2,6 +2,7 @@
 // and stops it (SIGTERM, or kill -9 on request) when the test is done.
 #pragma once
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -18,8 +19,11 @@ namespace dem::test {
 
 class ServerProcess {
  public:
-  // `data`: the server's data folder; `extra`: more command-line options.
-  explicit ServerProcess(const std::filesystem::path& data, const std::vector<std::string>& extra = {}) {
+  // `data`: the server's data folder; `extra`: more command-line options; `stderr_file`: where its
+  // standard error goes (appended to), when not the test's own; `binary`: which dem-server.
+  explicit ServerProcess(const std::filesystem::path& data, const std::vector<std::string>& extra = {},
+                         const std::filesystem::path& stderr_file = {},
+                         const std::filesystem::path& binary = DEM_BINARY_DIR "/dem-server") {
     int out[2];
     if (pipe(out) != 0) throw std::runtime_error("pipe failed");
     pid_ = fork();
@@ -28,7 +32,11 @@ class ServerProcess {
       dup2(out[1], STDOUT_FILENO);
       close(out[0]);
       close(out[1]);
-      std::vector<std::string> args = {DEM_BINARY_DIR "/dem-server", "--port", "0", "--data", data.string()};
+      if (!stderr_file.empty()) {
+        const int err = open(stderr_file.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+        if (err < 0 || dup2(err, STDERR_FILENO) < 0) _exit(126);
+      }
+      std::vector<std::string> args = {binary.string(), "--port", "0", "--data", data.string()};
       args.insert(args.end(), extra.begin(), extra.end());
       std::vector<char*> argv;
       for (std::string& a : args) argv.push_back(a.data());

@@ -2,6 +2,8 @@
 // standard output) and --version after any verb (the project's one version).
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "dem/version.hpp"
 #include "support/command.hpp"
 
@@ -38,6 +40,48 @@ TEST_F(CliConventions, VersionIsAnsweredAloneAndAfterAnyVerb) {
     const CommandResult r = run_command(shell_quoted(kDem) + " " + verb + " --version 2>&1");
     EXPECT_EQ(r.exit_code, 0) << verb;
     EXPECT_EQ(r.output, expected) << verb;
+  }
+}
+
+// What bash offers after loading `dem completion bash`: COMP_WORDS as bash sets them, the
+// completions _dem gives, one per line.
+std::string completions(const std::string& dem, const std::string& words, int current) {
+  const std::string script = testing::TempDir() + "/dem-completion-test.sh";
+  std::ofstream(script, std::ios::binary)
+      << ("source <(" + shell_quoted(dem) + " completion bash)\nCOMP_WORDS=(" + words +
+          ")\nCOMP_CWORD=" + std::to_string(current) + "\n_dem\nprintf '%s\\n' \"${COMPREPLY[@]}\"\n");
+  return run_command("bash " + shell_quoted(script) + " 2>&1").output;
+}
+
+TEST_F(CliConventions, BashCompletesVerbsOptionsAndTheirValues) {
+  EXPECT_EQ(completions(kDem, "dem ru", 1), "run\n");
+  EXPECT_EQ(completions(kDem, "dem run --th", 2), "--threads\n");
+  EXPECT_EQ(completions(kDem, "dem chains d --view ''", 4), "x\ny\nz\n");
+  EXPECT_EQ(completions(kDem, "dem import a.inp --program b", 4), "ballastdem\n");
+  // a client verb's common options, and --json
+  const std::string fetch = completions(kDem, "dem fetch 1 --", 3);
+  for (const char* option : {"--out", "--server", "--token", "--timeout", "--json", "--help", "--version"})
+    EXPECT_NE(fetch.find(std::string(option) + "\n"), std::string::npos) << option << " in " << fetch;
+  // every verb of dem's overview is offered
+  const std::string verbs = completions(kDem, "dem ''", 1);
+  for (const char* verb : kVerbs) EXPECT_NE(verbs.find(std::string(verb) + "\n"), std::string::npos) << verb;
+  const CommandResult other = run_dem("completion zsh 2>&1");
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.output.find("only bash"), std::string::npos) << other.output;
+}
+
+// Every option a verb's --help lists is one its parser takes, and the other way round: both come
+// from the verb's one description, so an option cannot be added to one and not the other.
+TEST_F(CliConventions, EveryVerbsHelpListsTheOptionsItsCompletionOffers) {
+  for (const char* verb : kVerbs) {
+    const std::string help = run_dem(std::string(verb) + " --help").output;
+    std::string offered = completions(kDem, std::string("dem ") + verb + " --", 2);
+    for (std::size_t at = 0, end; (end = offered.find('\n', at)) != std::string::npos; at = end + 1) {
+      const std::string option = offered.substr(at, end - at);
+      EXPECT_NE(help.find(option == "--help" ? "-h, --help" : "  " + option), std::string::npos)
+          << verb << ": " << option << " is offered but not in its help:\n"
+          << help;
+    }
   }
 }
 

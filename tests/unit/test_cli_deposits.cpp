@@ -195,7 +195,7 @@ TEST_F(CliDeposits, EveryMissingFileAndBadArgumentIsNamed) {
            {shell_quoted(run) + " --terrain t.dat --contour -1", "--contour: must be above 0 (got -1)"},
            {shell_quoted(run) + " --colour red", "unknown option --colour"},
            {many, "at most 20 runs (got 21)"},
-           {"", "give at least one run's folder"}}) {
+           {"", "missing the runs' folders"}}) {
     const CommandResult r = run_dem("deposits " + args + " --out " + shell_quoted(out));
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_NE(r.output.find("dem deposits: " + problem), std::string::npos) << args << "\n" << r.output;

@@ -1,0 +1,50 @@
+// `cmake --install` into a prefix: the programs, the viewer, the cases, the docs and the bash
+// completion land there, and the installed dem-server serves the viewer and the cases it finds
+// beside itself, not the source tree's (no path of the source tree is compiled in).
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "support/command.hpp"
+#include "support/server_test.hpp"
+
+namespace dem::test {
+namespace {
+
+class Install : public ServerTest {};
+
+TEST_F(Install, TheInstalledServerFindsTheViewerAndTheCasesBesideItself) {
+  const fs::path prefix = dir_ / "prefix";
+  const CommandResult installed =
+      run_command("cmake --install " + shell_quoted(DEM_BINARY_DIR) + " --prefix " + shell_quoted(prefix) + " 2>&1");
+  ASSERT_EQ(installed.exit_code, 0) << installed.output;
+  for (const char* file : {"bin/dem", "bin/dem-server", "share/dem/web/index.html", "share/dem/cases/demo/spec.json",
+                           "share/doc/dem/api.md", "share/doc/dem/LICENSE", "share/bash-completion/completions/dem",
+                           "share/dem/clients/python/demclient/__init__.py"})
+    EXPECT_TRUE(fs::is_regular_file(prefix / file)) << file;
+
+  // what only the installed copies hold: served only if the server reads them there
+  const std::string marker = "<!-- installed copy -->";
+  write_text(prefix / "share/dem/web/index.html", read_bytes(prefix / "share/dem/web/index.html") + marker);
+  fs::create_directories(prefix / "share/dem/cases/installed-only");
+  fs::copy_file(prefix / "share/dem/cases/demo/spec.json", prefix / "share/dem/cases/installed-only/spec.json");
+  write_text(prefix / "share/dem/cases/installed-only/README.md", "# installed only\n");
+
+  ServerProcess server(dir_ / "data", {}, {}, prefix / "bin/dem-server");
+  client::HttpClient http(server.url());
+  const client::Response page = http.get("/");
+  EXPECT_EQ(page.status, 200);
+  EXPECT_NE(page.body.find(marker), std::string::npos) << "the viewer was not served from the prefix";
+  const client::Response cases = http.get("/api/v1/cases");
+  ASSERT_EQ(cases.status, 200) << cases.body;
+  EXPECT_NE(cases.body.find("installed-only"), std::string::npos) << cases.body;
+
+  // the installed dem and its completion
+  const CommandResult version = run_command(shell_quoted(prefix / "bin/dem") + " --version");
+  EXPECT_EQ(version.output.rfind("dem ", 0), 0u) << version.output;
+  EXPECT_NE(read_bytes(prefix / "share/bash-completion/completions/dem").find("complete -o filenames"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace dem::test
