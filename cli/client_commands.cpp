@@ -39,16 +39,17 @@ int job_verb(const Verb& verb, const std::vector<std::string>& args,
   return with_server(verb, a, [&](const ServerApi& api) { return body(api, a, *id); });
 }
 
-std::string job_target(std::int64_t id) { return "/api/jobs/" + std::to_string(id); }
+std::string job_target(std::int64_t id) { return "/api/v1/jobs/" + std::to_string(id); }
 
 void print_body(const std::string& body) {
   std::fputs(body.c_str(), stdout);
   if (body.empty() || body.back() != '\n') std::fputc('\n', stdout);
 }
 
-// The server's text may hold invalid UTF-8: replaced, not thrown on.
+// One JSON document on one line (JSON Lines: --wait --json prints two), the server's text's invalid
+// UTF-8 replaced, not thrown on.
 void print_json(const nlohmann::json& value) {
-  print_body(value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));
+  print_body(value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }
 
 // A job the server answered with: its JSON (--json) or its summary line.
@@ -87,6 +88,7 @@ int submit_command(const std::vector<std::string>& args) {
   if (const auto exit = parse_verb_args(verb, args, a)) return *exit;
   const std::string& path = a.positional[0];
   const bool quiet = a.flag("--quiet");
+  if (quiet && a.json) return usage_error(verb, "--quiet and --json: give one (--json prints the job, --quiet its id)");
   api::JobSpec spec;
   try {
     spec = spec::read_json_file(path);
@@ -102,15 +104,15 @@ int submit_command(const std::vector<std::string>& args) {
     if (!key.empty()) headers.emplace_back("Idempotency-Key", key);
     client::Response response;
     try {
-      response = api.send("POST", "/api/jobs", spec.SerializeAsString(), "application/x-protobuf", headers);
+      response = api.send("POST", "/api/v1/jobs", spec.SerializeAsString(), "application/x-protobuf", headers);
     } catch (const ApiError& e) {
       if (e.status() != 400 || e.problems().empty()) throw;
       std::fprintf(stderr, "%s: invalid spec (the server answered %s):\n", path.c_str(), describe(e).c_str());
       for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
       return 1;
     }
-    const nlohmann::json job = api.json_of(response, "/api/jobs");
-    const std::int64_t id = job.value("id", std::int64_t{-1});
+    const nlohmann::json job = checked_job(api.json_of(response, "/api/v1/jobs"));
+    const std::int64_t id = job.at("id").get<std::int64_t>();
     if (a.json)
       print_json(job);
     else if (quiet)
@@ -130,11 +132,8 @@ const Verb kStatusVerb{"status", "status ID [--json]", "one line on a job", "the
 int status_command(const std::vector<std::string>& args) {
   static const Verb& verb = kStatusVerb;
   return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
-    const client::Response response = api.send("GET", job_target(id));
-    if (a.json)
-      print_body(response.body);
-    else
-      std::printf("%s\n", job_summary(api.json_of(response, job_target(id))).c_str());
+    // --json too: what is printed is a job (a proxy's page answered 200 is not success)
+    print_job(checked_job(api.json_of(api.send("GET", job_target(id)), job_target(id))), a);
     return 0;
   });
 }
@@ -231,7 +230,7 @@ const Verb kCancelVerb{"cancel", "cancel ID [--json]", "stop a queued or running
 int cancel_command(const std::vector<std::string>& args) {
   static const Verb& verb = kCancelVerb;
   return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
-    print_job(api.call("POST", job_target(id) + "/cancel"), a);
+    print_job(checked_job(api.call("POST", job_target(id) + "/cancel")), a);
     return 0;
   });
 }
@@ -243,7 +242,7 @@ const Verb kResumeVerb{
 int resume_command(const std::vector<std::string>& args) {
   static const Verb& verb = kResumeVerb;
   return job_verb(verb, args, [](const ServerApi& api, const VerbArgs& a, std::int64_t id) {
-    print_job(api.call("POST", job_target(id) + "/resume"), a);
+    print_job(checked_job(api.call("POST", job_target(id) + "/resume")), a);
     return 0;
   });
 }
@@ -309,7 +308,15 @@ int fetch_command(const std::vector<std::string>& args) {
     fs::create_directories(out);
     for (const std::string& name : names) {
       const fs::path path = out / name;
-      const client::Response response = api.http().download(artifacts + "/" + name, path.string());
+      client::Response response;
+      try {
+        response = api.http().download(artifacts + "/" + name, path.string());
+      } catch (const std::exception& e) {  // this file could not be written (or read): the others still are
+        std::fprintf(stderr, "dem fetch: %s: %s\n", printable(name).c_str(), e.what());
+        not_fetched.push_back({{"name", name}, {"error", e.what()}});
+        ++failed;
+        continue;
+      }
       if (response.status != 200) {
         const std::string why = describe(api_error(response));
         std::fprintf(stderr, "dem fetch: %s: %s\n", printable(name).c_str(), why.c_str());

@@ -48,6 +48,12 @@ std::string bash_completion(const std::vector<const Verb*>& verbs) {
          "_dem() {\n"
          "  local cur=\"${COMP_WORDS[COMP_CWORD]}\" prev=\"${COMP_WORDS[COMP_CWORD-1]}\"\n"
          "  COMPREPLY=()\n"
+         "  # --opt=VALUE: bash splits it at '=' into --opt, = and VALUE\n"
+         "  if [ \"$cur\" = = ]; then\n"
+         "    cur=\"\"\n"
+         "  elif [ \"$prev\" = = ] && [ \"$COMP_CWORD\" -ge 2 ]; then\n"
+         "    prev=\"${COMP_WORDS[COMP_CWORD-2]}\"\n"
+         "  fi\n"
          "  if [ \"$COMP_CWORD\" -eq 1 ]; then\n"
          "    COMPREPLY=($(compgen -W \"" +
          names +
@@ -65,8 +71,8 @@ std::string bash_completion(const std::vector<const Verb*>& verbs) {
          "    [ \"${pair%%=*}\" = \"$prev\" ] || continue\n"
          "    kind=\"${pair#*=}\"\n"
          "    case \"$kind\" in\n"
-         "      dir) COMPREPLY=($(compgen -d -- \"$cur\")) ;;\n"
-         "      file) COMPREPLY=($(compgen -f -- \"$cur\")) ;;\n"
+         "      dir) mapfile -t COMPREPLY < <(compgen -d -- \"$cur\") ;;\n"
+         "      file) mapfile -t COMPREPLY < <(compgen -f -- \"$cur\") ;;\n"
          "      words:*) kind=\"${kind#words:}\"; COMPREPLY=($(compgen -W \"${kind//,/ }\" -- \"$cur\")) ;;\n"
          "    esac\n"
          "    return\n"
@@ -74,7 +80,7 @@ std::string bash_completion(const std::vector<const Verb*>& verbs) {
          "  if [[ \"$cur\" == -* ]]; then\n"
          "    COMPREPLY=($(compgen -W \"$options\" -- \"$cur\"))\n"
          "  elif [ \"$files\" = yes ]; then\n"
-         "    COMPREPLY=($(compgen -f -- \"$cur\"))\n"
+         "    mapfile -t COMPREPLY < <(compgen -f -- \"$cur\")\n"
          "  fi\n"
          "}\n"
          "complete -o filenames -o bashdefault -F _dem dem\n";

@@ -23,6 +23,13 @@ bool has_ended(const std::string& state) { return state != "queued" && state != 
 
 }  // namespace
 
+const nlohmann::json& checked_job(const nlohmann::json& job) {
+  if (!job.is_object() || !job.contains("id") || !job["id"].is_number_integer() || !job.contains("state") ||
+      !job["state"].is_string())
+    throw std::runtime_error("the server's answer is not of dem-server's form (not a job with an id and a state)");
+  return job;
+}
+
 std::string job_summary(const nlohmann::json& job) {
   const std::string state = job.value("state", "unknown");
   const std::string name = job.value("name", "");
@@ -60,13 +67,13 @@ int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, Wa
   const bool terminal = isatty(STDERR_FILENO) == 1;
   std::function<void(const Progress&)> show;
   if (!quiet) show = make_progress_printer(terminal);
-  const std::string target = "/api/jobs/" + std::to_string(id);
+  const std::string target = "/api/v1/jobs/" + std::to_string(id);
   std::string last_state;
   std::int64_t shown = -1;  // the last step given to the printer
   double rate = 0;
   nlohmann::json job;
   for (;;) {
-    job = api.call("GET", target);
+    job = checked_job(api.call("GET", target));
     const std::string state = job.value("state", "");
     if (has_ended(state)) break;
     if (show && state == "queued" && last_state != "queued")
@@ -89,7 +96,7 @@ int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, Wa
       std::fputc('\n', stderr);
   }
   if (output == WatchOutput::json)
-    std::printf("%s\n", job.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+    std::printf("%s\n", job.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
   if (job.value("state", "") == "succeeded") {
     if (output == WatchOutput::lines) std::printf("%s\n", job_summary(job).c_str());
     return 0;

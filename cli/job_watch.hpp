@@ -10,6 +10,10 @@
 
 namespace dem::cli {
 
+// `job` when it has dem-server's job form (a whole-number id and a state); else throws
+// std::runtime_error saying so (an answer of another server, or a proxy's).
+const nlohmann::json& checked_job(const nlohmann::json& job);
+
 // "job 12 "demo": running 42.0% (step 32000/77988, 1203 steps/s, 0m38s left)", from the job JSON.
 std::string job_summary(const nlohmann::json& job);
 

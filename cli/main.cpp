@@ -50,7 +50,7 @@ std::string overview() {
   }
   return text +
          "\n  dem completion bash      the bash completion of these verbs (source <(dem completion bash))\n"
-         "  dem help                 this text\n"
+         "  dem help [VERB]          this text, or the verb's\n"
          "  dem --version            the version (also after any verb)\n";
 }
 
@@ -71,6 +71,14 @@ int completion_command(const std::vector<std::string>& args) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.size() == 2 && args[0] == "help") {  // dem help VERB: the verb's own help
+    const auto named =
+        std::find_if(std::begin(kVerbs), std::end(kVerbs), [&](const VerbEntry& v) { return args[1] == v.verb->name; });
+    if (named != std::end(kVerbs)) return named->command({"--help"});
+    if (args[1] == "completion") return completion_command({"--help"});
+    std::fprintf(stderr, "dem help: unknown command \"%s\"\n%s", args[1].c_str(), overview().c_str());
+    return 2;
+  }
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
     std::fputs(overview().c_str(), args.empty() ? stderr : stdout);
     return args.empty() ? 2 : 0;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -275,7 +276,7 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
 // Follows a server's study until every job has ended, then downloads its table and figure.
 int follow(const ServerApi& api, std::int64_t id, const fs::path& out, bool as_json) {
   std::FILE* lines = as_json ? stderr : stdout;  // --json: stdout has the study's JSON only
-  const std::string target = "/api/studies/" + std::to_string(id);
+  const std::string target = "/api/v1/studies/" + std::to_string(id);
   std::string last;
   json study;
   for (;;) {
@@ -297,7 +298,7 @@ int follow(const ServerApi& api, std::int64_t id, const fs::path& out, bool as_j
   for (const json& job : study.value("jobs", json::array())) failed += job.value("state", "") != "succeeded";
   std::fprintf(lines, "study %lld: table %s, figure %s\n", static_cast<long long>(id), (out / "study.csv").c_str(),
                (out / "study.svg").c_str());
-  if (as_json) std::printf("%s\n", study.dump(2, ' ', false, json::error_handler_t::replace).c_str());
+  if (as_json) std::printf("%s\n", study.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
   return failed == 0 ? 0 : 1;
 }
 
@@ -319,7 +320,15 @@ int study_command(const std::vector<std::string>& args) {
   if (const auto exit = parse_verb_args(kVerb, args, a)) return *exit;
   const std::string out = a.value("--out");
   const bool plan_only = a.flag("--plan");
+  // an option of the other mode is refused, not ignored (a forgotten --submit ran a study here)
+  auto given = [&](std::initializer_list<const char*> options) -> std::string {
+    for (const char* o : options)
+      if (a.has(o) || a.flag(o)) return o;
+    return "";
+  };
   if (a.has("--id")) {
+    if (const std::string o = given({"--jobs", "--threads", "--plan", "--quiet", "--detach", "--submit"}); !o.empty())
+      return usage_error(kVerb, o + " does not go with --id (which follows a study on the server)");
     const std::optional<std::int64_t> id = job_id(a.value("--id"));
     if (!id) return usage_error(kVerb, "a study id is a whole number (got \"" + a.value("--id") + "\")");
     if (!a.positional.empty()) return usage_error(kVerb, "--id follows a study on the server: give no study file");
@@ -327,6 +336,13 @@ int study_command(const std::vector<std::string>& args) {
     return with_server(kVerb, a, [&](const ServerApi& api) { return follow(api, *id, out, a.json); });
   }
   if (a.positional.empty()) return usage_error(kVerb, "missing the study file");
+  if (!a.flag("--submit")) {
+    if (a.flag("--detach")) return usage_error(kVerb, "--detach goes with --submit (a study on the server)");
+    if (a.json) return usage_error(kVerb, "--json goes with --submit or --id (a study on the server)");
+    if (const std::string o = given({"--server", "--token", "--timeout"}); !o.empty())
+      return usage_error(kVerb, o + " goes with --submit or --id (this study runs here: add --submit to run it on "
+                                    "the server)");
+  }
   if (out.empty() && !plan_only && !a.flag("--detach"))
     return usage_error(kVerb, "--out DIR: where the runs, the table and the figure go");
   int threads = -1;
@@ -364,21 +380,17 @@ int study_command(const std::vector<std::string>& args) {
         std::printf("run %d: %s\n", run.index, study::describe_values(plan.parameters, run.values).c_str());
       return 0;
     }
-    if (!a.flag("--submit")) {
-      if (a.flag("--detach")) return usage_error(kVerb, "--detach goes with --submit (a study on the server)");
-      if (a.json) return usage_error(kVerb, "--json goes with --submit or --id (a study on the server)");
-      return run_here(plan, in, out, threads, a.flag("--quiet"), jobs);
-    }
+    if (!a.flag("--submit")) return run_here(plan, in, out, threads, a.flag("--quiet"), jobs);
     const json study = for_server(in);
     return with_server(kVerb, a, [&](const ServerApi& api) {
-      const client::Response response = api.send("POST", "/api/studies", study.dump(), "application/json");
-      const json created = api.json_of(response, "/api/studies");
+      const client::Response response = api.send("POST", "/api/v1/studies", study.dump(), "application/json");
+      const json created = api.json_of(response, "/api/v1/studies");
       const std::int64_t id = created.value("id", std::int64_t{-1});
       std::fprintf(a.json ? stderr : stdout, "submitted study %lld: %zu jobs\n", static_cast<long long>(id),
                    created.value("jobs", json::array()).size());
       std::fflush(stdout);
       if (a.flag("--detach")) {
-        if (a.json) std::printf("%s\n", created.dump(2, ' ', false, json::error_handler_t::replace).c_str());
+        if (a.json) std::printf("%s\n", created.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
         return 0;
       }
       return follow(api, id, out, a.json);

@@ -61,6 +61,8 @@ std::string verb_help(const Verb& verb) {
   if (verb.details != nullptr) help += "\n  " + wrap_words(verb.details, 2, kWidth) + "\n";
   if (verb.client)
     help += "exit status: 0 done (a followed job succeeded), 1 the job failed or the server said no, 2 bad arguments\n";
+  else if (verb.details == nullptr || std::string(verb.details).find("exit status") == std::string::npos)
+    help += "exit status: 0 done, 1 failed, 2 bad arguments\n";
   return help;
 }
 
@@ -85,6 +87,13 @@ std::optional<int> parse_verb_args(const Verb& verb, const std::vector<std::stri
     else  // one value per occurrence, never the next positional argument
       app.add_option(o.name, given[o.name])->expected(1)->allow_extra_args(false)->take_all();
   }
+  // a flag takes no value: CLI11 reads --wait=false as false and --wait=0 as a count
+  for (const std::string& arg : args) {
+    if (arg == "--") break;
+    for (const VerbOption& o : options)
+      if (o.value == nullptr && arg.rfind(std::string(o.name) + "=", 0) == 0)
+        return usage_error(verb, std::string(o.name) + " takes no value (got \"" + arg + "\")");
+  }
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 reads the arguments from the back
   try {
     app.parse(reversed);
@@ -101,11 +110,13 @@ std::optional<int> parse_verb_args(const Verb& verb, const std::vector<std::stri
     if (extra != "--") return usage_error(verb, "unknown option " + extra);
   for (const VerbOption& o : options) {
     std::vector<std::string>& values = given[o.name];
-    if (o.value == nullptr && app.count(o.name) > 0) out.flags.insert(o.name);
+    const std::size_t times = o.value == nullptr ? app.count(o.name) : values.size();
+    if (times > 1 && !o.repeated)
+      return usage_error(verb, std::string(o.name) + " is given " + std::to_string(times) + " times (once at most)");
+    if (o.value == nullptr && times > 0) out.flags.insert(o.name);
     if (values.empty()) continue;
-    if (values.size() > 1 && !o.repeated)
-      return usage_error(verb,
-                         std::string(o.name) + " is given " + std::to_string(values.size()) + " times (once at most)");
+    for (const std::string& v : values)
+      if (v.empty()) return usage_error(verb, std::string(o.name) + " is given an empty value");
     out.values[o.name] = values;
   }
   out.positional = positional;
@@ -120,9 +131,19 @@ std::optional<int> parse_verb_args(const Verb& verb, const std::vector<std::stri
       const std::string v = out.value("--timeout");
       char* end = nullptr;
       out.timeout_seconds = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(out.timeout_seconds > 0) || out.timeout_seconds > 1e6)
+      const bool decimal = v.find_first_not_of("0123456789.eE+-") == std::string::npos;  // strtod takes 0x10, inf
+      if (!decimal || end == v.c_str() || *end != '\0' || !(out.timeout_seconds > 0) || out.timeout_seconds > 1e6)
         return usage_error(verb, "--timeout is a number of seconds in (0, 1e6] (got \"" + v + "\")");
     }
+    // a line break in a header's value would add headers of its own to the request
+    const std::pair<const char*, std::string> header_values[] = {{"--token", out.token},
+                                                                 {"--idempotency-key", out.value("--idempotency-key")}};
+    for (const auto& [option, v] : header_values)
+      if (std::any_of(v.begin(), v.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; }))
+        return usage_error(
+            verb,
+            std::string(option) + " holds a control character (a line break?)" +
+                (std::string(option) == "--token" && !out.has("--token") ? " (it came from $DEM_SERVER_TOKEN)" : ""));
   }
   return std::nullopt;
 }

@@ -93,7 +93,13 @@ HttpClient::HttpClient(const std::string& server, std::string token) : token_(st
     rest = rest.substr(7);
   else if (rest.find("://") != std::string::npos)
     throw ClientError("server " + server + ": only http:// is supported (put TLS in front with a proxy)");
-  rest = rest.substr(0, rest.find('/'));
+  // a path (a server behind a proxy's prefix) or a user's password would be dropped without a word
+  const std::size_t slash = rest.find('/');
+  if (slash != std::string::npos && slash + 1 != rest.size())
+    throw ClientError("server \"" + server + "\": a path after HOST:PORT is not supported (give http://HOST:PORT)");
+  rest = rest.substr(0, slash);
+  if (rest.find('@') != std::string::npos)
+    throw ClientError("server: a user or password in the URL is not supported (give the token with --token)");
   const std::size_t colon = rest.rfind(':');
   host_ = colon == std::string::npos ? rest : rest.substr(0, colon);
   port_ = colon == std::string::npos ? "80" : rest.substr(colon + 1);
@@ -160,7 +166,13 @@ Response HttpClient::download(const std::string& target, const std::string& path
   res.body().close();
   Response out = to_response(res);
   if (out.status == 200) {
-    std::filesystem::rename(partial, path);
+    std::error_code renamed;
+    std::filesystem::rename(partial, path, renamed);
+    if (renamed) {  // the file there cannot be replaced (read-only, a folder): no .part left either
+      std::error_code ignored;
+      std::filesystem::remove(partial, ignored);
+      throw ClientError("cannot write " + path + ": " + renamed.message());
+    }
   } else {
     std::FILE* f = std::fopen(partial.c_str(), "rb");
     for (int c; f && (c = std::fgetc(f)) != EOF && out.body.size() < (1u << 20);)

@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <initializer_list>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "dem/version.hpp"
@@ -58,8 +60,10 @@ struct NumberOptions {
 
 void define_options(CLI::App& app, dem::server::ServerOptions& o, NumberOptions& n, std::string& web,
                     std::string& cases) {
+  const CLI::Validator not_empty([](std::string& text) { return text.empty() ? std::string("is empty") : ""; }, "", "");
   app.add_option("--data", o.data, "where the job table (jobs.db) and each job's folder live (made if missing)")
       ->required()
+      ->check(not_empty)
       ->type_name("DIR");
   app.add_option("--port", n.port, "default 8080; 0 picks a free port (printed)")
       ->check(number_in(0, 65535, true, false, "a port number 0-65535"))
@@ -171,6 +175,19 @@ int main(int argc, char** argv) {
   apply(numbers, options);
   options.web = web.empty() ? dem::server::default_web_dir() : std::filesystem::path(web);
   options.cases = cases.empty() ? dem::server::default_cases_dir() : std::filesystem::path(cases);
+  // a folder given that is not one is refused; one not found by default is said, with where it was looked for
+  const std::tuple<const char*, const std::filesystem::path&, bool, const char*, const char*> folders[] = {
+      {"--web", options.web, !web.empty(), "the viewer (built by scripts/build) is not at", "/ shows a short page"},
+      {"--cases", options.cases, !cases.empty(), "the bundled cases are not at", "/api/v1/cases is empty"}};
+  for (const auto& [option, folder, given, what, so] : folders) {
+    std::error_code error;
+    if (std::filesystem::is_directory(folder, error)) continue;
+    if (given) {
+      std::fprintf(stderr, "dem-server: %s: %s is not a folder\n", option, folder.c_str());
+      return 2;
+    }
+    std::fprintf(stderr, "dem-server: %s %s: %s (give %s DIR)\n", what, folder.c_str(), so, option);
+  }
   // the viewer's page keeps the token in a cookie, where it must go unquoted
   if (!options.token.empty() && !dem::server::is_cookie_safe(options.token)) {
     std::fprintf(stderr,

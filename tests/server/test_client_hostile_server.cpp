@@ -9,6 +9,8 @@
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <unistd.h>
@@ -93,7 +95,7 @@ class ClientAgainstHostileServer : public ::testing::Test {
 TEST_F(ClientAgainstHostileServer, FetchWritesOnlyPlainFileNamesInsideItsFolder) {
   const fs::path absolute = dir_ / "absolute.dat";
   ScriptedServer server([&](const std::string& target) -> std::string {
-    if (target == "/api/jobs/1/artifacts")
+    if (target == "/api/v1/jobs/1/artifacts")
       return R"({"artifacts": [{"name": "../escaped.dat"}, {"name": ")" + absolute.string() +
              R"("}, {"name": ".."}, {"name": "good.dat"}]})";
     return "file contents\n";
@@ -174,7 +176,7 @@ TEST_F(ClientAgainstHostileServer, AnEndlessAnswerIsCutOff) {
 // None becomes a file; the good one still does.
 TEST_F(ClientAgainstHostileServer, FetchRefusesNamesOutsideTheServersOwnRule) {
   ScriptedServer server([&](const std::string& target) -> std::string {
-    if (target == "/api/jobs/1/artifacts")
+    if (target == "/api/v1/jobs/1/artifacts")
       return R"({"artifacts": [{"name": "a\nb.dat"}, {"name": "c\u001b[2Jd.dat"}, {"name": "e\u202ef.dat"},)"
              R"( {"name": "g h.dat"}, {"name": "good.dat"}]})";
     return "file contents\n";
@@ -194,6 +196,86 @@ TEST_F(ClientAgainstHostileServer, AnAnswerOfTheWrongFormIsSaidSo) {
   const CommandResult r = dem("list", server.url());
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("not of dem-server's form"), std::string::npos) << r.output;
+}
+
+// An independent tester's findings on --json: `status --json` printed any 200 answer (a proxy's
+// page, `null`) and exited 0; an object that is no job was taken as one by submit and cancel.
+TEST_F(ClientAgainstHostileServer, JsonIsPrintedOnlyWhenItIsAJob) {
+  for (const std::string body : {"<html>a proxy's page</html>", "null", "[]", "{}", R"({"id": "7", "state": 1})"}) {
+    ScriptedServer server([&](const std::string&) { return body; });
+    for (const std::string verb : {"status 1 --json", "status 1", "cancel 1 --json", "resume 1"}) {
+      const CommandResult r = dem(verb + " 2>&1", server.url());
+      EXPECT_EQ(r.exit_code, 1) << verb << " given " << body << ": " << r.output;
+      EXPECT_TRUE(r.output.find("not of dem-server's form") != std::string::npos ||
+                  r.output.find("not JSON") != std::string::npos)
+          << verb << ": " << r.output;
+    }
+  }
+}
+
+// Every verb speaks /api/v1/ (a proxy that routes only the versioned paths): submit, status,
+// cancel and fetch used the unversioned alias.
+TEST_F(ClientAgainstHostileServer, EveryVerbUsesTheVersionedPaths) {
+  std::vector<std::string> targets;
+  std::mutex seen;
+  ScriptedServer server([&](const std::string& target) -> std::string {
+    const std::lock_guard<std::mutex> lock(seen);
+    targets.push_back(target);
+    if (target == "/api/v1/jobs/1/artifacts") return R"({"artifacts": [{"name": "a.dat"}]})";
+    if (target.rfind("/api/v1/jobs/1/artifacts/", 0) == 0) return "1 2 3\n";
+    return R"({"id": 1, "state": "succeeded", "name": "x", "step": 1, "totalSteps": 1})";
+  });
+  for (const std::string verb : {"status 1", "cancel 1", "resume 1", "watch 1"})
+    EXPECT_EQ(dem(verb, server.url()).exit_code, 0) << verb;
+  EXPECT_EQ(dem("fetch 1 --out " + shell_quoted(dir_ / "deep" / "out"), server.url()).exit_code, 0);
+  for (const std::string& target : targets) EXPECT_EQ(target.rfind("/api/v1/", 0), 0u) << target;
+}
+
+// A local file that cannot be written is one file not fetched: the others are, --json lists it,
+// and no .part is left (it ended the verb with no JSON and a .part behind).
+TEST_F(ClientAgainstHostileServer, AFileThatCannotBeWrittenIsListedAsNotFetched) {
+  ScriptedServer server([&](const std::string& target) -> std::string {
+    if (target == "/api/v1/jobs/1/artifacts") return R"({"artifacts": [{"name": "a.dat"}, {"name": "b.dat"}]})";
+    return "1 2 3\n";
+  });
+  const fs::path out = dir_ / "deep" / "out";
+  fs::create_directories(out / "a.dat" / "in-the-way");  // a folder where a.dat would go
+  const CommandResult r = dem("fetch 1 --json --out " + shell_quoted(out) + " 2>/dev/null", server.url());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(fs::is_regular_file(out / "b.dat"));
+  EXPECT_FALSE(fs::exists(out / "a.dat.part"));
+  const nlohmann::json listed = nlohmann::json::parse(r.output);
+  ASSERT_EQ(listed.at("notFetched").size(), 1u) << r.output;
+  EXPECT_EQ(listed["notFetched"][0].at("name"), "a.dat");
+  EXPECT_EQ(listed.at("fetched").size(), 1u) << r.output;
+}
+
+// What would go into a request's headers is checked first: a line break in the token or the
+// idempotency key sent a header of its own (X-Evil); a path or a password in --server was dropped.
+TEST_F(ClientAgainstHostileServer, HeaderValuesAndServerUrlsAreCheckedBeforeSending) {
+  std::atomic<int> requests{0};
+  ScriptedServer server([&](const std::string&) {
+    ++requests;
+    return std::string(R"({"jobs": []})");
+  });
+  const std::string evil = "'abc\r\nX-Evil: 1'";
+  for (const std::string& args :
+       std::vector<std::string>{"list --token " + evil, "submit x.json --idempotency-key " + evil}) {
+    const CommandResult r = dem(args + " 2>&1", server.url());
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find("control character"), std::string::npos) << r.output;
+  }
+  const CommandResult from_env =
+      run_command("DEM_SERVER_TOKEN=$(printf 'a\\r\\nX-Evil: 1') " + shell_quoted(DEM_BINARY_DIR "/dem") +
+                  " list --server " + server.url() + " 2>&1");
+  EXPECT_EQ(from_env.exit_code, 2) << from_env.output;
+  EXPECT_NE(from_env.output.find("DEM_SERVER_TOKEN"), std::string::npos) << from_env.output;
+  for (const std::string& url : std::vector<std::string>{server.url() + "/prefix/", "http://user:pw@127.0.0.1:1"}) {
+    const CommandResult r = run_command(shell_quoted(DEM_BINARY_DIR "/dem") + " list --server " + url + " 2>&1");
+    EXPECT_EQ(r.exit_code, 2) << url << ": " << r.output;
+    EXPECT_EQ(r.output.find("pw"), std::string::npos) << "the password is echoed: " << r.output;
+  }
+  EXPECT_EQ(requests.load(), 0);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // standard output) and --version after any verb (the project's one version).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "dem/version.hpp"
@@ -9,6 +10,8 @@
 
 namespace dem::test {
 namespace {
+
+namespace fs = std::filesystem;
 
 class CliConventions : public DemCommandTest {};
 
@@ -83,6 +86,78 @@ TEST_F(CliConventions, EveryVerbsHelpListsTheOptionsItsCompletionOffers) {
           << help;
     }
   }
+}
+
+// An independent tester's findings on the parsing: a flag took a value and ignored it
+// (--wait=false waited, --json=false printed JSON), a flag given twice passed, an empty value went
+// on to fail later with exit 1 ("filesystem error: cannot create directories"), --timeout took
+// hexadecimal, and --json with --quiet printed no end.
+TEST_F(CliConventions, FlagsTakeNoValueAndNothingIsGivenTwiceOrEmpty) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"run s.json --out o --quiet=false", "--quiet takes no value"},
+      {"status 1 --json=0", "--json takes no value"},
+      {"run s.json --out o --quiet --quiet", "--quiet is given 2 times"},
+      {"submit s.json --wait --wait", "--wait is given 2 times"},
+      {"run s.json --out ''", "--out is given an empty value"},
+      {"fetch 1 --out=", "--out needs a value"},
+      {"chains r --times '' --out f.svg", "--times is given an empty value"},
+      {"status 1 --timeout 0x10", "--timeout is a number of seconds"},
+      {"submit s.json --quiet --json", "--quiet and --json"},
+  };
+  for (const auto& [args, said] : cases) {
+    const CommandResult r = run_dem(std::string(args) + " 2>&1");
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(said), std::string::npos) << args << ": " << r.output;
+  }
+}
+
+// `dem study` refused --json without --submit but ran a study here with --server given (a forgotten
+// --submit), and followed a study with --id ignoring --jobs or --plan.
+TEST_F(CliConventions, StudyRefusesTheOtherModesOptions) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"study s.json --out o --server http://127.0.0.1:1", "--server goes with --submit or --id"},
+      {"study s.json --out o --token t", "--token goes with --submit or --id"},
+      {"study --id 3 --out o --jobs 2", "--jobs does not go with --id"},
+      {"study --id 3 --out o --plan", "--plan does not go with --id"},
+  };
+  for (const auto& [args, said] : cases) {
+    const CommandResult r = run_dem(std::string(args) + " 2>&1");
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(said), std::string::npos) << args << ": " << r.output;
+  }
+}
+
+// `dem help run` printed dem's overview, and `dem help bogus` exited 0.
+TEST_F(CliConventions, HelpOfAVerbIsItsOwn) {
+  const CommandResult run = run_dem("help run");
+  EXPECT_EQ(run.exit_code, 0);
+  EXPECT_EQ(run.output, run_dem("run --help").output);
+  EXPECT_EQ(run_dem("help bogus 2>&1").exit_code, 2);
+  // every verb's help ends with its exit status (plot, chains and deposits had none)
+  for (const char* verb : kVerbs)
+    EXPECT_NE(run_dem(std::string(verb) + " --help").output.find("exit status"), std::string::npos) << verb;
+}
+
+// Bash completion kept names with spaces whole only after `mapfile` (it offered "a" and "b.json"
+// for "a b.json"), and read --view=VALUE, which bash splits at '=' (it offered files there).
+TEST_F(CliConventions, CompletionKeepsNamesWithSpacesAndReadsEqualsValues) {
+  const fs::path dir = fs::path(testing::TempDir()) / "dem-completion-spaces";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "dir one");
+  std::ofstream(dir / "a b.json") << "{}";
+  const std::string in_dir = "cd " + shell_quoted(dir) + " && ";
+  const std::string script = testing::TempDir() + "/dem-completion-spaces.sh";
+  auto complete = [&](const std::string& words, int current) {
+    std::ofstream(script, std::ios::binary)
+        << ("source <(" + shell_quoted(kDem) + " completion bash)\nCOMP_WORDS=(" + words +
+            ")\nCOMP_CWORD=" + std::to_string(current) + "\n_dem\nprintf '%s\\n' \"${COMPREPLY[@]}\"\n");
+    return run_command(in_dir + "bash " + shell_quoted(script) + " 2>&1").output;
+  };
+  EXPECT_EQ(complete("dem run a", 2), "a b.json\n");
+  EXPECT_EQ(complete("dem run x.json --out di", 4), "dir one\n");
+  EXPECT_EQ(complete("dem chains d --view = ''", 5), "x\ny\nz\n");
+  EXPECT_EQ(complete("dem chains d --view =", 4), "x\ny\nz\n");
+  fs::remove_all(dir);
 }
 
 // The version is set once (CMakeLists.txt's project()); the README and the changelog name it.
