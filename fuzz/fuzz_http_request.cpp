@@ -1,14 +1,20 @@
 // libFuzzer target: the server's request path before any job is touched: Beast's parser on the raw
 // bytes, then the project's own parsing of what it gave (the target's path and query, the job id,
-// the token, the Host and Origin checks, the transfer coding, the byte range of an artifact). Every
-// input is parsed or refused; none crashes, and a range kept lies inside the file.
+// the token, the Host and Origin checks, the transfer coding, the byte range of an artifact, the
+// lists of Accept-Encoding and Prefer, the target as the request log writes it). Every input is
+// parsed or refused; none crashes, a range kept lies inside the file, and a logged target is one
+// line of printable ASCII.
 #include <cstdint>
 #include <string>
 
 #include <boost/beast/http.hpp>
 
+#include "server/content_coding.hpp"
 #include "server/file_response.hpp"
+#include "server/header_list.hpp"
 #include "server/http_util.hpp"
+#include "server/preferences.hpp"
+#include "server/request_log.hpp"
 #include "server/request_policy.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -38,6 +44,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const RangeRequest r = parse_range(req[http::field::range], file_size);
     if (r.kind == RangeRequest::Part && (r.range.first > r.range.last || r.range.last >= file_size)) __builtin_trap();
   }
+  accepts_gzip(header_list(req, http::field::accept_encoding));
+  prefers_respond_async(req);
+  for (const HeaderElement& e : parse_header_list(req.body()))
+    if (e.name.empty()) __builtin_trap();  // an element without a name is dropped, never kept
+  for (const char c : loggable_target(req.target()))
+    if (c <= 0x20 || c >= 0x7f || c == '"') __builtin_trap();
   printable(req.body());
   return 0;
 }

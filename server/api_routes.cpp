@@ -8,7 +8,9 @@
 #include "dem/version.hpp"
 #include "server/bundled_cases.hpp"
 #include "server/file_response.hpp"
+#include "server/job_log.hpp"
 #include "server/own_files.hpp"
+#include "server/preferences.hpp"
 #include "server/request_policy.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -55,7 +57,7 @@ const char* allowed_methods(const std::vector<std::string>& s) {
     if (s.size() == 2) return kJobs;
     if (s.size() == 3) return kJob;
     if (s.size() == 4 && (s[3] == "cancel" || s[3] == "resume")) return kAction;
-    if (s.size() == 4 && (s[3] == "frames" || s[3] == "results")) return kReadOnly;
+    if (s.size() == 4 && (s[3] == "frames" || s[3] == "results" || s[3] == "log")) return kReadOnly;
     if (s[3] == "artifacts") return kReadOnly;
   }
   return nullptr;
@@ -113,6 +115,7 @@ Response submit(const Request& req, ApiContext& ctx) {
     Response res = json_response(req, s.created ? http::status::created : http::status::ok, to_json(s.job));
     res.set(http::field::location, std::string(kApiBase) + "/jobs/" + std::to_string(s.job.id));
     if (!s.created) res.set("Idempotent-Replayed", "true");
+    apply_respond_async(req, res);  // the job runs after this answer, whatever the client prefers
     return res;
   } catch (const spec::SpecError& e) {
     return error_response(req, http::status::bad_request, "invalid spec", e.problems());
@@ -142,6 +145,7 @@ Response create_study(const Request& req, ApiContext& ctx) {
         json_response(req, made.created ? http::status::created : http::status::ok, ctx.studies.describe(made.study));
     res.set(http::field::location, std::string(kApiBase) + "/studies/" + std::to_string(made.study.id));
     if (!made.created) res.set("Idempotent-Replayed", "true");
+    apply_respond_async(req, res);
     return res;
   } catch (const study::StudyError& e) {
     return error_response(req, http::status::bad_request, "invalid study", e.problems());
@@ -297,6 +301,39 @@ Response job_results(const Request& req, const JobRecord& job) {
   return json_response(req, http::status::ok, job.results);
 }
 
+constexpr std::int64_t kMostLogLines = 100000;
+constexpr const char* kLogType = "text/plain; charset=utf-8";
+
+// GET /jobs/{id}/log: the job's own log (job_log.hpp), whole, as an artifact is sent (ETag, ranges,
+// gzip), or its last lines (?tail=N). A job from before the server kept logs has an empty one.
+http::message_generator job_log(const Request& req, const Target& target, std::int64_t id, ApiContext& ctx) {
+  if (!target.repeated.empty())
+    return error_response(req, http::status::bad_request, target.repeated.front() + "= is given more than once");
+  std::optional<std::int64_t> tail;
+  for (const auto& [key, value] : target.query) {
+    if (key == "tail") {
+      tail = parse_job_id(value);
+      if (!tail || *tail < 1 || *tail > kMostLogLines)
+        return error_response(req, http::status::bad_request,
+                              "tail=" + value + ": the number of lines must be a whole number from 1 to " +
+                                  std::to_string(kMostLogLines));
+    } else if (key != "access_token") {
+      return error_response(req, http::status::bad_request, "\"" + key + "\" is not a parameter of a job's log (tail)");
+    }
+  }
+  const JobFolder folder = ctx.jobs.folder(id);
+  // a link planted in the job's folder is never followed, as for artifacts
+  if (!is_own_folder(folder.root) || !is_own_file(folder.log()))
+    return text_response(req, http::status::ok, kLogType, "");
+  if (tail)
+    return text_response(req, http::status::ok, kLogType, last_lines(folder.log(), static_cast<std::size_t>(*tail)));
+  std::optional<http::message_generator> file = file_response(
+      req, folder.log(), {{http::field::content_type, kLogType}, {http::field::cache_control, "no-cache"}},
+      Compression::GzipWhenAccepted);
+  if (!file) return text_response(req, http::status::ok, kLogType, "");
+  return std::move(*file);
+}
+
 Response action(const Request& req, const ActionResult& r, http::status done = http::status::ok) {
   switch (r.outcome) {
     case Outcome::NotFound:
@@ -348,16 +385,21 @@ http::message_generator artifact(const Request& req, std::int64_t id, const std:
   // the legacy files and results are text, the time series' twins CSV; ParaView's series is XML, its frames
   // binary after an XML header
   const std::string extension = fs::path(name).extension().string();
-  const char* type = tar                                          ? "application/x-tar"
-                     : extension == ".pvd"                        ? "application/xml"
-                     : extension == ".vtu" || extension == ".vtp" ? "application/octet-stream"
-                     : extension == ".csv"                        ? "text/csv; charset=utf-8"
-                                                                  : "text/plain; charset=utf-8";
+  const bool binary = extension == ".vtu" || extension == ".vtp";
+  const char* type = tar                   ? "application/x-tar"
+                     : extension == ".pvd" ? "application/xml"
+                     : binary              ? "application/octet-stream"
+                     : extension == ".csv" ? "text/csv; charset=utf-8"
+                                           : "text/plain; charset=utf-8";
+  // text is gzipped for a client that asks (about threefold smaller); ParaView's frames are float
+  // arrays that deflate barely pays for, and the archive is kept as the file it is (its size listed)
+  const Compression compression = tar || binary ? Compression::None : Compression::GzipWhenAccepted;
   std::optional<http::message_generator> file =
       file_response(req, path,
                     {{http::field::content_type, type},
                      {http::field::content_disposition, "attachment; filename=\"" + name + "\""},
-                     {http::field::cache_control, "no-cache"}});  // kept, asked again by its ETag
+                     {http::field::cache_control, "no-cache"}},  // kept, asked again by its ETag
+                    compression);
   if (!file)
     return error_response(req, http::status::not_found, "job " + std::to_string(id) + " has no artifact " + name);
   return std::move(*file);
@@ -420,6 +462,7 @@ http::message_generator handle_api(const Request& req, const Target& target, Api
   if (s[3] == "cancel" || s[3] == "resume")
     return action(req, s[3] == "cancel" ? ctx.jobs.cancel(*id) : ctx.jobs.resume(*id));
   if (s[3] == "results") return job_results(req, *job);
+  if (s[3] == "log") return job_log(req, target, *id, ctx);
   if (s[3] == "frames") {
     Response res = error_response(req, http::status::upgrade_required,
                                   "the frames of job " + s[2] + " are a WebSocket stream: connect with ws://");

@@ -8,6 +8,10 @@
 #include <boost/beast/core/file.hpp>
 #include <boost/beast/http/basic_file_body.hpp>
 
+#include "server/content_coding.hpp"
+#include "server/gzip_body.hpp"
+#include "server/request_policy.hpp"
+
 namespace dem::server {
 namespace {
 
@@ -88,6 +92,10 @@ std::string entity_tag(std::uint64_t size, std::filesystem::file_time_type modif
   return text;
 }
 
+// The gzipped representation's tag: another than the file's (RFC 9110 8.8.3: a strong validator
+// names one representation's bytes), "SIZE-TIME-gzip".
+std::string gzip_entity_tag(const std::string& tag) { return tag.substr(0, tag.size() - 1) + "-gzip\""; }
+
 // If-None-Match: "*" or a list of tags (weak ones compared weakly, RFC 9110 13.1.2).
 bool names_tag(std::string_view list, const std::string& tag) {
   if (list == "*") return true;
@@ -132,7 +140,7 @@ RangeRequest parse_range(std::string_view header, std::uint64_t size) {
 }
 
 std::optional<http::message_generator> file_response(const Request& req, const std::filesystem::path& path,
-                                                     const Headers& headers) {
+                                                     const Headers& headers, Compression compression) {
   std::error_code fs_error;
   if (!std::filesystem::is_regular_file(path, fs_error)) return std::nullopt;
   const std::filesystem::file_time_type modified = std::filesystem::last_write_time(path, fs_error);
@@ -143,19 +151,39 @@ std::optional<http::message_generator> file_response(const Request& req, const s
   if (ec) return std::nullopt;
   const std::uint64_t size = file.size(ec);
   if (ec) return std::nullopt;
-  const std::string tag = entity_tag(size, modified);
+  const bool negotiated = compression == Compression::GzipWhenAccepted;
+  // a range is of the file's bytes, and a compressed answer's length is unknown until sent (chunked,
+  // which HTTP/1.0 does not have): those are answered as the file is
+  const bool gzip = negotiated && req.version() >= 11 && req.count(http::field::range) == 0 &&
+                    accepts_gzip(header_list(req, http::field::accept_encoding));
+  const std::string tag = gzip ? gzip_entity_tag(entity_tag(size, modified)) : entity_tag(size, modified);
 
   auto fill = [&](auto& res) {
     res.set(http::field::date, http_date_now());
     for (const auto& [field, value] : headers) res.set(field, value);
     res.set(http::field::etag, tag);
     res.set(http::field::accept_ranges, "bytes");
+    if (negotiated) res.set(http::field::vary, "Accept-Encoding");  // caches keep the two apart
     res.keep_alive(req.keep_alive());
   };
   if (req.count(http::field::if_none_match) > 0 && names_tag(joined(req, http::field::if_none_match), tag)) {
     http::response<http::empty_body> not_modified{http::status::not_modified, req.version()};
     fill(not_modified);  // no Content-Length in a 304 (RFC 9110 8.6)
     return http::message_generator(std::move(not_modified));
+  }
+  if (gzip) {
+    if (req.method() == http::verb::head) {  // the compressed length is not known without compressing
+      http::response<http::empty_body> head{http::status::ok, req.version()};
+      fill(head);
+      head.set(http::field::content_encoding, "gzip");
+      return http::message_generator(std::move(head));
+    }
+    http::response<GzipFileBody> res{std::piecewise_construct, std::make_tuple(std::move(file), size),
+                                     std::make_tuple(http::status::ok, req.version())};
+    fill(res);
+    res.set(http::field::content_encoding, "gzip");
+    res.chunked(true);
+    return http::message_generator(std::move(res));
   }
   RangeRequest range;
   const auto range_header = req.find(http::field::range);
@@ -172,6 +200,7 @@ std::optional<http::message_generator> file_response(const Request& req, const s
     res.set(http::field::content_range, "bytes */" + std::to_string(size));
     res.set(http::field::etag, tag);
     res.set(http::field::accept_ranges, "bytes");
+    if (negotiated) res.set(http::field::vary, "Accept-Encoding");
     return http::message_generator(std::move(res));
   }
   const std::uint64_t first = range.kind == RangeRequest::Part ? range.range.first : 0;

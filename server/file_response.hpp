@@ -1,5 +1,6 @@
 // A file as an HTTP response, with what clients of large files rely on: an ETag to ask again
-// cheaply (If-None-Match: 304), and byte ranges (Range: 206) to resume a download or read a part.
+// cheaply (If-None-Match: 304), byte ranges (Range: 206) to resume a download or read a part, and
+// for text, gzip on request (Accept-Encoding), compressed as it is sent.
 #pragma once
 
 #include <filesystem>
@@ -19,9 +20,17 @@ namespace dem::server {
 // that range starts past the end, else 200 with it whole (for HEAD: the headers alone). Several
 // ranges or a malformed Range are answered whole (RFC 9110 14.2 lets a server ignore them).
 // Nothing when it is not a regular file or cannot be opened.
+//
+// With GzipWhenAccepted (text, which compresses about threefold), the answer varies by
+// Accept-Encoding (Vary): a client that accepts gzip is sent the file gzipped, chunked (its length is
+// not known before it is compressed), with an ETag of its own (the file's with "-gzip" inside the
+// quotes: a cache must not take one representation for the other). A request with a Range, and an
+// HTTP/1.0 request (no chunked), get the file as it is: ranges are of the file's bytes.
 using Headers = std::vector<std::pair<http::field, std::string>>;
+enum class Compression { None, GzipWhenAccepted };
 std::optional<http::message_generator> file_response(const Request& req, const std::filesystem::path& path,
-                                                     const Headers& headers);
+                                                     const Headers& headers,
+                                                     Compression compression = Compression::None);
 
 // The bytes [first, last] of a file of `size` bytes a Range header asks for.
 struct ByteRange {

@@ -1,5 +1,6 @@
 #include "server/frame_session.hpp"
 
+#include <utility>
 #include <vector>
 
 #include <boost/asio/post.hpp>
@@ -30,6 +31,7 @@ void FrameSession::start(const Request& request, std::shared_ptr<FrameChannel> c
 }
 
 void FrameSession::on_accept(beast::error_code ec) {
+  if (handshake_done_) std::exchange(handshake_done_, nullptr)(ec);
   if (ec) {
     leave();
     return;

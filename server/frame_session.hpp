@@ -4,7 +4,7 @@
 #pragma once
 
 #include <deque>
-
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -24,6 +24,8 @@ class FrameSession final : public FrameViewer, public std::enable_shared_from_th
   void start(const Request& request, std::shared_ptr<FrameChannel> channel, std::string why);
   // Keeps the connection's place within the server's limits (ConnectionLimits) while it lives.
   void hold(std::shared_ptr<void> ticket) { ticket_ = std::move(ticket); }
+  // Called once the handshake is answered (or failed), before any frame: the request log's line.
+  void on_handshake(std::function<void(boost::beast::error_code)> done) { handshake_done_ = std::move(done); }
 
   void offer(std::shared_ptr<const EncodedFrame> frame) override;
   void end(const std::string& reason) override;
@@ -54,6 +56,7 @@ class FrameSession final : public FrameViewer, public std::enable_shared_from_th
   bool closed_ = false;
   std::string end_reason_;
   std::shared_ptr<void> ticket_;
+  std::function<void(boost::beast::error_code)> handshake_done_;
 };
 
 }  // namespace dem::server

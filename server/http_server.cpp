@@ -16,8 +16,12 @@
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
 
+#include <spdlog/spdlog.h>
+
+#include "dem/version.hpp"
 #include "server/http_session.hpp"
 #include "server/openapi.hpp"
+#include "server/server_log.hpp"
 
 namespace dem::server {
 namespace asio = boost::asio;
@@ -119,7 +123,10 @@ int run_server(const ServerOptions& options) {
                  options.address.c_str(), kShortestNetworkToken, options.token.size());
     return 2;
   }
+  // The refusals above are the command's answer to its arguments (as main.cpp's are), printed
+  // plainly; from here on the server logs, to stderr and DATA/server.log (one server a folder: the lock)
   const DataLock lock(options.data);
+  const ServerLog server_log(options.data);
   FrameHub frames;
   ManagerOptions manager_options;
   manager_options.data = options.data;
@@ -168,23 +175,26 @@ int run_server(const ServerOptions& options) {
   listener->accept();
   jobs.start();
   const std::string host = address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
+  // the first line on stdout, which scripts and the tests read for the port (spdlog's are on stderr)
   std::printf("dem-server listening on http://%s:%u/ (data: %s)\n", host.c_str(), listener->port(),
               options.data.c_str());
   std::fflush(stdout);
+  spdlog::info("dem-server {} listening on http://{}:{}/ (data: {})", kVersion, host, listener->port(),
+               options.data.string());
 
   asio::signal_set signals(io, SIGINT, SIGTERM);
   asio::steady_timer grace(io);
   signals.async_wait([&](boost::system::error_code, int signal) {
     std::printf("dem-server: signal %d: stopping (running jobs are checkpointed and stay queued)\n", signal);
     std::fflush(stdout);
+    spdlog::info("signal {}: stopping (running jobs are checkpointed and stay queued)", signal);
     listener->stop();
     jobs.shutdown();
     frames.close_all("the server is shutting down");
     grace.expires_after(std::chrono::milliseconds(200));  // time for the close frames to go out
     grace.async_wait([&](boost::system::error_code) { io.stop(); });
     signals.async_wait([](boost::system::error_code, int) {  // asked twice: do not wait any longer
-      std::fprintf(stderr,
-                   "dem-server: second signal: exiting now (running jobs resume from their last checkpoints)\n");
+      spdlog::warn("second signal: exiting now (running jobs resume from their last checkpoints)");
       std::_Exit(1);
     });
   });
@@ -194,6 +204,7 @@ int run_server(const ServerOptions& options) {
   io.run();
   for (std::thread& t : threads) t.join();
   jobs.shutdown();
+  spdlog::info("stopped");
   std::printf("dem-server: stopped\n");
   return 0;
 }

@@ -30,7 +30,12 @@ HttpSession::HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& sta
       deadline_(stream_.get_executor()),
       ticket_(std::move(ticket)),
       refused_why_(std::move(refused_why)),
-      state_(state) {}
+      state_(state) {
+  boost::system::error_code no_peer;
+  const auto peer = stream_.socket().remote_endpoint(no_peer);
+  client_ = no_peer ? "-" : peer.address().to_string();
+  request_line_.client = client_;
+}
 
 void HttpSession::run() {
   if (ticket_) {
@@ -48,6 +53,8 @@ void HttpSession::run() {
 }
 
 void HttpSession::read() {
+  request_line_ = RequestLine{};  // nothing read yet
+  request_line_.client = client_;
   parser_.emplace();
   // no limit while the header is read: a declared length past it is answered after the token's
   // check (on_header), which then sets the limit for the body
@@ -100,6 +107,10 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   if (ec == http::error::end_of_stream) return close();
   if (ec) return on_read_error(ec);
   auto& head = parser_->get();
+  request_line_.method = std::string(head.method_string());
+  request_line_.target = std::string(head.target());  // as sent (before an absolute form is read)
+  request_line_.version = head.version();
+  request_line_.start = std::chrono::steady_clock::now();
   // an answer before the body: the request's version, and HEAD kept (a method Beast does not know
   // must not be copied: setting it throws, which once took the whole server down)
   Request head_only;
@@ -324,6 +335,11 @@ void HttpSession::upgrade(const Request& request, const Target& target) {
   deadline_.cancel();
   auto session = std::make_shared<FrameSession>(stream_.release_socket(), chains);
   session->hold(ticket_);  // the connection stays counted while it streams
+  // Beast answers the handshake: 101, or 400 to one it refuses (nothing when the client left)
+  session->on_handshake([line = request_line_](beast::error_code handshake) {
+    const unsigned status = !handshake ? 101 : handshake == websocket::condition::handshake_failed ? 400 : 0;
+    log_request(line, status, std::nullopt);
+  });
   session->start(request, std::move(channel), std::move(why));
 }
 
@@ -331,11 +347,13 @@ void HttpSession::send(http::message_generator message) {
   const bool keep_alive = message.keep_alive();
   deadline_.cancel();
   stream_.expires_never();  // a large artifact may take long to send; the next read sets a deadline again
-  beast::async_write(stream_, std::move(message),
+  answered_status_ = 0;
+  beast::async_write(stream_, StatusReadingAnswer(std::move(message), answered_status_),
                      beast::bind_front_handler(&HttpSession::on_write, shared_from_this(), keep_alive));
 }
 
-void HttpSession::on_write(bool keep_alive, beast::error_code ec, std::size_t) {
+void HttpSession::on_write(bool keep_alive, beast::error_code ec, std::size_t bytes) {
+  log_request(request_line_, answered_status_, bytes);  // a write cut short too: what was sent
   if (ec) return;
   if (!keep_alive) return close();
   read();

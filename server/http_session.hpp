@@ -20,6 +20,7 @@
 #include "server/api_routes.hpp"
 #include "server/connection_limits.hpp"
 #include "server/frame_hub.hpp"
+#include "server/request_log.hpp"
 
 namespace dem::server {
 
@@ -73,6 +74,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::optional<http::request_parser<http::string_body>> parser_;
   std::array<char, 4096> scratch_;
   ServerState& state_;
+  std::string client_;            // the peer's address, for the request log
+  RequestLine request_line_;      // of the request being answered
+  unsigned answered_status_ = 0;  // of the answer being written (read from its bytes)
 };
 
 }  // namespace dem::server

@@ -72,8 +72,11 @@ nlohmann::json to_json(const JobRecord& job) {  // dumped with invalid UTF-8 rep
   }
   if (!job.results.is_null()) j["results"] = job.results;
   const std::string self = std::string(kApiBase) + "/jobs/" + std::to_string(job.id);
-  j["links"] = {
-      {"self", self}, {"results", self + "/results"}, {"artifacts", self + "/artifacts"}, {"frames", self + "/frames"}};
+  j["links"] = {{"self", self},
+                {"results", self + "/results"},
+                {"artifacts", self + "/artifacts"},
+                {"frames", self + "/frames"},
+                {"log", self + "/log"}};
   return j;
 }
 

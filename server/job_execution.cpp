@@ -11,6 +11,7 @@
 #include "output/run_writers.hpp"
 #include "results/results_json.hpp"
 #include "server/checkpoint.hpp"
+#include "server/job_log.hpp"
 #include "server/own_files.hpp"
 #include "spec/spec_loader.hpp"
 
@@ -102,9 +103,34 @@ api::JobSpec read_spec(const JobFolder& folder) {
   return spec::parse_binary(bytes.str());
 }
 
-}  // namespace
+// What `dem run` prints first: the scene's size and its time step; and the threads it runs on.
+std::string scene_line(const Simulation& sim) {
+  char line[200];
+  std::snprintf(line, sizeof line, "%zu particles, %zu walls, %lld steps; ", sim.particles().size(),
+                sim.scene().walls.size(), static_cast<long long>(sim.total_steps()));
+  const int threads = sim.scene().numerics.threads;
+  return line + sim.time_step().describe() +
+         (threads > 0 ? "; " + std::to_string(threads) + (threads == 1 ? " thread" : " threads") : "; all cores");
+}
 
-ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks) {
+// How the run ended, for the job's log.
+std::string outcome_line(const ExecutionResult& result) {
+  char line[200];
+  switch (result.kind) {
+    case ExecutionResult::Kind::Succeeded:
+      std::snprintf(line, sizeof line, "run completed at step %lld (%.1f s of stepping, %.1f s of it on live frames)",
+                    static_cast<long long>(result.step), result.run_seconds, result.stream_seconds);
+      return line;
+    case ExecutionResult::Kind::Failed:
+      if (result.step < 0) return "run failed before its first step: " + result.error;
+      return "run failed at step " + std::to_string(result.step) + ": " + result.error;
+    case ExecutionResult::Kind::Stopped:  // the queue says why (a cancel, the server's shutdown)
+      return "run stopped at step " + std::to_string(result.step);
+  }
+  return "";
+}
+
+ExecutionResult run_job(const JobFolder& folder, const ExecutionHooks& hooks) {
   ExecutionResult result;
   // where a run that throws (a file that cannot be written, the output limit) stopped, and after how
   // long: the job's record shows them as for any other failure
@@ -126,11 +152,19 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
                                " is not a folder of the job's own (a link?): the job's files are not written there");
     const bool resume = std::filesystem::exists(folder.checkpoint());
     if (resume) resume_from_checkpoint(sim, folder.outputs().string(), folder.checkpoint().string());
+    append_job_log(folder.log(), (resume ? "run resumed from the checkpoint at step " +
+                                               std::to_string(sim.step_count()) + " (its files cut back to it): "
+                                         : std::string("run started: ")) +
+                                     scene_line(sim));
     if (hooks.on_start) hooks.on_start(sim);
 
     std::vector<std::unique_ptr<Observer>> writers = make_run_writers(sim, folder.outputs().string(), resume);
     FramePublisher publisher(hooks.job, hooks.frames, hooks.max_frame_rate);
-    Checkpointer checkpointer(folder, hooks.checkpoint_seconds, hooks.on_checkpoint);
+    Checkpointer checkpointer(folder, hooks.checkpoint_seconds, [&](std::int64_t step) {
+      append_job_log(folder.log(), "checkpoint at step " + std::to_string(step));
+      if (hooks.on_checkpoint) hooks.on_checkpoint(step);
+    });
+    ProgressLog progress_log(folder.log());
     ResultsRecorder recorder(sim, (folder.outputs() / ResultsRecorder::kTrackName).string(), resume);
     std::vector<Observer*> observers;
     observers.reserve(writers.size() + 1);
@@ -139,7 +173,10 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
 
     RunOptions options;
     options.cancel = hooks.stop;
-    options.on_progress = hooks.on_progress;
+    options.on_progress = [&](const Progress& p) {
+      progress_log.report(p);
+      if (hooks.on_progress) hooks.on_progress(p);
+    };
     options.progress_seconds = 0.5;
     options.periodically = [&](const Simulation& s) { checkpointer.maybe_save(s); };
     options.after_step = [&](const Simulation& s, bool frame) {
@@ -164,6 +201,7 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     if (result.kind != ExecutionResult::Kind::Stopped) {  // a stopped job goes on, or was cancelled
       results::write_results_file(recorder.results(), folder.outputs().string());
       result.results = results::to_json(recorder.results());
+      for (const std::string& note : recorder.results().notes) append_job_log(folder.log(), "note: " + note);
     }
   } catch (const spec::SpecError& e) {
     result.kind = ExecutionResult::Kind::Failed;
@@ -173,6 +211,14 @@ ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks
     result.error = e.what();
     note_where_it_stopped(last_step);
   }
+  return result;
+}
+
+}  // namespace
+
+ExecutionResult execute_job(const JobFolder& folder, const ExecutionHooks& hooks) {
+  ExecutionResult result = run_job(folder, hooks);
+  append_job_log(folder.log(), outcome_line(result));
   return result;
 }
 

@@ -1,5 +1,6 @@
 // Runs one job of the server: its spec from its folder, the legacy files into its outputs, live
 // frames to its viewers, a checkpoint now and then; resumed from the checkpoint when there is one.
+// What the run does (start, progress, checkpoints, notes, how it ended) goes to the job's log.
 #pragma once
 
 #include <cstdint>

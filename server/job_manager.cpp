@@ -8,8 +8,11 @@
 #include <cstdio>
 #include <fstream>
 
+#include <spdlog/spdlog.h>
+
 #include "server/durable_file.hpp"
 #include "server/job_execution.hpp"
+#include "server/job_log.hpp"
 #include "server/tar_archive.hpp"
 #include "spec/referenced_files.hpp"
 #include "spec/spec_loader.hpp"
@@ -88,6 +91,7 @@ void JobManager::recover() {
                        ? "resume it to continue from its checkpoint at step " + std::to_string(job.checkpoint_step)
                        : std::string("it had no checkpoint yet: resuming starts it again"));
       save(job);  // on a full disk the table catches up later; the server starts all the same
+      append_job_log(folder(job.id).log(), "interrupted: " + job.error);
     }
     if (!job.idempotency_key.empty()) by_key_[job.idempotency_key] = job.id;
     // half-written files of a crash (checkpoint.dat.tmp, outputs.tar.tmp): their whole versions
@@ -113,10 +117,8 @@ void JobManager::recover() {
     const fs::path aside = unaccounted_place(options_.data, name);
     fs::create_directories(aside.parent_path());
     fs::rename(e.path(), aside);
-    std::fprintf(stderr,
-                 "dem-server: %s holds a job's files but the job table (%s) has no row for it: moved to %s, "
-                 "nothing deleted\n",
-                 e.path().c_str(), (options_.data / "jobs.db").c_str(), aside.c_str());
+    spdlog::warn("{} holds a job's files but the job table ({}) has no row for it: moved to {}, nothing deleted",
+                 e.path().string(), (options_.data / "jobs.db").string(), aside.string());
   }
 }
 
@@ -158,9 +160,8 @@ void JobManager::update_row(const JobRecord& job) {
     store_->update(job);
   } catch (const std::exception& e) {
     if (!reserve_->release()) throw;
-    std::fprintf(stderr,
-                 "dem-server: %s: the job table could not be written (%s): the space held in reserve is freed for it\n",
-                 options_.data.c_str(), e.what());
+    spdlog::warn("{}: the job table could not be written ({}): the space held in reserve is freed for it",
+                 options_.data.string(), e.what());
     store_->update(job);
   }
   reserve_->restore();  // once there is room again
@@ -171,8 +172,7 @@ void JobManager::save(const JobRecord& job) {
     update_row(job);
   } catch (const std::exception& e) {
     if (unsaved_.insert(job.id).second)
-      std::fprintf(stderr, "dem-server: job %lld: its state is kept in memory until the table can be written: %s\n",
-                   static_cast<long long>(job.id), e.what());
+      spdlog::error("job {}: its state is kept in memory until the table can be written: {}", job.id, e.what());
     store_problem_ = e.what();
     return;
   }
@@ -277,6 +277,12 @@ JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::st
   if (!idempotency_key.empty()) by_key_[idempotency_key] = job.id;
   jobs_[job.id] = job;
   changed_.notify_all();
+  // after the row is committed: a folder without a row must still look like a submission cut short
+  char line[200];
+  std::snprintf(line, sizeof line, "queued: %lld particles, %lld steps of %.6g s",
+                static_cast<long long>(job.particles), static_cast<long long>(job.total_steps), job.time_step);
+  append_job_log(folder(job.id).log(), "submitted as \"" + job.name + "\"; " + line +
+                                           (idempotency_key.empty() ? "" : "; Idempotency-Key " + idempotency_key));
   return {job, true};
 }
 
@@ -309,12 +315,14 @@ ActionResult JobManager::cancel(std::int64_t id) {
   if (is_final(job.state))
     return {Outcome::Conflict, "job " + std::to_string(id) + " has already ended (" + to_string(job.state) + ")", job};
   if (job.state == JobState::Running) {
+    append_job_log(folder(id).log(), "cancel requested: the run stops within a step");
     running_.at(id)->cancelled = true;
     running_.at(id)->stop = true;
     // the engine stops within a step; wait for it so that the answer shows the final state
     changed_.wait_for(lock, std::chrono::seconds(2), [&] { return jobs_.at(id).state != JobState::Running; });
     return {Outcome::Done, "", jobs_.at(id)};
   }
+  append_job_log(folder(id).log(), std::string("cancelled on request (it was ") + to_string(job.state) + ")");
   JobRecord cancelled = job;  // the table first (on a full disk it catches up later: save)
   cancelled.state = JobState::Cancelled;
   cancelled.error = kCancelled;
@@ -358,6 +366,10 @@ ActionResult JobManager::resume(std::int64_t id) {
   queued.state = JobState::Queued;
   queued.error.clear();
   save(queued);
+  const std::string from = job.checkpoint_step >= 0
+                               ? "continue from the checkpoint at step " + std::to_string(job.checkpoint_step)
+                               : std::string("start over (no checkpoint)");
+  append_job_log(folder(id).log(), "resumed on request: queued again, to " + from);
   job = queued;
   changed_.notify_all();
   return {Outcome::Done, "", job};
@@ -377,8 +389,7 @@ void JobManager::sweep() {
     for (const std::int64_t id : jobs_past_retention(all, options_.retention, std::chrono::system_clock::now())) {
       const ActionResult r = remove_locked(id);
       if (r.outcome == Outcome::Done)
-        std::fprintf(stderr, "dem-server: retention: deleted job %lld (%s, finished %s)\n", static_cast<long long>(id),
-                     to_string(r.job.state), r.job.finished_at.c_str());
+        spdlog::info("retention: deleted job {} ({}, finished {})", id, to_string(r.job.state), r.job.finished_at);
     }
     sweeper_wake_.wait_for(lock, options_.retention.sweep_interval(), [this] { return stopping_; });
   }
@@ -434,7 +445,7 @@ void JobManager::work() {
     } catch (const std::exception& e) {
       // the job table could not be written (disk full, the file gone): the worker goes on; the
       // job is failed in memory, and the table shows it as it last could
-      std::fprintf(stderr, "dem-server: job %lld: %s\n", static_cast<long long>(job.id), e.what());
+      spdlog::error("job {}: {}", job.id, e.what());
       if (job.id == 0) {  // not even picked: wait a moment rather than spin on the same failure
         std::this_thread::sleep_for(std::chrono::seconds(1));
         continue;
@@ -446,6 +457,7 @@ void JobManager::work() {
         j.state = JobState::Failed;
         j.error = e.what();
       }
+      append_job_log(folder(job.id).log(), std::string("failed: ") + e.what());
       changed_.notify_all();
       frames_.close(job.id, "job failed");
     }
@@ -502,6 +514,7 @@ void JobManager::run_one(const JobRecord& job) {
   if (result.kind == ExecutionResult::Kind::Succeeded) {
     try {
       write_tar(folder(id).outputs().string(), folder(id).archive().string());
+      append_job_log(folder(id).log(), std::string("outputs archived in ") + JobFolder::kArchiveName);
     } catch (const std::exception& e) {
       archive_error = std::string("the outputs could not be archived: ") + e.what();
     }
@@ -550,6 +563,9 @@ void JobManager::run_one(const JobRecord& job) {
     running_.erase(id);
     frames_reason = j.state == JobState::Queued ? "the server is shutting down; the job goes on after its restart"
                                                 : std::string("job ") + to_string(j.state);
+    std::string ended = to_string(j.state);  // "failed: why", "cancelled: cancelled on request", "succeeded"
+    if (!j.error.empty()) ended += ": " + j.error;
+    append_job_log(folder(id).log(), j.state == JobState::Queued ? "queued again: " + frames_reason : ended);
   }
   changed_.notify_all();
   frames_.close(id, frames_reason);

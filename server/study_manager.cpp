@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
-#include <cstdio>
 #include <sstream>
+
+#include <spdlog/spdlog.h>
 
 #include "core/errors.hpp"
 #include "server/durable_file.hpp"
@@ -37,7 +38,7 @@ StudyManager::StudyManager(const fs::path& data, JobManager& jobs) : folder_(dat
   for (const fs::directory_entry& e : fs::directory_iterator(folder_)) {
     if (e.path().extension() != ".json") continue;  // a .part of a write cut short
     if (!e.is_regular_file()) {
-      std::fprintf(stderr, "dem-server: %s is not a file: left out of the studies\n", e.path().c_str());
+      spdlog::warn("{} is not a file: left out of the studies", e.path().string());
       continue;
     }
     StudyRecord s;
@@ -58,8 +59,7 @@ StudyManager::StudyManager(const fs::path& data, JobManager& jobs) : folder_(dat
       s.complete = j.value("complete", true);
     } catch (const std::exception& error) {
       // one damaged record does not keep the server and the other studies down
-      std::fprintf(stderr, "dem-server: the study record %s cannot be read (%s): left out\n", e.path().c_str(),
-                   error.what());
+      spdlog::warn("the study record {} cannot be read ({}): left out", e.path().string(), error.what());
       continue;
     }
     next_id_ = std::max(next_id_, s.id + 1);
@@ -69,8 +69,7 @@ StudyManager::StudyManager(const fs::path& data, JobManager& jobs) : folder_(dat
         s.complete = true;
         save(s);
       } catch (const std::exception& error) {
-        std::fprintf(stderr, "dem-server: study %lld: its runs cannot be queued (%s)\n", static_cast<long long>(s.id),
-                     error.what());
+        spdlog::error("study {}: its runs cannot be queued ({})", s.id, error.what());
       }
     }
     studies_.push_back(std::move(s));

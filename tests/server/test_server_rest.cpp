@@ -43,6 +43,7 @@ TEST_F(ServerRest, TheVersionedPathAndItsAliasAreTheSameApiAndLinksUseTheVersion
   EXPECT_EQ(versioned, alias);
   EXPECT_EQ(versioned["links"]["self"], "/api/v1/jobs/" + std::to_string(id));
   EXPECT_EQ(versioned["links"]["results"], "/api/v1/jobs/" + std::to_string(id) + "/results");
+  EXPECT_EQ(versioned["links"]["log"], "/api/v1/jobs/" + std::to_string(id) + "/log");
   const nlohmann::json artifacts =
       nlohmann::json::parse(client_->get("/api/v1/jobs/" + std::to_string(id) + "/artifacts").body);
   ASSERT_FALSE(artifacts["artifacts"].empty());
@@ -321,14 +322,28 @@ TEST_F(ServerRest, TheOpenApiDescriptionListsEveryRouteAndNoOther) {
     described.insert(path);
   }
   // every route the server has, by the paths a client would write
-  for (const char* route :
-       {"/api/v1/health", "/api/v1/openapi.json", "/api/v1/cases", "/api/v1/cases/{name}", "/api/v1/jobs",
-        "/api/v1/jobs/{id}", "/api/v1/jobs/{id}/cancel", "/api/v1/jobs/{id}/resume", "/api/v1/jobs/{id}/frames",
-        "/api/v1/jobs/{id}/results", "/api/v1/jobs/{id}/artifacts", "/api/v1/jobs/{id}/artifacts/{name}",
-        "/api/v1/studies", "/api/v1/studies/{id}", "/api/v1/studies/{id}/cancel", "/api/v1/studies/{id}/resume",
-        "/api/v1/studies/{id}/results.json", "/api/v1/studies/{id}/results.csv", "/api/v1/studies/{id}/figure.svg"})
+  for (const char* route : {"/api/v1/health",
+                            "/api/v1/openapi.json",
+                            "/api/v1/cases",
+                            "/api/v1/cases/{name}",
+                            "/api/v1/jobs",
+                            "/api/v1/jobs/{id}",
+                            "/api/v1/jobs/{id}/cancel",
+                            "/api/v1/jobs/{id}/resume",
+                            "/api/v1/jobs/{id}/frames",
+                            "/api/v1/jobs/{id}/results",
+                            "/api/v1/jobs/{id}/log",
+                            "/api/v1/jobs/{id}/artifacts",
+                            "/api/v1/jobs/{id}/artifacts/{name}",
+                            "/api/v1/studies",
+                            "/api/v1/studies/{id}",
+                            "/api/v1/studies/{id}/cancel",
+                            "/api/v1/studies/{id}/resume",
+                            "/api/v1/studies/{id}/results.json",
+                            "/api/v1/studies/{id}/results.csv",
+                            "/api/v1/studies/{id}/figure.svg"})
     EXPECT_TRUE(described.count(route)) << route << " is routed but not described";
-  EXPECT_EQ(described.size(), 19u);
+  EXPECT_EQ(described.size(), 20u);
   EXPECT_EQ(description["info"]["version"], nlohmann::json::parse(client_->get("/api/v1/health").body)["version"]);
 }
 
