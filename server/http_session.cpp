@@ -35,6 +35,7 @@ HttpSession::HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& sta
   const auto peer = stream_.socket().remote_endpoint(no_peer);
   client_ = no_peer ? "-" : peer.address().to_string();
   request_line_.client = client_;
+  request_line_.secret = state_.token;
 }
 
 void HttpSession::run() {
@@ -55,6 +56,7 @@ void HttpSession::run() {
 void HttpSession::read() {
   request_line_ = RequestLine{};  // nothing read yet
   request_line_.client = client_;
+  request_line_.secret = state_.token;
   parser_.emplace();
   // no limit while the header is read: a declared length past it is answered after the token's
   // check (on_header), which then sets the limit for the body

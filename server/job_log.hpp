@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -30,6 +31,7 @@ class ProgressLog {
  private:
   std::filesystem::path log_;
   std::chrono::steady_clock::time_point last_{};
+  std::int64_t last_step_ = 0;
   bool reported_ = false;
   std::string stage_;
 };

@@ -41,7 +41,20 @@ bool names_a_token(std::string_view raw_name) {
 
 }  // namespace
 
-std::string loggable_target(std::string_view target) {
+namespace {
+
+bool holds(std::string_view text, const std::string& secret) {
+  if (secret.empty()) return false;
+  if (text.find(secret) != std::string_view::npos) return true;
+  std::string plus(text);
+  std::replace(plus.begin(), plus.end(), '+', ' ');
+  const std::optional<std::string> decoded = percent_decode(plus);
+  return decoded && decoded->find(secret) != std::string::npos;
+}
+
+}  // namespace
+
+std::string loggable_target(std::string_view target, const std::string& secret) {
   std::string redacted;
   const std::size_t question = target.find('?');
   redacted.append(target.substr(0, question));
@@ -61,6 +74,10 @@ std::string loggable_target(std::string_view target) {
       query.remove_prefix(amp + 1);
     }
   }
+  if (holds(redacted, secret)) {  // the token is still there, outside a parameter of its own
+    const std::string_view path = target.substr(0, question);
+    return holds(path, secret) ? "REDACTED" : loggable_target(path) + "?REDACTED";
+  }
   std::string out = escaped(redacted);
   if (out.size() > kLongestTarget) out = out.substr(0, kLongestTarget) + "...";
   return out;
@@ -72,8 +89,8 @@ void log_request(const RequestLine& request, unsigned status, std::optional<std:
   const std::string bytes_text = bytes ? std::to_string(*bytes) : "-";
   const std::string version = request.method == "-" ? "-" : request.version == 10 ? "HTTP/1.0" : "HTTP/1.1";
   spdlog::info("{} \"{} {} {}\" {} {} {:.2f} ms", request.client, escaped(request.method),
-               request.target == "-" ? std::string("-") : loggable_target(request.target), version, status_text,
-               bytes_text, ms);
+               request.target == "-" ? std::string("-") : loggable_target(request.target, request.secret), version,
+               status_text, bytes_text, ms);
 }
 
 StatusReadingAnswer::const_buffers_type StatusReadingAnswer::prepare(boost::beast::error_code& ec) {

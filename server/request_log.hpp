@@ -25,12 +25,16 @@ struct RequestLine {
   std::string target = "-";  // as sent, before redaction
   unsigned version = 11;
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  std::string secret;  // the server's token: never written, however the target holds it
 };
 
 // The target with every token in its query redacted, and bytes outside printable ASCII, '"' and
 // '\' written as \xHH (a line of the log stays one line, and its quotes stay its own); at most 2000
 // characters.
-std::string loggable_target(std::string_view target);
+// Past the query's parameters, a safety net: a target that holds `secret` anywhere (raw or
+// percent-decoded: "?x=1?access_token=T", "http://user:T@host/", "%54") is written as its path
+// alone with "?REDACTED", or as "REDACTED" when the path holds it.
+std::string loggable_target(std::string_view target, const std::string& secret = "");
 
 // Logs the line of a request answered with `status` (0: nothing was answered) after `bytes` sent
 // (none: not known, a WebSocket's handshake).

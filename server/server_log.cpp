@@ -1,15 +1,17 @@
 #include "server/server_log.hpp"
 
+#include <poll.h>
 #include <sys/statvfs.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/rotating_file_sink.h>
-#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
 namespace dem::server {
@@ -59,6 +61,43 @@ class FileUnlessDiskFull : public spdlog::sinks::base_sink<std::mutex> {
   bool room_ = true;
 };
 
+// Standard error, written only when a line can go at once: a launcher that captures it and never
+// reads it (a pipe of 64 KB filled by request lines) must not stop the server answering. A pipe
+// that polls writable has room for PIPE_BUF bytes, which a line (its target cut at 2,000 bytes) fits;
+// lines that could not go are counted, and said when one can.
+class StderrUnlessBlocked : public spdlog::sinks::base_sink<std::mutex> {
+ protected:
+  void sink_it_(const spdlog::details::log_msg& msg) override {
+    pollfd out{STDERR_FILENO, POLLOUT, 0};
+    if (::poll(&out, 1, 0) != 1 || (out.revents & POLLOUT) == 0) {
+      ++dropped_;
+      return;
+    }
+    if (dropped_ > 0) {
+      const std::string note = "(" + std::to_string(dropped_) +
+                               " log lines were not written here: standard error was not being read; the data "
+                               "folder's server.log has them)\n";
+      dropped_ = 0;
+      write_all(note.data(), note.size());
+    }
+    spdlog::memory_buf_t line;
+    formatter_->format(msg, line);
+    write_all(line.data(), line.size());
+  }
+  void flush_() override {}
+
+ private:
+  static void write_all(const char* data, std::size_t size) {
+    while (size > 0) {
+      const ssize_t n = ::write(STDERR_FILENO, data, size);
+      if (n <= 0) return;  // closed, or full after all: the line is lost, not waited for
+      data += n;
+      size -= static_cast<std::size_t>(n);
+    }
+  }
+  std::size_t dropped_ = 0;
+};
+
 std::shared_ptr<spdlog::logger> make_logger(std::vector<spdlog::sink_ptr> sinks) {
   auto logger = std::make_shared<spdlog::logger>("dem-server", sinks.begin(), sinks.end());
   logger->set_pattern(kPattern, spdlog::pattern_time_type::utc);
@@ -69,13 +108,11 @@ std::shared_ptr<spdlog::logger> make_logger(std::vector<spdlog::sink_ptr> sinks)
 }  // namespace
 
 ServerLog::ServerLog(const std::filesystem::path& data) {
-  spdlog::set_default_logger(make_logger(
-      {std::make_shared<spdlog::sinks::stderr_sink_mt>(), std::make_shared<FileUnlessDiskFull>(data / kFileName)}));
+  spdlog::set_default_logger(
+      make_logger({std::make_shared<StderrUnlessBlocked>(), std::make_shared<FileUnlessDiskFull>(data / kFileName)}));
 }
 
 // Standard error alone, for what is logged after the server (a job manager's last words).
-ServerLog::~ServerLog() {
-  spdlog::set_default_logger(make_logger({std::make_shared<spdlog::sinks::stderr_sink_mt>()}));
-}
+ServerLog::~ServerLog() { spdlog::set_default_logger(make_logger({std::make_shared<StderrUnlessBlocked>()})); }
 
 }  // namespace dem::server

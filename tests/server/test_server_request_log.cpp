@@ -2,6 +2,10 @@
 // bytes sent, the time taken) with the time of day, to standard error and DATA/server.log, never
 // with the access token (a query's access_token is redacted, headers are not logged); and the
 // server's own messages in the same log.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <regex>
 
 #include "dem/version.hpp"
@@ -15,8 +19,9 @@ const std::string kLogToken = "s3cr3t-t0ken-0123456789abcdef";
 
 class ServerRequestLog : public ServerTest {
  protected:
-  void start_logged_server(const std::vector<std::string>& extra = {}) {
-    server_ = std::make_unique<ServerProcess>(dir_ / "data", extra, dir_ / "stderr.txt");
+  void start_logged_server(const std::vector<std::string>& extra = {}, const fs::path& stderr_file = {}) {
+    server_ =
+        std::make_unique<ServerProcess>(dir_ / "data", extra, stderr_file.empty() ? dir_ / "stderr.txt" : stderr_file);
     client_ = std::make_unique<client::HttpClient>(server_->url());
   }
   std::string server_log() { return read_bytes(dir_ / "data" / "server.log"); }
@@ -133,6 +138,55 @@ TEST_F(ServerRequestLog, TheServersMessagesAreLoggedWithTheirLevel) {
   const std::vector<std::string> moved = lines_with(server_log_with("moved to"), "has no row for it: moved to");
   ASSERT_EQ(moved.size(), 1u) << server_log();
   EXPECT_TRUE(std::regex_search(moved[0], std::regex(R"(^\d{4}-\d\d-\d\dT[\d:.]+Z \[warning\] )"))) << moved[0];
+}
+
+// An independent tester's findings. A target that holds the token other than as a query's
+// access_token went into the log as it was: a client that appends "?access_token=" to a URL that
+// has a query already, an escaped "=", a user's password in an absolute URL.
+TEST_F(ServerRequestLog, TheTokenIsNotLoggedHoweverTheTargetHoldsIt) {
+  start_logged_server({"--token", kLogToken});
+  for (const std::string& target : std::vector<std::string>{
+           "/api/v1/health?x=1?access_token=" + kLogToken, "/api/v1/health?access_token%3D" + kLogToken,
+           "/api/v1/health;access_token=" + kLogToken, "/api/v1/health?" + kLogToken + "=access_token",
+           "http://user:" + kLogToken + "@127.0.0.1/api/v1/health"}) {
+    RawConnection raw(server_->port());
+    raw.send("GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+    (void)raw.receive(10, nullptr, "\r\n\r\n");
+  }
+  EXPECT_EQ(client_->get("/api/v1/health?last").status, 401);
+  const std::string log = server_log_with("\"GET /api/v1/health?last HTTP/1.1\"");
+  EXPECT_EQ(log.find("s3cr3t"), std::string::npos) << log;
+  EXPECT_EQ(read_bytes(dir_ / "stderr.txt").find("s3cr3t"), std::string::npos);
+  EXPECT_EQ(lines_with(log, "\"GET /api/v1/health?REDACTED HTTP/1.1\"").size(), 3u) << log;
+  EXPECT_EQ(lines_with(log, "\"GET REDACTED HTTP/1.1\"").size(), 2u) << log;
+}
+
+// A launcher that captures the server's standard error and never reads it (a pipe of 64 KB filled
+// by request lines) stopped the server answering after about 225 requests, and SIGTERM with it.
+TEST_F(ServerRequestLog, AStandardErrorNobodyReadsDoesNotStopTheServer) {
+  const fs::path fifo = dir_ / "unread-stderr";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // held open, never read
+  ASSERT_GE(reader, 0);
+  start_logged_server({}, fifo);
+  const std::string padding(200, 'a');
+  for (int k = 0; k < 1000; ++k) {
+    RawConnection raw(server_->port());
+    raw.send("GET /api/v1/health?x=" + padding + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+    const std::string answer = raw.receive(5, nullptr, "\r\n\r\n");
+    ASSERT_EQ(answer.rfind("HTTP/1.1 200", 0), 0u) << "request " << k << " was not answered";
+  }
+  // the file has every line
+  std::size_t logged = 0;
+  for (const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+       logged < 1000 && std::chrono::steady_clock::now() < end;
+       std::this_thread::sleep_for(std::chrono::milliseconds(50)))
+    logged = lines_with(server_log(), "\"GET /api/v1/health?x=a").size();
+  EXPECT_EQ(logged, 1000u);
+  const auto stopping = std::chrono::steady_clock::now();
+  server_.reset();  // SIGTERM, and waits for the exit
+  EXPECT_LT(std::chrono::steady_clock::now() - stopping, std::chrono::seconds(10));
+  ::close(reader);
 }
 
 }  // namespace
