@@ -7,16 +7,6 @@
 
 namespace dem::cli {
 
-std::string clock_text(double seconds) {
-  const long s = static_cast<long>(seconds + 0.5);
-  char buf[32];
-  if (s >= 3600)
-    std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
-  else
-    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-  return buf;
-}
-
 std::function<void(const Progress&)> make_progress_printer(bool terminal) {
   if (terminal) {
     return [](const Progress& p) {

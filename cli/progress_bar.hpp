@@ -4,13 +4,11 @@
 #include <functional>
 #include <string>
 
+#include "sim/clock_text.hpp"
 #include "sim/runner.hpp"
 
 namespace dem::cli {
 
 std::function<void(const Progress&)> make_progress_printer(bool terminal);
-
-// A duration as "3m07s" or "1h05m".
-std::string clock_text(double seconds);
 
 }  // namespace dem::cli

@@ -12,22 +12,9 @@
 #include <vector>
 
 #include "server/job.hpp"
+#include "sim/clock_text.hpp"
 
 namespace dem::server {
-namespace {
-
-// "1m05s", "2h03m": as `dem run` shows the time left.
-std::string clock_text(double seconds) {
-  const long s = std::lround(seconds);
-  char text[32];
-  if (s >= 3600)
-    std::snprintf(text, sizeof text, "%ldh%02ldm", s / 3600, (s / 60) % 60);
-  else
-    std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
-  return text;
-}
-
-}  // namespace
 
 void append_job_log(const std::filesystem::path& log, std::string_view text) noexcept {
   try {

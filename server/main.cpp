@@ -148,9 +148,7 @@ void apply(const NumberOptions& n, dem::server::ServerOptions& o) {
   o.checkpoint_seconds = n.checkpoint_seconds;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int serve(int argc, char** argv) {
   dem::server::ServerOptions options;
   if (const char* token = std::getenv("DEM_SERVER_TOKEN")) options.token = token;
   NumberOptions numbers;
@@ -195,10 +193,19 @@ int main(int argc, char** argv) {
                  "backslashes\n");
     return 2;
   }
+  return dem::server::run_server(options);
+}
+
+}  // namespace
+
+// What the command line, the folders' checks or the server throw is told, never an abort.
+int main(int argc, char** argv) {
   try {
-    return dem::server::run_server(options);
+    return serve(argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dem-server: %s\n", e.what());
-    return 1;
+  } catch (...) {
+    std::fprintf(stderr, "dem-server: an unknown error\n");
   }
+  return 1;
 }
