@@ -13,8 +13,8 @@ namespace {
 class ServerRest : public ServerTest {
  protected:
   // A short pouring job with this name and these tags (a JSON array's text).
-  long submit_tagged(const std::string& name, const std::string& tags) {
-    std::string spec = pouring_spec(0.02, 200, 100);
+  long submit_tagged(const std::string& name, const std::string& tags, long steps = 200) {
+    std::string spec = pouring_spec(0.02, steps, 100);
     spec = replaced(spec, "{", "{\"tags\": " + tags + ", ");
     spec = replaced(spec, R"("name": "pouring test")", R"("name": ")" + name + "\"");
     return submit_json(spec)["id"];
@@ -212,8 +212,9 @@ TEST_F(ServerRest, AJobsResultsAreItsResultsJsonOnceItEnds) {
     EXPECT_EQ(results, nlohmann::json::parse(file.body));
   }
   EXPECT_EQ(client_->request("POST", "/api/v1/jobs/" + std::to_string(first) + "/results").status, 405);
-  // a job that ended without results says so, not "yet"
-  const long cancelled = submit_tagged("cancelled", "[]");
+  // a job that ended without results says so, not "yet" (long enough to be cancelled: one of 200
+  // steps could end before its cancel came, on a fresh clone's test run)
+  const long cancelled = submit_tagged("cancelled", "[]", 5000000);
   client_->request("POST", "/api/v1/jobs/" + std::to_string(cancelled) + "/cancel");
   ASSERT_EQ(wait_for(cancelled, "cancelled,succeeded")["state"], "cancelled");
   const client::Response none = client_->get("/api/v1/jobs/" + std::to_string(cancelled) + "/results");
