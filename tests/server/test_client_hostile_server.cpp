@@ -228,6 +228,7 @@ TEST_F(ClientAgainstHostileServer, EveryVerbUsesTheVersionedPaths) {
   for (const std::string verb : {"status 1", "cancel 1", "resume 1", "watch 1"})
     EXPECT_EQ(dem(verb, server.url()).exit_code, 0) << verb;
   EXPECT_EQ(dem("fetch 1 --out " + shell_quoted(dir_ / "deep" / "out"), server.url()).exit_code, 0);
+  const std::lock_guard<std::mutex> lock(seen);  // the server's thread writes the list
   for (const std::string& target : targets) EXPECT_EQ(target.rfind("/api/v1/", 0), 0u) << target;
 }
 
