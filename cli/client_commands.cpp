@@ -39,23 +39,10 @@ int job_verb(const Verb& verb, const std::vector<std::string>& args,
   return with_server(verb, a, [&](const ServerApi& api) { return body(api, a, *id); });
 }
 
-std::string job_target(std::int64_t id) { return "/api/v1/jobs/" + std::to_string(id); }
-
-void print_body(const std::string& body) {
-  std::fputs(body.c_str(), stdout);
-  if (body.empty() || body.back() != '\n') std::fputc('\n', stdout);
-}
-
-// One JSON document on one line (JSON Lines: --wait --json prints two), the server's text's invalid
-// UTF-8 replaced, not thrown on.
-void print_json(const nlohmann::json& value) {
-  print_body(value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
-}
-
 // A job the server answered with: its JSON (--json) or its summary line.
 void print_job(const nlohmann::json& job, const VerbArgs& a) {
   if (a.json)
-    print_json(job);
+    print_json_line(job);
   else
     std::printf("%s\n", job_summary(job).c_str());
 }
@@ -114,7 +101,7 @@ int submit_command(const std::vector<std::string>& args) {
     const nlohmann::json job = checked_job(api.json_of(response, "/api/v1/jobs"));
     const std::int64_t id = job.at("id").get<std::int64_t>();
     if (a.json)
-      print_json(job);
+      print_json_line(job);
     else if (quiet)
       std::printf("%lld\n", static_cast<long long>(id));
     else if (response.header("idempotent-replayed") == "true")
@@ -206,7 +193,7 @@ int list_command(const std::vector<std::string>& args) {
       target = next;
     }
     if (a.json) {
-      print_json(nlohmann::json{{"jobs", jobs}});
+      print_json_line(nlohmann::json{{"jobs", jobs}});
       return 0;
     }
     if (jobs.empty()) {
@@ -332,7 +319,7 @@ int fetch_command(const std::vector<std::string>& args) {
         std::printf("%s\n", printable(path.string()).c_str());
       }
     }
-    if (a.json) print_json({{"fetched", fetched}, {"notFetched", not_fetched}});
+    if (a.json) print_json_line({{"fetched", fetched}, {"notFetched", not_fetched}});
     return failed > 0 ? 1 : 0;
   });
 }

@@ -67,7 +67,7 @@ int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, Wa
   const bool terminal = isatty(STDERR_FILENO) == 1;
   std::function<void(const Progress&)> show;
   if (!quiet) show = make_progress_printer(terminal);
-  const std::string target = "/api/v1/jobs/" + std::to_string(id);
+  const std::string target = job_target(id);
   std::string last_state;
   std::int64_t shown = -1;  // the last step given to the printer
   double rate = 0;
@@ -95,8 +95,7 @@ int watch_job(const ServerApi& api, std::int64_t id, const std::string& verb, Wa
     else if (terminal)
       std::fputc('\n', stderr);
   }
-  if (output == WatchOutput::json)
-    std::printf("%s\n", job.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+  if (output == WatchOutput::json) print_json_line(job);
   if (job.value("state", "") == "succeeded") {
     if (output == WatchOutput::lines) std::printf("%s\n", job_summary(job).c_str());
     return 0;

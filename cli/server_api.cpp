@@ -1,5 +1,7 @@
 #include "cli/server_api.hpp"
 
+#include <cstdio>
+
 #include "cli/terminal_text.hpp"
 
 #include <boost/beast/http/status.hpp>
@@ -49,6 +51,12 @@ nlohmann::json ServerApi::json_of(const client::Response& response, const std::s
   nlohmann::json json = nlohmann::json::parse(response.body, nullptr, false);
   if (json.is_discarded()) throw client::ClientError(http_.url() + target + ": the answer is not JSON");
   return json;
+}
+
+std::string job_target(std::int64_t id) { return "/api/v1/jobs/" + std::to_string(id); }
+
+void print_json_line(const nlohmann::json& value) {
+  std::printf("%s\n", value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
 }
 
 }  // namespace dem::cli

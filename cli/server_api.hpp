@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,6 +26,13 @@ class ApiError : public std::runtime_error {
 
 // "404 Not Found: no job 7" (the status, its reason and the server's message).
 std::string describe(const ApiError& e);
+
+// "/api/v1/jobs/ID": a job's address, under which its actions, log and artifacts are.
+std::string job_target(std::int64_t id);
+
+// Prints one JSON document on one line of standard output (--json is JSON Lines: --wait --json
+// prints two), the server's text's invalid UTF-8 replaced, not thrown on.
+void print_json_line(const nlohmann::json& value);
 
 // Turns a non-2xx response into an ApiError (the server's {"error", "problems"} when it sent them).
 ApiError api_error(const client::Response& response);

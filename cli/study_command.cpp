@@ -298,7 +298,7 @@ int follow(const ServerApi& api, std::int64_t id, const fs::path& out, bool as_j
   for (const json& job : study.value("jobs", json::array())) failed += job.value("state", "") != "succeeded";
   std::fprintf(lines, "study %lld: table %s, figure %s\n", static_cast<long long>(id), (out / "study.csv").c_str(),
                (out / "study.svg").c_str());
-  if (as_json) std::printf("%s\n", study.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
+  if (as_json) print_json_line(study);
   return failed == 0 ? 0 : 1;
 }
 
@@ -390,7 +390,7 @@ int study_command(const std::vector<std::string>& args) {
                    created.value("jobs", json::array()).size());
       std::fflush(stdout);
       if (a.flag("--detach")) {
-        if (a.json) std::printf("%s\n", created.dump(-1, ' ', false, json::error_handler_t::replace).c_str());
+        if (a.json) print_json_line(created);
         return 0;
       }
       return follow(api, id, out, a.json);
