@@ -57,13 +57,15 @@ export class ForceChainView {
       const t = Math.abs(chains.fn[k]) * scale;
       const radius = baseRadius * (0.15 + 0.85 * Math.min(t, 1));
       // e1, e2: unit vectors across the chain (e1 from the cross product with the axis the chain is
-      // least along, so it never degenerates)
+      // least along, so it never degenerates). (e1, u, e2) must be right-handed, e2 = e1 x u: a
+      // left-handed frame mirrors the cylinder, turning its faces inside out, and the near half is
+      // culled.
       const ux = dx / length, uy = dy / length, uz = dz / length;
       let e1x, e1y, e1z;
       if (Math.abs(ux) < 0.9) { e1x = 0; e1y = uz; e1z = -uy; } else { e1x = -uz; e1y = 0; e1z = ux; }
       const e1 = Math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z);
       e1x /= e1; e1y /= e1; e1z /= e1;
-      const e2x = uy * e1z - uz * e1y, e2y = uz * e1x - ux * e1z, e2z = ux * e1y - uy * e1x;
+      const e2x = e1y * uz - e1z * uy, e2y = e1z * ux - e1x * uz, e2z = e1x * uy - e1y * ux;
       const o = n * 16;
       // columns: x across (radius), y along (the full chain), z across (radius), then the midpoint
       m[o] = e1x * radius; m[o + 1] = e1y * radius; m[o + 2] = e1z * radius; m[o + 3] = 0;
