@@ -11,7 +11,7 @@ import { particleColours, hexToRgb } from './view/colours.js';
 import { addStats } from './formats/stats.js';
 import { wireControls } from './view/controls.js';
 import { Playback } from './view/playback.js';
-import { loadFiles, forgetWaitingChains } from './view/file_drop.js';
+import { loadFiles, forgetWaitingChains, cancelLoading } from './view/file_drop.js';
 
 // Live frames kept in memory: about this many bytes (positions, velocities, radii, parts, force
 // chains and a fixed overhead per frame), and at most this many frames.
@@ -43,7 +43,7 @@ export class Viewer {
     this.liveBytes = 0; // bytes of the live frames kept (frameBytes)
     this.frameIndex = -1;
     this.live = false;
-    this.follow = true; // live: show each new frame as it arrives (until the user moves away)
+    this.follow = true; // live: show the newest frame as frames arrive (until the user moves away)
     this.chainsByStep = new Map();
     this.fnMax = 0;
     this.bounds = null; // { min, max, speed, diameter, partMax } over the frames of the run
@@ -128,11 +128,33 @@ export class Viewer {
       this.frameIndex = Math.max(0, this.frameIndex - drop);
     }
     this.extendBounds(frame);
-    if (first) this.frameCamera();
-    if (this.follow || first) this.showFrame(frames.length - 1);
-    else if (viewGone) this.redraw(); // the frame in view may have gone: picture and read-outs agree
-    else this.changed();
+    if (first) {
+      this.frameCamera();
+      this.showFrame(frames.length - 1);
+    } else if (this.follow) {
+      this.showNewestSoon();
+      this.changed();
+    } else if (viewGone) {
+      this.redraw(); // the frame in view may have gone: picture and read-outs agree
+    } else {
+      this.changed();
+    }
     return true;
+  }
+
+  // Following a live run: shows the newest frame at the next picture, once however many frames
+  // arrived since. Drawing each frame as it arrives let a view slower than the stream fall further
+  // and further behind it (frames wait in the page's queue, each drawn in turn).
+  showNewestSoon() {
+    if (this.newestPending) return;
+    this.newestPending = true;
+    const show = () => {
+      this.newestPending = false;
+      if (this.follow && this.run && this.run.frames.length) this.showFrame(this.run.frames.length - 1);
+    };
+    // a hidden page gets no animation frames: it catches up when shown again, or every half second
+    if (typeof document !== 'undefined' && document.hidden) setTimeout(show, 500);
+    else requestAnimationFrame(show);
   }
 
   // Attaches force-chain frames ({ step, count, i, j, fn, ft }) to the run's frames of equal step.
@@ -361,6 +383,7 @@ function start() {
   window.demViewer = { state: () => viewer.state(), viewer, loadFiles: (files) => loadFiles(viewer, files) };
 
   // Offline files: the file input and drag-and-drop anywhere on the page.
+  $('load-cancel').addEventListener('click', () => cancelLoading());
   $('file-input').addEventListener('change', (event) => {
     loadFiles(viewer, [...event.target.files]);
     event.target.value = ''; // choosing the same file again reloads it
