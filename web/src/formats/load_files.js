@@ -43,13 +43,42 @@ function startWorker() {
   return worker;
 }
 
+// The error a parse cancelled through its AbortSignal rejects with.
+export function cancelled() {
+  return new DOMException('the load was cancelled', 'AbortError');
+}
+
 // Parses one File; resolves with parse.js's result { kind, frames | mesh, truncated, problem }.
-export function parseFile(file, onProgress = () => {}) {
+// `signal` (an AbortSignal, optional) cancels it: the promise rejects with an AbortError at once and
+// the worker parsing the file is stopped (a new one starts with the next file).
+export function parseFile(file, onProgress = () => {}, signal = null) {
+  if (signal && signal.aborted) return Promise.reject(cancelled());
   const w = startWorker();
-  if (!w) return parseBlob(file, onProgress);
+  if (!w) return parseBlob(file, onProgress, undefined, signal);
   return new Promise((resolve, reject) => {
     const id = nextId++;
-    pending.set(id, { resolve, reject, onProgress, file });
+    const done = (settle) => (value) => {
+      if (signal) signal.removeEventListener('abort', abort);
+      settle(value);
+    };
+    const abort = () => {
+      if (!pending.delete(id)) return;
+      // a worker cannot be interrupted in the middle of a parse: stopped, with the parses it holds
+      stopWorker();
+      reject(cancelled());
+    };
+    pending.set(id, { resolve: done(resolve), reject: done(reject), onProgress, file });
+    if (signal) signal.addEventListener('abort', abort, { once: true });
     w.postMessage({ id, file });
   });
+}
+
+// Stops the worker; the parses still pending in it are cancelled.
+function stopWorker() {
+  if (!worker) return;
+  worker.terminate();
+  worker = null;
+  const jobs = [...pending.values()];
+  pending.clear();
+  for (const job of jobs) job.reject(cancelled());
 }

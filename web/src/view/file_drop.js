@@ -2,12 +2,14 @@
 // worker (one after another, one progress bar for all), then applies them in the order that makes
 // sense whatever the order they came in: the animation first (it makes the run), then its force
 // chains, then a boundary mesh. A bad file is reported by name and line and leaves the run that
-// was shown before untouched.
+// was shown before untouched. A load can be cancelled (#load-cancel), and a new choice of files
+// cancels the one still loading: a small file is not kept waiting behind a large one.
 
 import { parseFile } from '../formats/load_files.js';
 
 const ORDER = { animation: 0, forceChains: 1, mesh: 2 };
 let queue = Promise.resolve(); // loads run one at a time, in the order the user asked
+let loading = null; // the AbortController of the load in progress
 let waitingChains = null; // force chains opened before any animation: attached to the next one
 
 // Drops the force chains kept for an animation to come: the Viewer calls it when a run is set by
@@ -16,17 +18,34 @@ export function forgetWaitingChains() {
   waitingChains = null;
 }
 
+// Cancels the load in progress, if any (the run shown before stays).
+export function cancelLoading() {
+  if (loading) loading.abort();
+}
+
 export function loadFiles(viewer, files) {
-  queue = queue.then(() => load(viewer, [...files])).catch((error) => viewer.message(String(error), true));
+  cancelLoading();
+  const controller = new AbortController();
+  loading = controller;
+  queue = queue.then(() => load(viewer, [...files], controller.signal))
+    .catch((error) => viewer.message(String(error), true))
+    .finally(() => { if (loading === controller) loading = null; });
   return queue;
 }
 
-async function load(viewer, files) {
+async function load(viewer, files, signal) {
   if (!files.length) return;
+  const names = files.map((f) => f.name).join(', ');
+  if (signal.aborted) {
+    viewer.message(`${names}: not loaded, other files were chosen`);
+    return;
+  }
   const progress = document.getElementById('load-progress');
+  const cancel = document.getElementById('load-cancel');
   progress.hidden = false;
   progress.value = 0;
-  viewer.message(`Loading ${files.map((f) => f.name).join(', ')}, please wait`);
+  if (cancel) cancel.hidden = false;
+  viewer.message(`Loading ${names}, please wait`);
   // A follow or replay started while the files are parsed replaces the run: their result is then
   // dropped rather than put over it.
   const generation = viewer.runGeneration;
@@ -35,15 +54,22 @@ async function load(viewer, files) {
     for (let k = 0; k < files.length; k++) {
       const file = files[k];
       try {
-        const result = await parseFile(file, (fraction) => { progress.value = (k + fraction) / files.length; });
+        const result = await parseFile(file, (fraction) => { progress.value = (k + fraction) / files.length; }, signal);
         parsed.push({ file, result });
       } catch (error) {
+        if (signal.aborted) break;
         parsed.push({ file, result: { kind: null, problem: `could not be read: ${error.message}` } });
       }
     }
   } finally {
     progress.value = 1;
     progress.hidden = true;
+    if (cancel) cancel.hidden = true;
+  }
+  if (signal.aborted) {
+    // the newer choice's own message follows at once; a cancel by the button stays
+    viewer.message(`Loading ${names} cancelled; the run shown before stays`);
+    return;
   }
   if (viewer.runGeneration !== generation) {
     viewer.message(`${files.map((f) => f.name).join(', ')}: not shown, another run was opened while they were read`);

@@ -1,0 +1,63 @@
+// Loading is cancellable: the Cancel button stops a load, and a new choice of files cancels the one
+// still loading, so a small file does not wait behind a large one. The run shown before stays.
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { test, expect, ANIMATION, PLANAR, readAnimation, openViewer, state, loadFiles } from './helpers.js';
+
+// A large ANIMATION_3D.dat: the fixture's frames over and over, about `megabytes` MB.
+function largeAnimation(megabytes) {
+  const text = fs.readFileSync(ANIMATION(), 'utf8');
+  const file = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'dem-viewer-large-')), 'ANIMATION_3D.dat');
+  const copies = Math.ceil((megabytes << 20) / text.length);
+  const fd = fs.openSync(file, 'w');
+  for (let k = 0; k < copies; k++) fs.writeSync(fd, text);
+  fs.closeSync(fd);
+  return file;
+}
+
+let large;
+test.beforeAll(() => { large = largeAnimation(200); });
+test.afterAll(() => { if (large) fs.rmSync(path.dirname(large), { recursive: true, force: true }); });
+
+// Chooses the large file and waits until its load is under way (the progress bar moves).
+async function startLargeLoad(page) {
+  await page.locator('#file-input').setInputFiles(large);
+  await expect(page.locator('#load-cancel')).toBeVisible();
+  await expect.poll(() => page.locator('#load-progress').evaluate((p) => p.value), { intervals: [50] }).toBeGreaterThan(0);
+}
+
+test('Cancel stops a load and the run shown before stays', async ({ page }) => {
+  const frames = readAnimation(PLANAR()).length;
+  await openViewer(page);
+  await loadFiles(page, [PLANAR()], frames);
+  await startLargeLoad(page);
+  const progressWhenCancelled = await page.locator('#load-progress').evaluate((p) => p.value);
+  expect(progressWhenCancelled, 'cancelled part way').toBeLessThan(0.9);
+  await page.locator('#load-cancel').click();
+  await expect(page.locator('#load-progress')).toBeHidden({ timeout: 3_000 });
+  await expect(page.locator('#load-cancel')).toBeHidden();
+  await expect(page.locator('#message')).toContainText('cancelled');
+  const after = await state(page);
+  expect(after.frames, 'the run shown before').toBe(frames);
+  expect(after.planar).toBe(true);
+  // and the viewer loads again afterwards (a new worker)
+  await loadFiles(page, [ANIMATION()], readAnimation(ANIMATION()).length);
+});
+
+test('a new choice cancels the load still under way', async ({ page }) => {
+  const small = readAnimation(PLANAR()).length;
+  await openViewer(page);
+  await startLargeLoad(page);
+  const chosen = Date.now();
+  await page.locator('#file-input').setInputFiles(PLANAR());
+  await expect.poll(async () => (await state(page)).frames, { timeout: 10_000, intervals: [50] }).toBe(small);
+  const waited = Date.now() - chosen;
+  expect(waited, 'ms the small file took to show').toBeLessThan(10_000);
+  expect((await state(page)).planar, 'the small file is the run shown').toBe(true);
+  await expect(page.locator('#message')).toContainText(`${small} frames of`);
+  // the large file's load does not come back over it
+  await page.waitForTimeout(1_000);
+  expect((await state(page)).frames).toBe(small);
+  await expect(page.locator('#load-progress')).toBeHidden();
+});
