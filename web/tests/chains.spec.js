@@ -64,11 +64,12 @@ test('a force-chain tube hides what is inside it, from every side', async ({ pag
     el.value = '#00ff00';
     el.dispatchEvent(new Event('input', { bubbles: true }));
   });
+  await page.locator('#show-force-chains').check();
+  // opaque particles (showing the chains makes them translucent until the user sets an opacity)
   await page.locator('#particle-opacity').evaluate((el) => {
     el.value = '100';
     el.dispatchEvent(new Event('input', { bubbles: true }));
   });
-  await page.locator('#show-force-chains').check();
   await setRange(page, '#chain-thickness', 60);
   const shot = await canvasShot(page);
   await keep(testInfo, 'tube', shot);

@@ -9,6 +9,7 @@
 
 import * as server from './server.js';
 import { FrameDecoder } from './frame_decode.js';
+import { counted } from '../words.js';
 import { Charts } from './charts.js';
 import { formatSpec } from './spec_format.js';
 import { parseFile } from '../formats/load_files.js';
@@ -377,7 +378,7 @@ class LivePanel {
     if (frame) {
       const total = frame.totalSteps || job.totalSteps;
       this.statusLabel.textContent = `live: step ${frame.step}${total ? ` of ${total}` : ''}, t = ${frame.time.toPrecision(6)} s, ` +
-        (frame.stage ? `stage ${frame.stage}, ` : '') + `${frame.count} particles, ${this.framesReceived} frames`;
+        (frame.stage ? `stage ${frame.stage}, ` : '') + `${counted(frame.count, 'particle')}, ${counted(this.framesReceived, 'frame')}`;
     } else if (this.socket) {
       this.statusLabel.textContent = job.state === 'queued' ? 'queued: waiting for the job to start' : 'waiting for the first frame';
     } else {
@@ -518,7 +519,7 @@ class LivePanel {
     this.setLive(false);
     const why = reason || (job ? `job ${job.state}` : `connection closed (${code})`);
     this.showStatus();
-    this.statusLabel.textContent = `${why}; ${this.framesReceived} live frames` + (job && !ACTIVE.has(job.state) ? ': Replay loads every frame' : '');
+    this.statusLabel.textContent = `${why}; ${counted(this.framesReceived, 'live frame')}` + (job && !ACTIVE.has(job.state) ? ': Replay loads every frame' : '');
     const failed = job && (job.state === 'failed' || job.state === 'interrupted');
     this.say(`job ${id}: ${why}${failed && job.error ? ` (${job.error})` : ''}`, !!failed);
     if (job && !ACTIVE.has(job.state)) this.loadStatsCharts(id, session, job);
@@ -643,18 +644,18 @@ class LivePanel {
       this.charts.setAnimationFrames(result.frames);
       const last = result.frames[result.frames.length - 1];
       this.stepLabel.textContent = '';
-      let note = `job ${id}: ${result.frames.length} frames replayed`;
+      let note = `job ${id}: ${counted(result.frames.length, 'frame')} replayed`;
       if (result.problem) note += ` (${result.problem})`;
       if (names.has('ForceChain_3D.dat')) {
         const chains = await this.fetchAndParse(id, 'ForceChain_3D.dat', artifacts, session);
         if (!chains) return;
         if (chains.kind === 'forceChains') {
           this.call('setForceChains', chains.frames, this.generation);
-          note += `, ${chains.frames.length} frames of force chains`;
+          note += `, ${counted(chains.frames.length, 'frame')} of force chains`;
           if (chains.problem) note += ` (ForceChain_3D.dat: ${chains.problem})`;
         }
       }
-      this.statusLabel.textContent = `${job.state}: ${result.frames.length} frames, last step ${last.step}, t = ${Number(last.time).toPrecision(6)} s`;
+      this.statusLabel.textContent = `${job.state}: ${counted(result.frames.length, 'frame')}, last step ${last.step}, t = ${Number(last.time).toPrecision(6)} s`;
       this.say(note);
       this.play();
     } catch (e) {

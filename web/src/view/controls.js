@@ -2,9 +2,13 @@
 // (counts, time, step, colour bar range, slider positions) in step with what is drawn.
 
 import { barGradient, formatValue } from './colours.js';
+import { counted } from '../words.js';
 import { savePicture, Recorder } from './capture.js';
 
 const $ = (id) => document.getElementById(id);
+
+// The particles' opacity (%) while force chains are shown, unless the user chose one.
+const CHAIN_PARTICLE_OPACITY = 30;
 
 function formatTime(t) {
   return Number.isFinite(t) ? String(Number(t.toPrecision(6))) : '-';
@@ -41,8 +45,16 @@ export function wireControls(viewer) {
     viewer.set({ sectionRear: number('section-rear') });
   });
 
-  // Force chains
+  // Force chains. Opaque particles hide the chains between their centres: showing the chains makes
+  // the particles translucent (the legacy T/C), and hiding them makes them opaque again, until the
+  // user sets the opacity.
+  let opacityChosen = false;
   on('show-force-chains', 'change', () => {
+    if (!opacityChosen) {
+      const opacity = $('show-force-chains').checked ? CHAIN_PARTICLE_OPACITY : 100;
+      $('particle-opacity').value = String(opacity);
+      viewer.particles.setOpacity(opacity / 100);
+    }
     viewer.set({ showChains: $('show-force-chains').checked });
     if ($('show-force-chains').checked && !viewer.chainsByStep.size) {
       viewer.message('No force chains loaded: open ForceChain_3D.dat as well (or a run written with forceChains on).');
@@ -50,7 +62,10 @@ export function wireControls(viewer) {
   });
   on('chain-thickness', 'input', () => viewer.set({ chainThickness: number('chain-thickness') }));
   on('chain-show-particles', 'change', () => viewer.set({ chainShowParticles: $('chain-show-particles').checked }));
-  on('particle-opacity', 'input', () => viewer.particles.setOpacity(number('particle-opacity') / 100));
+  on('particle-opacity', 'input', () => {
+    opacityChosen = true;
+    viewer.particles.setOpacity(number('particle-opacity') / 100);
+  });
 
   // Boundary
   on('show-boundary', 'change', () => viewer.boundary.setVisible($('show-boundary').checked));
@@ -95,9 +110,13 @@ export function wireControls(viewer) {
     $('help-panel').hidden = !$('help-panel').hidden;
     $('help-button').setAttribute('aria-expanded', String(!$('help-panel').hidden));
   });
-  on('help-close', 'click', () => {
+  const closeHelp = () => {
     $('help-panel').hidden = true;
     $('help-button').setAttribute('aria-expanded', 'false');
+  };
+  on('help-close', 'click', closeHelp);
+  document.addEventListener('keydown', (event) => {
+    if (event.key === 'Escape' && !$('help-panel').hidden) closeHelp();
   });
 
   viewer.onChange(refresh);
@@ -122,7 +141,11 @@ function refresh(viewer) {
   const mode = viewer.settings.colourMode;
   $('colour-min').textContent = range ? formatValue(range[0]) : '';
   $('colour-max').textContent = range ? formatValue(range[1]) : '';
-  $('colour-bar').classList.toggle('inactive', !range);
+  // no scale to read in Part and Constant modes: the constant colour alone, or no bar
+  const bar = $('colour-bar');
+  bar.hidden = mode === 'part';
+  bar.style.background = mode === 'constant' ? viewer.settings.constantColour : barGradient();
+  bar.classList.toggle('inactive', !range && mode !== 'constant');
   $('colour-label').textContent = {
     speed: 'Speed', diameter: 'Diameter', constant: 'Constant colour', part: `Part (${viewer.bounds ? viewer.bounds.partMax : 0} parts)`,
   }[mode];
@@ -136,5 +159,10 @@ function refresh(viewer) {
   $('chain-legend').hidden = !viewer.settings.showChains || !chains;
   $('chain-max').textContent = chains && chains.stats ? formatValue(chains.stats.fnMax) : '';
   $('chain-run-max').textContent = formatValue(viewer.fnMax);
+  const unknown = viewer.settings.showChains && chains ? viewer.chains.unknown : 0;
+  $('chain-unknown').hidden = !unknown;
+  $('chain-unknown').textContent = unknown
+    ? `${counted(unknown, 'chain')} of this frame not drawn: ${unknown === 1 ? 'it names' : 'they name'} particles not in the frame (the first: id ${viewer.chains.firstUnknownId})`
+    : '';
   document.body.classList.toggle('live', viewer.live);
 }

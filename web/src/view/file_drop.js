@@ -6,6 +6,7 @@
 // cancels the one still loading: a small file is not kept waiting behind a large one.
 
 import { parseFile } from '../formats/load_files.js';
+import { counted } from '../words.js';
 
 const ORDER = { animation: 0, forceChains: 1, mesh: 2 };
 let queue = Promise.resolve(); // loads run one at a time, in the order the user asked
@@ -107,19 +108,19 @@ async function load(viewer, files, signal) {
       viewer.setRun({ frames: result.frames, mesh: keepMesh, unit: 'file' }, { fromFiles: true });
       const count = result.frames[0].count;
       const what = result.frames[0].planar ? 'discs (2D, the x-z plane seen from -y)' : 'particles';
-      notes.push(`${name}: ${result.frames.length} frames of ${count} ${what}${cut}`);
+      notes.push(`${name}: ${counted(result.frames.length, 'frame')} of ${count} ${what}${cut}`);
       if (waitingChains) {
         const matched = viewer.setForceChains(waitingChains.frames);
-        notes.push(`${waitingChains.name} (opened before): ${matched} frames matched by step`);
+        notes.push(`${waitingChains.name} (opened before): ${counted(matched, 'frame')} matched by step`);
         waitingChains = null;
       }
     } else if (!viewer.run || !viewer.run.frames.length) {
       waitingChains = { name, frames: result.frames };
-      notes.push(`${name}: ${result.frames.length} frames of force chains, kept for the animation file to come${cut}`);
+      notes.push(`${name}: ${counted(result.frames.length, 'frame')} of force chains, kept for the animation file to come${cut}`);
     } else {
       const matched = viewer.setForceChains(result.frames);
       const frames = viewer.run ? viewer.run.frames.length : 0;
-      notes.push(`${name}: ${result.frames.length} frames of force chains, ${matched} of the ${frames} animation frames matched by step${cut}`);
+      notes.push(`${name}: ${counted(result.frames.length, 'frame')} of force chains, ${matched} of the ${counted(frames, 'animation frame')} matched by step${cut}`);
     }
   }
   viewer.message(notes.join('\n'), failed);

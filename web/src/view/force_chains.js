@@ -14,6 +14,8 @@ export class ForceChainView {
     this.geometry = new THREE.CylinderGeometry(1, 1, 1, 8, 1, true); // along +y, height 1
     this.material = new THREE.MeshPhongMaterial({ color: 0xffffff, shininess: 20 });
     this.drawn = 0;
+    this.unknown = 0; // chains of the frame naming a particle the frame does not have
+    this.firstUnknownId = 0; // the first such particle's id (1-based, as in the files)
   }
 
   ensure(count) {
@@ -46,10 +48,15 @@ export class ForceChainView {
     const p = frame.positions;
     const scale = fnMax > 0 ? 1 / fnMax : 0;
     let n = 0;
+    let unknown = 0;
     for (let k = 0; k < count; k++) {
       const a = indexOf(chains.i[k]);
       const b = indexOf(chains.j[k]);
-      if (a < 0 || b < 0 || !shown[a] || !shown[b]) continue;
+      if (a < 0 || b < 0) {
+        if (!unknown++) this.firstUnknownId = (a < 0 ? chains.i[k] : chains.j[k]) + 1;
+        continue;
+      }
+      if (!shown[a] || !shown[b]) continue;
       const ax = p[a * 3], ay = p[a * 3 + 1], az = p[a * 3 + 2];
       const dx = p[b * 3] - ax, dy = p[b * 3 + 1] - ay, dz = p[b * 3 + 2] - az;
       const length = Math.sqrt(dx * dx + dy * dy + dz * dz);
@@ -76,6 +83,7 @@ export class ForceChainView {
       n += 1;
     }
     this.drawn = n;
+    this.unknown = unknown;
     this.mesh.count = n;
     this.mesh.visible = n > 0;
     this.mesh.instanceMatrix.needsUpdate = true;
@@ -85,6 +93,7 @@ export class ForceChainView {
 
   hide() {
     this.drawn = 0;
+    this.unknown = 0;
     if (this.mesh) {
       this.mesh.count = 0;
       this.mesh.visible = false;

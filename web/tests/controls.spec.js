@@ -1,0 +1,72 @@
+// Small behaviours of the side panel: Help closes with Escape, counts read "1 frame", Part and
+// Constant modes show no rainbow scale, a chain naming a particle the frame lacks is reported, and
+// showing force chains makes opaque particles translucent.
+import fs from 'node:fs';
+import { test, expect, ANIMATION, FORCE_CHAINS, readAnimation, openViewer, loadFiles, showFrame, settle } from './helpers.js';
+
+// One frame of two particles, and force chains naming a third that is not in it.
+function writeOneFrame(dir) {
+  const particle = (id, x) => `${id} ${x} 0 0 2 0 0 0 1 0 0 0 ${id}`;
+  fs.mkdirSync(dir, { recursive: true });
+  fs.writeFileSync(`${dir}/ANIMATION_3D.dat`,
+                   ['3DA:', '-5 5 -5 5 -5 5', '0 0 0 0', '0', '7 2 0', particle(1, -1), particle(2, 1), ''].join('\n'));
+  fs.writeFileSync(`${dir}/ForceChain_3D.dat`, ['3DF: 7 2', '1 0 2 10 0', '2 1 5 20 0', ''].join('\n'));
+  return [`${dir}/ANIMATION_3D.dat`, `${dir}/ForceChain_3D.dat`];
+}
+
+test('Escape closes Help', async ({ page }) => {
+  await openViewer(page);
+  await page.locator('#help-button').click();
+  await expect(page.locator('#help-panel')).toBeVisible();
+  await page.keyboard.press('Escape');
+  await expect(page.locator('#help-panel')).toBeHidden();
+  await expect(page.locator('#help-button')).toHaveAttribute('aria-expanded', 'false');
+});
+
+test('a one-frame file, and a chain to a particle the frame does not have', async ({ page }, testInfo) => {
+  await openViewer(page);
+  await loadFiles(page, writeOneFrame(testInfo.outputPath('one')), 1);
+  await expect(page.locator('#message')).toContainText('ANIMATION_3D.dat: 1 frame of 2 particles');
+  await expect(page.locator('#message')).toContainText('1 frame of force chains');
+  await expect(page.locator('#message')).not.toContainText('1 frames');
+  await page.locator('#show-force-chains').check();
+  await expect(page.locator('#chain-unknown')).toBeVisible();
+  await expect(page.locator('#chain-unknown')).toContainText('1 chain of this frame not drawn');
+  await expect(page.locator('#chain-unknown')).toContainText('id 5');
+  await page.locator('#show-force-chains').uncheck();
+  await expect(page.locator('#chain-unknown')).toBeHidden();
+});
+
+test('Part and Constant modes show no rainbow scale', async ({ page }) => {
+  await openViewer(page);
+  await loadFiles(page, [ANIMATION()], readAnimation(ANIMATION()).length);
+  const bar = page.locator('#colour-bar');
+  const looks = () => bar.evaluate((el) => ({ shown: el.offsetParent !== null, background: getComputedStyle(el).backgroundImage,
+                                              colour: getComputedStyle(el).backgroundColor, inactive: el.classList.contains('inactive') }));
+  const speed = await looks();
+  expect(speed.shown && speed.background.includes('gradient') && !speed.inactive, JSON.stringify(speed)).toBe(true);
+  await page.locator('#colour-mode').selectOption('part');
+  expect((await looks()).shown, 'Part mode: no bar').toBe(false);
+  await page.locator('#colour-mode').selectOption('constant');
+  const constant = await looks();
+  expect(constant.shown && constant.background === 'none' && !constant.inactive, JSON.stringify(constant)).toBe(true);
+  expect(constant.colour).toBe('rgb(46, 139, 87)');  // #2e8b57, the constant colour's default
+});
+
+test('showing force chains makes the particles translucent, unless an opacity was chosen', async ({ page }) => {
+  await openViewer(page);
+  await loadFiles(page, [ANIMATION(), FORCE_CHAINS()], readAnimation(ANIMATION()).length);
+  await showFrame(page, readAnimation(ANIMATION()).length - 1);
+  const opacity = () => page.evaluate(() => window.demViewer.viewer.particles.opacity);
+  expect(await opacity()).toBe(1);
+  await page.locator('#show-force-chains').check();
+  await settle(page);
+  expect(await opacity(), 'chains on').toBeLessThan(0.5);
+  expect(Number(await page.locator('#particle-opacity').inputValue())).toBeLessThan(50);
+  await page.locator('#show-force-chains').uncheck();
+  expect(await opacity(), 'chains off again').toBe(1);
+  // the user's own opacity is kept
+  await page.locator('#particle-opacity').evaluate((el) => { el.value = '80'; el.dispatchEvent(new Event('input', { bubbles: true })); });
+  await page.locator('#show-force-chains').check();
+  expect(await opacity()).toBeCloseTo(0.8, 5);
+});
