@@ -9,6 +9,8 @@
 // number of points of its first series). Click a chart to switch its y axis between linear and
 // logarithmic (positive values only).
 
+import { niceTicks, decadeTicks } from './ticks.js';
+
 // A live series keeps at most this many points: when full, every other point is dropped.
 const LIVE_POINTS = 10000;
 
@@ -194,16 +196,21 @@ class Chart {
       g.fillText(useLog ? 'no positive values' : 'no data', left + 4, top + plotH / 2);
       return;
     }
-    if (xMin === xMax) { xMin -= 0.5; xMax += 0.5; }
+    // Round ticks, the axes widened to them (ticks.js).
+    const xAxis = niceTicks(xMin, xMax, Math.max(2, Math.floor(plotW / 70)));
+    xMin = xAxis.min;
+    xMax = xAxis.max;
     let ty = (v) => v;
+    let yAxis;
     if (useLog) {
       ty = Math.log10;
-      if (yMin === yMax) { yMin /= 10; yMax *= 10; }
-    } else if (yMin === yMax) {
-      const pad = Math.abs(yMin) * 0.1 || 1;
-      yMin -= pad;
-      yMax += pad;
+      yAxis = decadeTicks(yMin, yMax);
+    } else {
+      yAxis = niceTicks(yMin, yMax, Math.max(2, Math.floor(plotH / 30)));
     }
+    yMin = yAxis.min;
+    yMax = yAxis.max;
+    this.axes = { x: xAxis.ticks, y: yAxis.ticks }; // what the last picture labelled (for tests)
     const ly0 = ty(yMin), ly1 = ty(yMax);
     const px = (x) => left + ((x - xMin) / (xMax - xMin)) * plotW;
     const py = (y) => top + plotH - ((ty(y) - ly0) / (ly1 - ly0)) * plotH;
@@ -216,29 +223,24 @@ class Chart {
     g.lineTo(left, top + plotH);
     g.lineTo(left + plotW, top + plotH);
     g.stroke();
-    // Ticks: min and max on both axes (and the middle of x).
+    // Ticks at round values.
     g.beginPath();
-    for (const x of [left, left + plotW / 2, left + plotW]) {
-      g.moveTo(x, top + plotH);
-      g.lineTo(x, top + plotH + 4);
+    for (const t of xAxis.ticks) {
+      g.moveTo(px(t), top + plotH);
+      g.lineTo(px(t), top + plotH + 4);
     }
-    for (const y of [top, top + plotH]) {
-      g.moveTo(left - 4, y);
-      g.lineTo(left, y);
+    for (const t of yAxis.ticks) {
+      g.moveTo(left - 4, py(t));
+      g.lineTo(left, py(t));
     }
     g.stroke();
     g.globalAlpha = 1;
     g.textBaseline = 'top';
-    g.textAlign = 'left';
-    g.fillText(formatTick(xMin), left, top + plotH + 5);
     g.textAlign = 'center';
-    g.fillText(formatTick((xMin + xMax) / 2), left + plotW / 2, top + plotH + 5);
-    g.textAlign = 'right';
-    g.fillText(formatTick(xMax), left + plotW, top + plotH + 5);
+    for (const t of xAxis.ticks) g.fillText(formatTick(t), px(t), top + plotH + 5);
     g.textAlign = 'right';
     g.textBaseline = 'middle';
-    g.fillText(formatTick(yMax), left - 6, top);
-    g.fillText(formatTick(yMin), left - 6, top + plotH);
+    for (const t of yAxis.ticks) g.fillText(formatTick(t), left - 6, py(t));
     // Axis labels.
     g.textAlign = 'center';
     g.textBaseline = 'bottom';
