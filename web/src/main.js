@@ -384,6 +384,7 @@ function start() {
 
   // Offline files: the file input and drag-and-drop anywhere on the page.
   $('load-cancel').addEventListener('click', () => cancelLoading());
+  $('message-close').addEventListener('click', () => viewer.message(''));
   $('file-input').addEventListener('change', (event) => {
     loadFiles(viewer, [...event.target.files]);
     event.target.value = ''; // choosing the same file again reloads it
