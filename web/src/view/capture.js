@@ -1,6 +1,10 @@
 // Saving what the view shows: a PNG of the canvas (legacy "save picture") and a WebM video of the
 // canvas while it plays (MediaRecorder on canvas.captureStream).
 
+// MediaRecorder writes a WebM as a live stream, without its duration: players then show no length
+// and cannot seek. fix-webm-duration writes the Duration element into the file's Segment Info.
+import fixWebmDuration from 'fix-webm-duration';
+
 // Offers a Blob as a download named `name`.
 export function download(blob, name) {
   const url = URL.createObjectURL(blob);
@@ -54,13 +58,15 @@ export class Recorder {
     const recorder = new MediaRecorder(stream, { mimeType: type, videoBitsPerSecond: 8e6 });
     recorder.ondataavailable = (event) => { if (event.data.size) chunks.push(event.data); };
     this.stopped = new Promise((resolve) => {
-      recorder.onstop = () => {
+      recorder.onstop = async () => {
         stream.getTracks().forEach((t) => t.stop());
-        const blob = new Blob(chunks, { type: 'video/webm' });
+        const milliseconds = performance.now() - started;
+        const blob = await fixWebmDuration(new Blob(chunks, { type: 'video/webm' }), milliseconds, { logger: false });
         download(blob, 'dem-run.webm');
         resolve(blob);
       };
     });
+    const started = performance.now();
     recorder.start(1000); // a chunk a second, so a long recording does not sit in one buffer
     this.recorder = recorder;
     this.stage.continuous += 1;
