@@ -12,6 +12,7 @@ import { addStats } from './formats/stats.js';
 import { wireControls } from './view/controls.js';
 import { Playback } from './view/playback.js';
 import { loadFiles, forgetWaitingChains, cancelLoading } from './view/file_drop.js';
+import { Probe } from './view/probe.js';
 
 // Live frames kept in memory: about this many bytes (positions, velocities, radii, parts, force
 // chains and a fixed overhead per frame), and at most this many frames.
@@ -380,6 +381,7 @@ function start() {
   const stage = new Stage($('view'));
   const viewer = new Viewer(stage);
   wireControls(viewer);
+  viewer.probe = new Probe(viewer);
   window.demViewer = { state: () => viewer.state(), viewer, loadFiles: (files) => loadFiles(viewer, files) };
 
   // Offline files: the file input and drag-and-drop anywhere on the page.

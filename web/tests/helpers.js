@@ -128,10 +128,10 @@ export async function viewCanvas(page) {
 }
 
 // A PNG of the view (the canvas as composited on the page).
-// Messages shown over the view are left out (hidden while the picture is taken).
+// Messages and the probe's boxes shown over the view are left out (hidden while the picture is taken).
 export async function canvasShot(page) {
   await settle(page);
-  return (await viewCanvas(page)).screenshot({ style: '#message-box { visibility: hidden !important; }' });
+  return (await viewCanvas(page)).screenshot({ style: '#message-box, #probe, #hover-readout { visibility: hidden !important; }' });
 }
 
 // Keeps a picture for a person: a PNG in the test's output folder, attached to the report.

@@ -135,6 +135,8 @@ export class AnimationParser {
         frame.velocities = allocate(Float32Array, frame.count, 3);
         frame.radii = allocate(Float32Array, frame.count, 1);
         frame.parts = allocate(Int32Array, frame.count, 1);
+        frame.contacts = allocate(Int32Array, frame.count, 1);
+        frame.spins = allocate(Float32Array, frame.count, 3);
         this.index = 0;
         this.expected = layout.plate;
         break;
@@ -183,8 +185,10 @@ export class AnimationParser {
         frame.velocities[n * 3] = values.real(4);
         frame.velocities[n * 3 + 1] = 0;
         frame.velocities[n * 3 + 2] = values.real(5);
-        values.integer(6); // nc: checked, not shown
-        values.real(7); // spin: checked, not shown
+        frame.contacts[n] = values.integer(6);
+        frame.spins[n * 3] = 0;
+        frame.spins[n * 3 + 1] = values.real(7); // a disc in the x-z plane turns about y
+        frame.spins[n * 3 + 2] = 0;
         frame.parts[n] = values.integer(8);
         this.index += 1;
         break;
@@ -200,10 +204,10 @@ export class AnimationParser {
         frame.velocities[n * 3] = values.real(5);
         frame.velocities[n * 3 + 1] = values.real(6);
         frame.velocities[n * 3 + 2] = values.real(7);
-        values.integer(8); // nc: checked, not shown
-        values.real(9);
-        values.real(10);
-        values.real(11); // angular velocity: checked, not shown
+        frame.contacts[n] = values.integer(8);
+        frame.spins[n * 3] = values.real(9);
+        frame.spins[n * 3 + 1] = values.real(10);
+        frame.spins[n * 3 + 2] = values.real(11);
         frame.parts[n] = values.integer(12);
         this.index += 1;
         break;
@@ -251,6 +255,8 @@ export class AnimationParser {
     f.velocities = ensure(f.velocities, particles * 3);
     f.radii = ensure(f.radii, particles);
     f.parts = ensure(f.parts, particles);
+    f.contacts = ensure(f.contacts, particles);
+    f.spins = ensure(f.spins, particles * 3);
   }
 
   complete() {
@@ -261,6 +267,8 @@ export class AnimationParser {
     f.velocities = f.velocities.length === f.count * 3 ? f.velocities : f.velocities.slice(0, f.count * 3);
     f.radii = f.radii.length === f.count ? f.radii : f.radii.slice(0, f.count);
     f.parts = f.parts.length === f.count ? f.parts : f.parts.slice(0, f.count);
+    f.contacts = f.contacts.length === f.count ? f.contacts : f.contacts.slice(0, f.count);
+    f.spins = f.spins.length === f.count * 3 ? f.spins : f.spins.slice(0, f.count * 3);
     f.plates = f.plates.length === this.plateCount * 12 ? f.plates : f.plates.slice(0, this.plateCount * 12);
     const triangleFloats = this.triangleCount * this.trianglesPerLine() * 9;
     f.triangles = f.triangles.length === triangleFloats ? f.triangles : f.triangles.slice(0, triangleFloats);

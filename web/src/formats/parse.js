@@ -115,7 +115,7 @@ export function transferables(result) {
   const add = (a) => { if (a && a.buffer) buffers.add(a.buffer); };
   if (result.mesh) { add(result.mesh.vertices); add(result.mesh.triangles); }
   for (const f of result.frames || []) {
-    for (const key of ['ids', 'positions', 'velocities', 'radii', 'parts', 'plates', 'triangles', 'domain', 'i', 'j', 'fn', 'ft']) add(f[key]);
+    for (const key of ['ids', 'positions', 'velocities', 'radii', 'parts', 'contacts', 'spins', 'plates', 'triangles', 'domain', 'i', 'j', 'fn', 'ft']) add(f[key]);
   }
   return [...buffers];
 }
