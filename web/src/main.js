@@ -50,7 +50,7 @@ export class Viewer {
     this.bounds = null; // { min, max, speed, diameter, partMax } over the frames of the run
     this.settings = {
       colourMode: 'speed', constantColour: '#2e8b57',
-      sectionFront: 0, sectionRear: 1000,
+      sectionFront: 0, sectionRear: 1000, sectionAxis: [0, 1, 0], // the section's direction (unit vector)
       showChains: false, chainThickness: 30, chainShowParticles: true, particleOpacity: 1,
       showBoundary: true,
     };
@@ -317,18 +317,19 @@ export class Viewer {
       this.shown = new Uint8Array(n);
       this.colours = new Float32Array(n * 3);
     }
-    // Section along y (legacy Scaling Front / Rear): Front hides from the front (small y), Rear
-    // from the back, in thousandths of the run's y extent.
+    // Section along an axis (legacy Scaling Front / Rear: along y): Front hides from the front
+    // (small coordinates), Rear from the back, in thousandths of the run's extent along the axis. The
+    // two together leave a slice.
     const s = this.settings;
-    const y0 = this.bounds ? this.bounds.min[1] : 0;
-    const dy = this.bounds ? this.bounds.max[1] - y0 : 0;
-    const front = s.sectionFront <= 0 ? -Infinity : y0 + (s.sectionFront / 1000) * dy;
-    const rear = s.sectionRear >= 1000 ? Infinity : y0 + (s.sectionRear / 1000) * dy;
+    const [ax, ay, az] = s.sectionAxis;
+    const [c0, c1] = this.sectionExtent();
+    const front = s.sectionFront <= 0 ? -Infinity : c0 + (s.sectionFront / 1000) * (c1 - c0);
+    const rear = s.sectionRear >= 1000 ? Infinity : c0 + (s.sectionRear / 1000) * (c1 - c0);
     const p = frame.positions;
     let drawn = 0;
     for (let k = 0; k < n; k++) {
-      const y = p[k * 3 + 1];
-      const inside = y >= front && y <= rear ? 1 : 0;
+      const c = p[k * 3] * ax + p[k * 3 + 1] * ay + p[k * 3 + 2] * az;
+      const inside = c >= front && c <= rear ? 1 : 0;
       this.shown[k] = inside;
       if (inside) this.visible[drawn++] = k;
     }
@@ -349,6 +350,20 @@ export class Viewer {
     }
     this.boundary.drawFrame(frame);
     this.changed();
+  }
+
+  // The run's extent [min, max] along the section's axis: the bounds' corners projected on it.
+  sectionExtent() {
+    if (!this.bounds) return [0, 0];
+    const { min, max } = this.bounds;
+    const [ax, ay, az] = this.settings.sectionAxis;
+    let lo = Infinity, hi = -Infinity;
+    for (const x of [min[0], max[0]]) for (const y of [min[1], max[1]]) for (const z of [min[2], max[2]]) {
+      const c = x * ax + y * ay + z * az;
+      lo = Math.min(lo, c);
+      hi = Math.max(hi, c);
+    }
+    return [lo, hi];
   }
 
   // Maps a 0-based particle id (force chains) to the particle's index in the frame: the identity

@@ -35,7 +35,17 @@ export function wireControls(viewer) {
     });
   }
 
-  // Section: the two sliders never cross (Front stays left of Rear)
+  // Section: along an axis, or along the camera's direction when chosen (a plane through the view)
+  on('section-axis', 'change', () => {
+    const choice = $('section-axis').value;
+    let axis = { x: [1, 0, 0], y: [0, 1, 0], z: [0, 0, 1] }[choice];
+    if (!axis) {
+      const d = stage.camera.getWorldDirection(stage.camera.position.clone());
+      axis = [d.x, d.y, d.z];
+    }
+    viewer.set({ sectionAxis: axis });
+  });
+  // the two sliders never cross (Front stays left of Rear)
   on('section-front', 'input', () => {
     if (number('section-front') > number('section-rear')) $('section-front').value = $('section-rear').value;
     viewer.set({ sectionFront: number('section-front') });
