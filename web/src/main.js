@@ -13,6 +13,7 @@ import { wireControls } from './view/controls.js';
 import { Playback } from './view/playback.js';
 import { loadFiles, forgetWaitingChains, cancelLoading } from './view/file_drop.js';
 import { Probe } from './view/probe.js';
+import { wireCamera } from './view/camera_tools.js';
 
 // Live frames kept in memory: about this many bytes (positions, velocities, radii, parts, force
 // chains and a fixed overhead per frame), and at most this many frames.
@@ -276,6 +277,33 @@ export class Viewer {
     return null;
   }
 
+  // Puts the camera on the particles of the frame shown, those left by the section (a landslide
+  // block on a 4 km terrain, not the terrain); the whole run when there is no frame.
+  fitParticles() {
+    const frame = this.currentFrame();
+    if (!frame || !this.drawnCount) return this.frameCamera();
+    const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
+    const p = frame.positions, r = frame.radii;
+    for (let v = 0; v < this.drawnCount; v++) {
+      const k = this.visible[v];
+      for (let c = 0; c < 3; c++) {
+        min[c] = Math.min(min[c], p[k * 3 + c] - r[k]);
+        max[c] = Math.max(max[c], p[k * 3 + c] + r[k]);
+      }
+    }
+    const direction = this.stage.camera.getWorldDirection(this.stage.camera.position.clone());
+    this.stage.frame(min, max, { planar: Boolean(frame.planar), direction: [direction.x, direction.y, direction.z] });
+  }
+
+  // The mean position of the particles left by the section (the camera's target when following).
+  particlesCentre() {
+    const frame = this.currentFrame();
+    if (!frame || !this.drawnCount) return null;
+    const sum = [0, 0, 0];
+    for (let v = 0; v < this.drawnCount; v++) for (let c = 0; c < 3; c++) sum[c] += frame.positions[this.visible[v] * 3 + c];
+    return sum.map((s) => s / this.drawnCount);
+  }
+
   // Puts the camera on the run: the particles' extent and the frame's plates, or the mesh alone.
   frameCamera() {
     let min = null, max = null;
@@ -397,6 +425,7 @@ function start() {
   const viewer = new Viewer(stage);
   wireControls(viewer);
   viewer.probe = new Probe(viewer);
+  wireCamera(viewer);
   window.demViewer = { state: () => viewer.state(), viewer, loadFiles: (files) => loadFiles(viewer, files) };
 
   // Offline files: the file input and drag-and-drop anywhere on the page.

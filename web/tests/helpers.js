@@ -59,10 +59,13 @@ export function readForceChains(file) {
 
 // --- driving the page ---
 
-export async function openViewer(page) {
+// The axes indicator is switched off: the tests' pictures are of the scene alone (camera.spec.js
+// checks the indicator).
+export async function openViewer(page, { axes = false } = {}) {
   await page.goto(`${serverUrl()}/`);
   await page.waitForFunction(() => window.demViewer && typeof window.demViewer.state === 'function',
                              null, { timeout: 60_000 });
+  if (!axes) await page.locator('#show-axes').uncheck();
 }
 
 export const state = (page) => page.evaluate(() => window.demViewer.state());

@@ -32,18 +32,22 @@ uniform mat4 projectionMatrix; // declared by three for the vertex stage only
 uniform vec3 lightDirection; // towards the light, view space
 uniform vec3 upDirection;    // world +z (the sky), view space
 uniform float opacity;
+uniform bool orthographic;   // parallel rays along -z instead of rays from the eye
 varying vec3 vCenter;
 varying float vRadius;
 varying vec3 vColour;
 varying vec3 vPoint;
 void main() {
-  // ray from the eye (the origin of view space) through this pixel: |t d - c|^2 = r^2
-  vec3 d = normalize(vPoint);
-  float b = dot(d, vCenter);
-  float h = b * b - dot(vCenter, vCenter) + vRadius * vRadius;
+  // ray through this pixel, from the eye (the origin of view space) or, orthographic, along -z
+  // from the pixel's point on the view plane z = 0: |o + t d - c|^2 = r^2
+  vec3 o = orthographic ? vec3(vPoint.xy, 0.0) : vec3(0.0);
+  vec3 d = orthographic ? vec3(0.0, 0.0, -1.0) : normalize(vPoint);
+  vec3 oc = vCenter - o;
+  float b = dot(d, oc);
+  float h = b * b - dot(oc, oc) + vRadius * vRadius;
   if (h < 0.0) discard;
   float t = b - sqrt(h);
-  vec3 hit = d * t;
+  vec3 hit = o + d * t;
   vec3 n = normalize(hit - vCenter);
   float diffuse = max(dot(n, lightDirection), 0.0);
   float sky = 0.5 + 0.5 * dot(n, upDirection); // a hemisphere term, as the sky light of the instanced spheres
@@ -70,6 +74,7 @@ export class SphereImpostors {
         lightDirection: { value: new THREE.Vector3(0, 0, 1) },
         upDirection: { value: new THREE.Vector3(0, 0, 1) },
         opacity: { value: 1 },
+        orthographic: { value: false },
       },
     });
     // The light moves with the camera in view space: refreshed before every draw.
@@ -78,6 +83,7 @@ export class SphereImpostors {
       const u = this.material.uniforms;
       stage.lightDirectionInView(u.lightDirection.value);
       u.upDirection.value.set(0, 0, 1).transformDirection(stage.camera.matrixWorldInverse);
+      u.orthographic.value = stage.orthographic;
     });
   }
 

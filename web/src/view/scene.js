@@ -18,9 +18,12 @@ export class Stage {
 
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color('#ffffff');
-    // DEM cases have gravity along -z: z is up, as in the legacy viewers' pictures.
-    this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
-    this.camera.up.set(0, 0, 1);
+    // DEM cases have gravity along -z: z is up, as in the legacy viewers' pictures. Two cameras,
+    // perspective and orthographic (setProjection); `camera` is the one in use.
+    this.perspectiveCamera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+    this.orthographicCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0.01, 1000);
+    for (const c of [this.perspectiveCamera, this.orthographicCamera]) c.up.set(0, 0, 1);
+    this.camera = this.perspectiveCamera;
     this.controls = new OrbitControls(this.camera, this.canvas);
     this.controls.enableDamping = false; // damping would need continuous drawing
     this.controls.addEventListener('change', () => this.requestRender());
@@ -39,6 +42,7 @@ export class Stage {
     this.needsRender = true;
     this.continuous = 0; // users of continuous drawing (recording)
     this.beforeRender = [];
+    this.afterRender = []; // drawn over the scene (the axes indicator)
 
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
@@ -49,8 +53,67 @@ export class Stage {
     const w = Math.max(1, this.container.clientWidth);
     const h = Math.max(1, this.container.clientHeight);
     this.renderer.setSize(w, h, false);
-    this.camera.aspect = w / h;
-    this.camera.updateProjectionMatrix();
+    this.aspect = w / h;
+    this.perspectiveCamera.aspect = this.aspect;
+    this.perspectiveCamera.updateProjectionMatrix();
+    this.fitOrthographic();
+    this.requestRender();
+  }
+
+  // The orthographic camera's box: as tall as the perspective camera's view at the target's
+  // distance, so that switching keeps the scene's size on the screen.
+  fitOrthographic() {
+    const o = this.orthographicCamera;
+    const distance = this.camera.position.distanceTo(this.controls ? this.controls.target : this.center) || this.size;
+    const half = distance * Math.tan(THREE.MathUtils.degToRad(this.perspectiveCamera.fov / 2));
+    o.left = -half * (this.aspect || 1);
+    o.right = half * (this.aspect || 1);
+    o.top = half;
+    o.bottom = -half;
+    o.near = this.perspectiveCamera.near;
+    o.far = this.perspectiveCamera.far;
+    o.updateProjectionMatrix();
+  }
+
+  get orthographic() {
+    return this.camera === this.orthographicCamera;
+  }
+
+  // 'perspective' or 'orthographic': the other camera takes the same place, direction and zoom.
+  setProjection(kind) {
+    const next = kind === 'orthographic' ? this.orthographicCamera : this.perspectiveCamera;
+    if (next === this.camera) return;
+    const previous = this.camera;
+    next.position.copy(previous.position);
+    next.quaternion.copy(previous.quaternion);
+    next.up.copy(previous.up);
+    if (next === this.orthographicCamera) {
+      next.zoom = 1;
+      this.camera = next;
+      this.fitOrthographic();
+    } else {
+      // the orthographic zoom becomes a distance: the view keeps its size
+      const target = this.controls.target;
+      const offset = previous.position.clone().sub(target).divideScalar(previous.zoom || 1);
+      next.position.copy(target).add(offset);
+      this.camera = next;
+    }
+    this.controls.object = next;
+    this.controls.update();
+    this.requestRender();
+  }
+
+  // Looks along `direction` ([x, y, z], towards the scene) at the scene's centre, from its framing
+  // distance; z stays up, except looking along z, where y is up.
+  viewAlong(direction) {
+    const d = new THREE.Vector3(...direction).normalize();
+    const distance = this.camera.position.distanceTo(this.controls.target) || this.size;
+    const up = Math.abs(d.z) > 0.99 ? new THREE.Vector3(0, 1, 0) : new THREE.Vector3(0, 0, 1);
+    for (const c of [this.perspectiveCamera, this.orthographicCamera]) c.up.copy(up);
+    this.camera.position.copy(this.controls.target).addScaledVector(d, -distance);
+    this.camera.lookAt(this.controls.target);
+    this.controls.update();
+    this.fitOrthographic();
     this.requestRender();
   }
 
@@ -63,6 +126,7 @@ export class Stage {
     this.camera.updateMatrixWorld(); // the hooks read the view matrix before render() refreshes it
     for (const hook of this.beforeRender) hook(this.camera);
     this.renderer.render(this.scene, this.camera);
+    for (const hook of this.afterRender) hook(this.camera);
     this.needsRender = false;
   }
 
@@ -72,19 +136,26 @@ export class Stage {
 
   // Frames the camera on a box [min, max] (run bounds): from the front (-y), a little above; a 2D run's plane
   // (x-z, `planar`) straight from the front.
-  frame(min, max, { planar = false } = {}) {
+  // `direction` ([x, y, z], optional): look along it instead (keeps the user's view while fitting).
+  frame(min, max, { planar = false, direction = null } = {}) {
     const box = new THREE.Box3(new THREE.Vector3(...min), new THREE.Vector3(...max));
     if (box.isEmpty()) return;
     box.getCenter(this.center);
     this.size = Math.max(box.getSize(new THREE.Vector3()).length(), 1e-9);
-    const distance = this.size / (2 * Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2))) * 1.1;
-    this.camera.near = distance / 1000;
-    this.camera.far = distance * 100;
-    const from = planar ? new THREE.Vector3(0, -1, 0) : new THREE.Vector3(0.35, -1, 0.45).normalize();
+    const distance = this.size / (2 * Math.tan(THREE.MathUtils.degToRad(this.perspectiveCamera.fov / 2))) * 1.1;
+    for (const c of [this.perspectiveCamera, this.orthographicCamera]) {
+      c.near = distance / 1000;
+      c.far = distance * 100;
+      if (!direction) c.up.set(0, 0, 1);
+      c.zoom = 1;
+    }
+    const from = direction ? new THREE.Vector3(...direction).normalize().negate()
+      : planar ? new THREE.Vector3(0, -1, 0) : new THREE.Vector3(0.35, -1, 0.45).normalize();
     this.camera.position.copy(this.center).add(from.multiplyScalar(distance));
-    this.camera.updateProjectionMatrix();
+    this.perspectiveCamera.updateProjectionMatrix();
     this.controls.target.copy(this.center);
     this.controls.update();
+    this.fitOrthographic();
     this.placeLight(this.lightAxis);
   }
 
