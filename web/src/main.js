@@ -8,6 +8,7 @@ import { Particles } from './view/particles.js';
 import { ForceChainView } from './view/force_chains.js';
 import { BoundaryView } from './view/boundary.js';
 import { particleColours, hexToRgb } from './view/colours.js';
+import { QUANTITIES, frameRange, partSizes } from './view/quantities.js';
 import { addStats } from './formats/stats.js';
 import { wireControls } from './view/controls.js';
 import { Playback } from './view/playback.js';
@@ -49,8 +50,12 @@ export class Viewer {
     this.chainsByStep = new Map();
     this.fnMax = 0;
     this.bounds = null; // { min, max, speed, diameter, partMax } over the frames of the run
+    this.runRanges = new Map();
     this.settings = {
       colourMode: 'speed', constantColour: '#2e8b57',
+      colourMap: 'legacy', // colours.js COLOUR_MAPS
+      colourRangeMode: 'run', // the colour scale over the whole run, this frame, or `colourRangeManual`
+      colourRangeManual: [0, 1],
       sectionFront: 0, sectionRear: 1000, sectionAxis: [0, 1, 0], // the section's direction (unit vector)
       showChains: false, chainThickness: 30, chainShowParticles: true, particleOpacity: 1,
       showBoundary: true,
@@ -80,6 +85,7 @@ export class Viewer {
     this.chainsByStep = new Map();
     this.fnMax = 0;
     this.bounds = null;
+    this.runRanges = new Map(); // a quantity's [min, max] over the run's frames, by colour mode
     for (const frame of this.run.frames) {
       this.extendBounds(addStats(frame));
       this.extendChainScale(frame.forceChains);
@@ -130,6 +136,10 @@ export class Viewer {
       this.frameIndex = Math.max(0, this.frameIndex - drop);
     }
     this.extendBounds(frame);
+    for (const [mode, range] of this.runRanges) {
+      const more = range && frameRange(QUANTITIES[mode], frame, this.colourContext());
+      if (more) this.runRanges.set(mode, [Math.min(range[0], more[0]), Math.max(range[1], more[1])]);
+    }
     if (first) {
       this.frameCamera();
       this.showFrame(frames.length - 1);
@@ -268,13 +278,36 @@ export class Viewer {
     if (chains) this.fnMax = Math.max(this.fnMax, addStats(chains).stats.fnMax);
   }
 
-  // The colour scale's [min, max] for the current mode (the run's range, as the legacy bar).
+  // What a quantity needs beside the frame: the run's first frame (displacement) and part sizes.
+  colourContext() {
+    const reference = this.run && this.run.frames.length ? this.run.frames[0] : null;
+    return { reference, referenceIndex: reference ? this.indexOfId(reference) : () => -1, partSizes };
+  }
+
+  // The colour scale's [min, max] for the current mode: over the run (as the legacy bar), over the
+  // frame shown, or as set by hand; null for Part and Constant colour.
   colourRange() {
     const mode = this.settings.colourMode;
-    if (!this.bounds) return null;
+    const quantity = QUANTITIES[mode];
+    if (!quantity || !this.bounds) return null;
+    const s = this.settings;
+    if (s.colourRangeMode === 'manual') return s.colourRangeManual;
+    if (s.colourRangeMode === 'frame') {
+      const frame = this.currentFrame();
+      return frame ? frameRange(quantity, frame, this.colourContext()) : null;
+    }
     if (mode === 'speed') return this.bounds.speed;
     if (mode === 'diameter') return this.bounds.diameter;
-    return null;
+    if (!this.runRanges.has(mode)) {
+      let range = null;
+      const context = this.colourContext();
+      for (const frame of this.run.frames) {
+        const r = frameRange(quantity, frame, context);
+        if (r) range = range ? [Math.min(range[0], r[0]), Math.max(range[1], r[1])] : r;
+      }
+      this.runRanges.set(mode, range);
+    }
+    return this.runRanges.get(mode);
   }
 
   // Puts the camera on the particles of the frame shown, those left by the section (a landslide
@@ -363,7 +396,8 @@ export class Viewer {
     }
     this.drawnCount = drawn;
 
-    particleColours(frame, s.colourMode, this.colourRange() || [0, 1], hexToRgb(s.constantColour), this.colours);
+    particleColours(frame, s.colourMode, this.colourRange() || [0, 1], hexToRgb(s.constantColour), this.colours,
+                    { quantity: QUANTITIES[s.colourMode] || null, context: this.colourContext(), map: s.colourMap });
     this.particles.draw(frame, this.visible, drawn, this.colours);
     this.particles.setVisible(!s.showChains || s.chainShowParticles);
 

@@ -17,11 +17,21 @@ export function download(blob, name) {
   setTimeout(() => URL.revokeObjectURL(url), 10000);
 }
 
-// Draws the scene once more and downloads it as dem-view.png.
-export function savePicture(stage, name = 'dem-view.png') {
+// Draws the scene once more and downloads it as dem-view.png; `decorate(context2d, width, height)`
+// (optional) draws over the picture (the legend).
+export function savePicture(stage, name = 'dem-view.png', decorate = null) {
   stage.renderNow(); // preserveDrawingBuffer keeps it, but draw so the picture is current
+  let canvas = stage.canvas;
+  if (decorate) {
+    canvas = document.createElement('canvas');
+    canvas.width = stage.canvas.width;
+    canvas.height = stage.canvas.height;
+    const g = canvas.getContext('2d');
+    g.drawImage(stage.canvas, 0, 0);
+    decorate(g, canvas.width, canvas.height);
+  }
   return new Promise((resolve, reject) => {
-    stage.canvas.toBlob((blob) => {
+    canvas.toBlob((blob) => {
       if (!blob) return reject(new Error('the browser could not encode the picture'));
       download(blob, name);
       resolve(blob);

@@ -1,8 +1,10 @@
 // Colour maps. The legacy colour bar runs from dark blue (small) to red (large) through cyan, green
-// and yellow (manuals, figure 3.9); the same stops draw the bar on the page and colour the spheres
-// and force chains, so the bar always tells the truth.
+// and yellow (manuals, figure 3.9); viridis (matplotlib's default, perceptually uniform and
+// readable in grey and by colour-blind readers) and a grey ramp are the others. The same stops draw
+// the bar on the page and colour the spheres, so the bar always tells the truth. Force chains keep
+// the legacy map (their legend names its blue and red).
 
-const STOPS = [
+const LEGACY = [
   [0.0, [0.0, 0.0, 0.56]],
   [0.125, [0.0, 0.0, 1.0]],
   [0.375, [0.0, 1.0, 1.0]],
@@ -11,14 +13,21 @@ const STOPS = [
   [0.875, [1.0, 0.0, 0.0]],
   [1.0, [0.5, 0.0, 0.0]],
 ];
+// viridis at ninths (van der Walt and Smith, matplotlib 2.0): #440154 ... #fde725
+const VIRIDIS = ['#440154', '#472d7b', '#3b528b', '#2c728e', '#21918c', '#28ae80', '#5ec962', '#addc30', '#fde725']
+  .map((hex, k, all) => [k / (all.length - 1), hexToRgb(hex)]);
+const GREY = [[0, [0.08, 0.08, 0.08]], [1, [0.92, 0.92, 0.92]]];
 
-// Writes the colour of t in [0, 1] into out[offset..offset+2] (linear interpolation of the stops).
-export function blueToRed(t, out, offset = 0) {
+export const COLOUR_MAPS = { legacy: LEGACY, viridis: VIRIDIS, grey: GREY };
+const STOPS = LEGACY;
+
+// The colour of t in [0, 1] on `stops` into out[offset..offset+2] (linear between the stops).
+function onStops(stops, t, out, offset) {
   const x = t > 0 ? (t < 1 ? t : 1) : 0; // also maps NaN to 0
   let k = 1;
-  while (k < STOPS.length - 1 && STOPS[k][0] < x) k++;
-  const [t0, c0] = STOPS[k - 1];
-  const [t1, c1] = STOPS[k];
+  while (k < stops.length - 1 && stops[k][0] < x) k++;
+  const [t0, c0] = stops[k - 1];
+  const [t1, c1] = stops[k];
   const f = (x - t0) / (t1 - t0);
   out[offset] = c0[0] + (c1[0] - c0[0]) * f;
   out[offset + 1] = c0[1] + (c1[1] - c0[1]) * f;
@@ -26,9 +35,15 @@ export function blueToRed(t, out, offset = 0) {
   return out;
 }
 
-// The CSS gradient of the bar.
-export function barGradient() {
-  return `linear-gradient(to right, ${STOPS.map(([t, c]) =>
+// Writes the legacy map's colour of t in [0, 1] into out[offset..offset+2].
+export function blueToRed(t, out, offset = 0) {
+  return onStops(LEGACY, t, out, offset);
+}
+
+// The CSS gradient of the bar for a map (the legacy one by default).
+export function barGradient(map = 'legacy') {
+  const stops = COLOUR_MAPS[map] || STOPS;
+  return `linear-gradient(to right, ${stops.map(([t, c]) =>
     `rgb(${c.map((v) => Math.round(v * 255)).join(',')}) ${t * 100}%`).join(', ')})`;
 }
 
@@ -71,39 +86,39 @@ export function srgbToLinear(c) {
   return c < 0.04045 ? c / 12.92 : Math.pow((c + 0.055) / 1.055, 2.4);
 }
 
-// 256 linear colours of the blue-to-red map: per-particle colouring is a table look-up.
+// 256 linear colours of each map: per-particle colouring is a table look-up.
 const LUT_SIZE = 256;
-const LUT = (() => {
-  const lut = new Float32Array(LUT_SIZE * 3);
-  for (let k = 0; k < LUT_SIZE; k++) {
-    blueToRed(k / (LUT_SIZE - 1), lut, k * 3);
-    for (let c = 0; c < 3; c++) lut[k * 3 + c] = srgbToLinear(lut[k * 3 + c]);
+const LUTS = new Map();
+function lutOf(map) {
+  if (!LUTS.has(map)) {
+    const stops = COLOUR_MAPS[map] || STOPS;
+    const lut = new Float32Array(LUT_SIZE * 3);
+    for (let k = 0; k < LUT_SIZE; k++) {
+      onStops(stops, k / (LUT_SIZE - 1), lut, k * 3);
+      for (let c = 0; c < 3; c++) lut[k * 3 + c] = srgbToLinear(lut[k * 3 + c]);
+    }
+    LUTS.set(map, lut);
   }
-  return lut;
-})();
-
-// Linear colour of t in [0, 1] from the table into out[offset..].
-export function mapLinear(t, out, offset) {
-  const k = t > 0 ? (t < 1 ? Math.round(t * (LUT_SIZE - 1)) * 3 : (LUT_SIZE - 1) * 3) : 0;
-  out[offset] = LUT[k];
-  out[offset + 1] = LUT[k + 1];
-  out[offset + 2] = LUT[k + 2];
+  return LUTS.get(map);
 }
 
-// Linear RGB for each particle of `frame` (3 floats each) in colour mode
-//   'speed' | 'diameter' (blue-to-red over range [lo, hi]), 'constant' (rgb), 'part'.
-export function particleColours(frame, mode, range, rgb, out) {
+// Linear colour of t in [0, 1] on a map's table (the legacy map by default) into out[offset..].
+export function mapLinear(t, out, offset, lut = lutOf('legacy')) {
+  const k = t > 0 ? (t < 1 ? Math.round(t * (LUT_SIZE - 1)) * 3 : (LUT_SIZE - 1) * 3) : 0;
+  out[offset] = lut[k];
+  out[offset + 1] = lut[k + 1];
+  out[offset + 2] = lut[k + 2];
+}
+
+// Linear RGB for each particle of `frame` (3 floats each): by a quantity (quantities.js; `quantity`
+// with its `context`) on colour map `map` over range [lo, hi], or in mode 'constant' (rgb) or 'part'.
+export function particleColours(frame, mode, range, rgb, out, { quantity = null, context = null, map = 'legacy' } = {}) {
   const n = frame.count;
   const [lo, hi] = range;
   const scale = hi > lo ? 1 / (hi - lo) : 0;
-  if (mode === 'speed') {
-    const v = frame.velocities;
-    for (let k = 0; k < n; k++) {
-      const s = Math.sqrt(v[k * 3] * v[k * 3] + v[k * 3 + 1] * v[k * 3 + 1] + v[k * 3 + 2] * v[k * 3 + 2]);
-      mapLinear((s - lo) * scale, out, k * 3);
-    }
-  } else if (mode === 'diameter') {
-    for (let k = 0; k < n; k++) mapLinear((2 * frame.radii[k] - lo) * scale, out, k * 3);
+  if (quantity) {
+    const lut = lutOf(map);
+    for (let k = 0; k < n; k++) mapLinear((quantity.value(frame, k, context) - lo) * scale, out, k * 3, lut);
   } else if (mode === 'part') {
     const cache = new Map(); // few parts, many particles
     for (let k = 0; k < n; k++) {

@@ -1,8 +1,9 @@
 // Wires the side panel (index.html; ids in docs/viewer.md) to the Viewer, and keeps the read-outs
 // (counts, time, step, colour bar range, slider positions) in step with what is drawn.
 
-import { barGradient, formatValue } from './colours.js';
+import { barGradient, formatValue, COLOUR_MAPS } from './colours.js';
 import { counted } from '../words.js';
+import { QUANTITIES } from './quantities.js';
 import { savePicture, Recorder } from './capture.js';
 
 const $ = (id) => document.getElementById(id);
@@ -22,7 +23,38 @@ export function wireControls(viewer) {
   // Display
   on('background-colour', 'input', () => stage.setBackground($('background-colour').value));
   stage.setBackground($('background-colour').value);
-  on('colour-mode', 'change', () => viewer.set({ colourMode: $('colour-mode').value }));
+  on('colour-mode', 'change', () => {
+    const s = viewer.settings;
+    s.colourMode = $('colour-mode').value;
+    if (s.colourRangeMode === 'manual') {
+      // a hand-set range belongs to the quantity it was set for: start the new one at its run's range
+      s.colourRangeMode = 'run';
+      s.colourRangeManual = [...(viewer.colourRange() || [0, 1])];
+      s.colourRangeMode = 'manual';
+      fillRangeInputs(viewer, true);
+    }
+    viewer.set({});
+  });
+  on('colour-map', 'change', () => viewer.set({ colourMap: $('colour-map').value }));
+  on('colour-range', 'change', () => {
+    const mode = $('colour-range').value;
+    if (mode === 'manual') {
+      // start from the range in use, so that the picture does not jump
+      const current = viewer.colourRange() || [0, 1];
+      viewer.settings.colourRangeManual = [...current];
+      fillRangeInputs(viewer, true);
+    }
+    $('colour-range-inputs').hidden = mode !== 'manual';
+    viewer.set({ colourRangeMode: mode });
+  });
+  const manualRange = () => {
+    const lo = number('colour-range-min'), hi = number('colour-range-max');
+    const valid = Number.isFinite(lo) && Number.isFinite(hi) && hi > lo && $('colour-range-min').value !== '' && $('colour-range-max').value !== '';
+    for (const id of ['colour-range-min', 'colour-range-max']) $(id).setCustomValidity(valid ? '' : 'the range needs From < to');
+    if (valid) viewer.set({ colourRangeManual: [lo, hi] });
+  };
+  on('colour-range-min', 'change', manualRange);
+  on('colour-range-max', 'change', manualRange);
   on('constant-colour', 'input', () => viewer.set({ constantColour: $('constant-colour').value }));
   viewer.settings.constantColour = $('constant-colour').value;
   $('colour-bar').style.background = barGradient();
@@ -97,7 +129,8 @@ export function wireControls(viewer) {
   });
 
   // Pictures and video
-  on('save-picture', 'click', () => savePicture(stage).catch((e) => viewer.message(e.message, true)));
+  on('save-picture', 'click', () => savePicture(stage, 'dem-view.png', (g, w, h) => drawLegend(viewer, g, w, h))
+    .catch((e) => viewer.message(e.message, true)));
   const recorder = new Recorder(stage);
   on('record', 'click', () => {
     if (recorder.recording) {
@@ -154,13 +187,11 @@ function refresh(viewer) {
   // no scale to read in Part and Constant modes: the constant colour alone, or no bar
   const bar = $('colour-bar');
   bar.hidden = mode === 'part';
-  bar.style.background = mode === 'constant' ? viewer.settings.constantColour : barGradient();
+  bar.style.background = mode === 'constant' ? viewer.settings.constantColour : barGradient(viewer.settings.colourMap);
   bar.classList.toggle('inactive', !range && mode !== 'constant');
-  $('colour-label').textContent = {
-    speed: 'Speed', diameter: 'Diameter', constant: 'Constant colour', part: `Part (${viewer.bounds ? viewer.bounds.partMax : 0} parts)`,
-  }[mode];
-  const unit = viewer.run && viewer.run.unit === 'm' ? 'm' : 'file length unit';
-  $('colour-unit').textContent = mode === 'speed' ? `${unit}/s` : mode === 'diameter' ? unit : '';
+  const { label, unit } = colourLegend(viewer);
+  $('colour-label').textContent = label;
+  $('colour-unit').textContent = unit;
   // Play and Pause stay enabled (a click on the wrong one does nothing); they show the state.
   const playing = viewer.playback.playing;
   $('play').setAttribute('aria-pressed', String(playing));
@@ -175,4 +206,55 @@ function refresh(viewer) {
     ? `${counted(unknown, 'chain')} of this frame not drawn: ${unknown === 1 ? 'it names' : 'they name'} particles not in the frame (the first: id ${viewer.chains.firstUnknownId})`
     : '';
   document.body.classList.toggle('live', viewer.live);
+}
+
+// The colour bar's label and unit for the current mode (also drawn in saved pictures).
+export function colourLegend(viewer) {
+  const mode = viewer.settings.colourMode;
+  const quantity = QUANTITIES[mode];
+  if (quantity) {
+    const length = viewer.run && viewer.run.unit === 'm' ? 'm' : 'file length unit';
+    return { label: quantity.label, unit: quantity.unit(length) };
+  }
+  if (mode === 'part') return { label: `Part (${viewer.bounds ? viewer.bounds.partMax : 0} parts)`, unit: '' };
+  return { label: 'Constant colour', unit: '' };
+}
+
+// Puts the range in use into the From and to fields (force: even when the user typed there).
+function fillRangeInputs(viewer, force) {
+  const [lo, hi] = viewer.colourRange() || viewer.settings.colourRangeManual;
+  if (force || $('colour-range-min').value === '') $('colour-range-min').value = String(Number(lo.toPrecision(6)));
+  if (force || $('colour-range-max').value === '') $('colour-range-max').value = String(Number(hi.toPrecision(6)));
+}
+
+// The legend of a saved picture, drawn over it: the colour bar with its quantity, unit and range
+// (or the Part mode's note) at the lower left, and what is shown (source, time, step) at the top.
+function drawLegend(viewer, g, width, height) {
+  const frame = viewer.currentFrame();
+  const scale = Math.max(1, width / 1200);
+  g.save();
+  g.font = `${Math.round(13 * scale)}px sans-serif`;
+  g.textBaseline = 'top';
+  g.fillStyle = '#1d2733';
+  const source = viewer.run && viewer.run.source ? `${viewer.run.source} · ` : '';
+  if (frame) g.fillText(`${source}t = ${formatTime(frame.time)} s · step ${frame.step} · ${counted(frame.count, 'particle')}`, 10 * scale, 8 * scale);
+  const { label, unit } = colourLegend(viewer);
+  const range = viewer.colourRange();
+  const x = 10 * scale, barW = 220 * scale, barH = 14 * scale, y = height - 52 * scale;
+  g.fillText(unit ? `${label} (${unit})` : label, x, y - 18 * scale);
+  if (range) {
+    const gradient = g.createLinearGradient(x, 0, x + barW, 0);
+    for (const [t, c] of COLOUR_MAPS[viewer.settings.colourMap] || COLOUR_MAPS.legacy) {
+      gradient.addColorStop(t, `rgb(${c.map((v) => Math.round(v * 255)).join(',')})`);
+    }
+    g.fillStyle = gradient;
+    g.fillRect(x, y, barW, barH);
+    g.strokeStyle = '#5b6775';
+    g.strokeRect(x, y, barW, barH);
+    g.fillStyle = '#1d2733';
+    g.fillText(formatValue(range[0]), x, y + barH + 3 * scale);
+    g.textAlign = 'right';
+    g.fillText(formatValue(range[1]), x + barW, y + barH + 3 * scale);
+  }
+  g.restore();
 }

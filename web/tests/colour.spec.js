@@ -1,0 +1,114 @@
+// Colour control: the map (legacy blue to red, viridis, grey), the range (the run, the frame, by
+// hand), any quantity of the files (height, displacement, spin, contacts, fragment size), and the
+// legend in the saved picture.
+import fs from 'node:fs';
+import { test, expect, openViewer, loadFiles, showFrame, settle, canvasShot, keep, expectPicturesDiffer } from './helpers.js';
+
+// Two frames of 5 particles in a column (z 0..40 in frame 1, 0..80 in frame 2, each moved up by
+// its id's share); spin |w| = id, contacts = id - 1, parts: 1,1,1,2,2.
+function writeColumn(dir) {
+  const frame = (step, stretch) => {
+    const rows = [1, 2, 3, 4, 5].map((id) =>
+      `${id} 0 0 ${(id - 1) * 10 * stretch} 8 0 0 ${id} ${id - 1} ${id} 0 0 ${id <= 3 ? 1 : 2}`);
+    return ['3DA:', '-10 10 -10 10 -10 90', `${step / 100} 0 0 0`, '0', `${step} 5 0`, ...rows].join('\n');
+  };
+  fs.mkdirSync(dir, { recursive: true });
+  fs.writeFileSync(`${dir}/ANIMATION_3D.dat`, `${frame(100, 1)}\n${frame(200, 2)}\n`);
+  return `${dir}/ANIMATION_3D.dat`;
+}
+
+const srgbToLinear = (c) => (c < 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4);
+const hex = (h) => [1, 3, 5].map((i) => srgbToLinear(parseInt(h.slice(i, i + 2), 16) / 255));
+// The colour the viewer gave particle k (linear RGB).
+const colourOf = (page, k) => page.evaluate((k) => [...window.demViewer.viewer.colours.slice(k * 3, k * 3 + 3)], k);
+const near = (a, b) => a.every((v, i) => Math.abs(v - b[i]) < 0.01);
+const range = (page) => page.evaluate(() => window.demViewer.viewer.colourRange());
+
+test('the map, the range and the quantity change the colours', async ({ page }, testInfo) => {
+  await openViewer(page);
+  await loadFiles(page, [writeColumn(testInfo.outputPath('column'))], 2);
+  await showFrame(page, 0);
+  await page.locator('#colour-mode').selectOption('height');
+  await expect(page.locator('#colour-label')).toHaveText('Height (z)');
+  expect(await range(page), 'the run\'s range of z').toEqual([0, 80]);
+  const legacy = await canvasShot(page);
+  // viridis: the top of the range is #fde725, the bottom #440154
+  await page.locator('#colour-map').selectOption('viridis');
+  await showFrame(page, 1);
+  expect(near(await colourOf(page, 4), hex('#fde725')), 'z = 80 at the top of viridis').toBe(true);
+  expect(near(await colourOf(page, 0), hex('#440154')), 'z = 0 at its bottom').toBe(true);
+  await showFrame(page, 0);
+  const viridis = await canvasShot(page);
+  await keep(testInfo, 'viridis', viridis);
+  await expectPicturesDiffer(page, legacy, viridis, 'legacy and viridis');
+  expect(await page.locator('#colour-bar').evaluate((el) => getComputedStyle(el).backgroundImage)).toContain('rgb(68, 1, 84)');
+
+  // this frame's range: 0..40 in frame 1, so its top particle is at the top of the map
+  await page.locator('#colour-range').selectOption('frame');
+  expect(await range(page)).toEqual([0, 40]);
+  expect(near(await colourOf(page, 4), hex('#fde725'))).toBe(true);
+  const frameRange = await canvasShot(page);
+  await expectPicturesDiffer(page, viridis, frameRange, 'the run\'s and the frame\'s range');
+
+  // by hand: 0..20, starting from the range in use
+  await page.locator('#colour-range').selectOption('manual');
+  await expect(page.locator('#colour-range-inputs')).toBeVisible();
+  await expect(page.locator('#colour-range-max')).toHaveValue('40');
+  await page.locator('#colour-range-max').fill('20');
+  await page.locator('#colour-range-max').dispatchEvent('change');
+  expect(await range(page)).toEqual([0, 20]);
+  expect(near(await colourOf(page, 2), hex('#fde725')), 'z = 20: the top').toBe(true);
+  expect(near(await colourOf(page, 4), hex('#fde725')), 'z = 40: past the top, clamped').toBe(true);
+  expect(near(await colourOf(page, 1), hex('#21918c')), 'z = 10: the middle').toBe(true);
+  // a reversed range is refused, the one before kept
+  await page.locator('#colour-range-min').fill('30');
+  await page.locator('#colour-range-min').dispatchEvent('change');
+  expect(await range(page)).toEqual([0, 20]);
+  expect(await page.locator('#colour-range-min').evaluate((el) => el.validationMessage)).toContain('From < to');
+  await keep(testInfo, 'manual-range', await canvasShot(page));
+
+  // other quantities over the run's range
+  await page.locator('#colour-range').selectOption('run');
+  await page.locator('#colour-map').selectOption('grey');
+  for (const [mode, expected] of [['spin', [1, 5]], ['contacts', [0, 4]], ['displacement', [0, 40]], ['fragmentSize', [2, 3]]]) {
+    await page.locator('#colour-mode').selectOption(mode);
+    expect(await range(page), `${mode}: the run's range`).toEqual(expected);
+  }
+  await showFrame(page, 1);
+  // displacement from frame 1: particle 5 moved 40, the most: the top of the grey map
+  await page.locator('#colour-mode').selectOption('displacement');
+  expect(near(await colourOf(page, 4), [0.92, 0.92, 0.92].map(srgbToLinear))).toBe(true);
+});
+
+test('the saved picture carries the legend and what is shown', async ({ page }, testInfo) => {
+  await openViewer(page);
+  await loadFiles(page, [writeColumn(testInfo.outputPath('column'))], 2);
+  await page.locator('#colour-map').selectOption('viridis');
+  await settle(page);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('#save-picture').click()]);
+  const png = fs.readFileSync(await download.path());
+  fs.writeFileSync(testInfo.outputPath('dem-view.png'), png);
+  await keep(testInfo, 'saved-with-legend', png);
+  const found = await page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.naturalWidth; c.height = img.naturalHeight;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    // the lower left corner, where the bar is: viridis' dark purple and its yellow
+    const d = g.getImageData(0, c.height - 80, 300, 80).data;
+    let purple = 0, yellow = 0, text = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (Math.abs(d[i] - 0x44) < 12 && d[i + 1] < 20 && Math.abs(d[i + 2] - 0x54) < 14) purple++;
+      if (d[i] > 230 && d[i + 1] > 210 && d[i + 2] < 80) yellow++;
+    }
+    const top = g.getImageData(0, 0, 400, 30).data;
+    for (let i = 0; i < top.length; i += 4) if (top[i] < 100 && top[i + 1] < 100 && top[i + 2] < 100) text++;
+    return { purple, yellow, text };
+  }, png.toString('base64'));
+  expect(found.purple, `the bar's purple end (${JSON.stringify(found)})`).toBeGreaterThan(10);
+  expect(found.yellow, 'its yellow end').toBeGreaterThan(10);
+  expect(found.text, 'the caption at the top').toBeGreaterThan(30);
+});
