@@ -14,6 +14,7 @@ import { wireControls } from './view/controls.js';
 import { Playback } from './view/playback.js';
 import { loadFiles, forgetWaitingChains, cancelLoading } from './view/file_drop.js';
 import { Probe } from './view/probe.js';
+import { parseFile } from './formats/load_files.js';
 import { wireCamera } from './view/camera_tools.js';
 
 // Live frames kept in memory: about this many bytes (positions, velocities, radii, parts, force
@@ -442,10 +443,15 @@ export class Viewer {
       }
       if (identity) {
         frame.indexOfId = (id) => (id < frame.count ? id : -1);
-      } else {
+      } else if (maxId <= 4 * frame.count + 1024) {
         const table = new Int32Array(maxId).fill(-1);
         for (let k = 0; k < frame.count; k++) if (frame.ids[k] > 0) table[frame.ids[k] - 1] = k;
         frame.indexOfId = (id) => (id >= 0 && id < table.length ? table[id] : -1);
+      } else {
+        // sparse ids (one particle numbered 2,147,483,647): a table that long would take gigabytes
+        const map = new Map();
+        for (let k = 0; k < frame.count; k++) if (frame.ids[k] > 0) map.set(frame.ids[k] - 1, k);
+        frame.indexOfId = (id) => map.get(id) ?? -1;
       }
     }
     return frame.indexOfId;
@@ -460,7 +466,7 @@ function start() {
   wireControls(viewer);
   viewer.probe = new Probe(viewer);
   wireCamera(viewer);
-  window.demViewer = { state: () => viewer.state(), viewer, loadFiles: (files) => loadFiles(viewer, files) };
+  window.demViewer = { state: () => viewer.state(), viewer, loadFiles: (files) => loadFiles(viewer, files), parseFile };
 
   // Offline files: the file input and drag-and-drop anywhere on the page.
   $('load-cancel').addEventListener('click', () => cancelLoading());

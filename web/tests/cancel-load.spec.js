@@ -61,3 +61,22 @@ test('a new choice cancels the load still under way', async ({ page }) => {
   expect((await state(page)).frames).toBe(small);
   await expect(page.locator('#load-progress')).toBeHidden();
 });
+
+test('cancelling one parse leaves another parse under way alone (a replay beside a file load)', async ({ page }) => {
+  await openViewer(page);
+  const text = fs.readFileSync(ANIMATION(), 'utf8');
+  const frames = readAnimation(ANIMATION()).length;
+  const outcome = await page.evaluate(async ({ text, copies }) => {
+    const big = () => new Blob(Array.from({ length: copies }, () => text), { type: 'text/plain' });
+    const parse = window.demViewer.parseFile;
+    const other = parse(big()).then((r) => `parsed ${r.frames.length} frames`, (e) => `failed: ${e.name} ${e.message}`);
+    const controller = new AbortController();
+    let started = false;
+    const mine = parse(big(), () => { started = true; }, controller.signal).then(() => 'parsed', (e) => e.name);
+    while (!started) await new Promise((r) => setTimeout(r, 20));
+    controller.abort();
+    return { mine: await mine, other: await other };
+  }, { text, copies: Math.ceil((60 << 20) / text.length) });
+  expect(outcome.mine).toBe('AbortError');
+  expect(outcome.other, 'the other parse').toBe(`parsed ${frames * Math.ceil((60 << 20) / text.length)} frames`);
+});

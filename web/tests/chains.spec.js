@@ -94,3 +94,41 @@ test('a force-chain tube hides what is inside it, from every side', async ({ pag
     expect(c.green, `green pixels of the sphere inside the tube, seen from ${name}`).toBe(0);
   }
 });
+
+test('a force-chain tube is closed at its ends: seen end-on it is a disc, not a ring', async ({ page }, testInfo) => {
+  const files = writeTubeFixture(testInfo.outputPath('tube'));
+  await openViewer(page);
+  await loadFiles(page, files, 1);
+  await page.locator('#show-force-chains').check();
+  await page.locator('#chain-show-particles').uncheck();
+  await setRange(page, '#chain-thickness', 100);
+  // from beyond the chain's end at x = 50, looking back along it a little askew
+  await page.evaluate(() => {
+    const stage = window.demViewer.viewer.stage;
+    stage.camera.position.set(120, 3, 2);
+    stage.controls.target.set(0, 0, 0);
+    stage.controls.update();
+    stage.requestRender();
+  });
+  const shot = await canvasShot(page);
+  await keep(testInfo, 'tube-end-on', shot);
+  const centre = await page.evaluate(async (b64) => {
+    const { stage } = window.demViewer.viewer;
+    const v = stage.camera.position.clone().set(50, 0, 0).project(stage.camera);
+    const rect = stage.canvas.getBoundingClientRect();
+    const x = Math.round((v.x + 1) / 2 * rect.width), y = Math.round((1 - v.y) / 2 * rect.height);
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.naturalWidth; c.height = img.naturalHeight;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    // the pixels round the end's centre: white background through an open end, the cap's red otherwise
+    const d = g.getImageData(x - 3, y - 3, 7, 7).data;
+    let white = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i] > 240 && d[i + 1] > 240 && d[i + 2] > 240) white++;
+    return white;
+  }, shot.toString('base64'));
+  expect(centre, 'background pixels seen through the end of the tube').toBe(0);
+});

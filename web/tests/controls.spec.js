@@ -70,3 +70,32 @@ test('showing force chains makes the particles translucent, unless an opacity wa
   await page.locator('#show-force-chains').check();
   expect(await opacity()).toBeCloseTo(0.8, 5);
 });
+
+test('counts of one read in the singular everywhere', async ({ page }, testInfo) => {
+  const dir = testInfo.outputPath('singular');
+  fs.mkdirSync(dir, { recursive: true });
+  fs.writeFileSync(`${dir}/ANIMATION_3D.dat`, ['3DA:', '-5 5 -5 5 -5 5', '0 0 0 0', '0', '7 1 0', '1 0 0 0 2 0 0 0 0 0 0 0 1', ''].join('\n'));
+  fs.writeFileSync(`${dir}/one_triangle.dat`, '3 1\n0 0 0\n1 0 0\n0 1 0\n1 2 3\n');
+  await openViewer(page);
+  await loadFiles(page, [`${dir}/ANIMATION_3D.dat`, `${dir}/one_triangle.dat`], 1);
+  await expect(page.locator('#message')).toContainText('1 frame of 1 particle');
+  await expect(page.locator('#message')).toContainText('mesh of 3 vertices and 1 triangle');
+  await expect(page.locator('#message')).not.toContainText(/\b1 (particles|triangles|frames)\b/);
+  await page.locator('#colour-mode').selectOption('part');
+  await expect(page.locator('#colour-label')).toHaveText('Part (1 part)');
+});
+
+test('a particle id of 2,147,483,647 does not freeze the page', async ({ page }, testInfo) => {
+  const dir = testInfo.outputPath('huge-id');
+  fs.mkdirSync(dir, { recursive: true });
+  fs.writeFileSync(`${dir}/ANIMATION_3D.dat`, ['3DA:', '-5 5 -5 5 -5 5', '0 0 0 0', '0', '7 2 0',
+    '1 -1 0 0 2 0 0 0 1 0 0 0 1', '2147483647 1 0 0 2 0 0 0 1 0 0 0 2', ''].join('\n'));
+  fs.writeFileSync(`${dir}/ForceChain_3D.dat`, '3DF: 7 2\n1 0 2147483647 10 0\n1 0 5 10 0\n');
+  await openViewer(page);
+  const started = Date.now();
+  await loadFiles(page, [`${dir}/ANIMATION_3D.dat`, `${dir}/ForceChain_3D.dat`], 1);
+  await page.locator('#show-force-chains').check({ timeout: 10_000 });
+  await expect(page.locator('#chain-unknown')).toContainText('1 chain of this frame not drawn', { timeout: 10_000 });
+  expect(Date.now() - started, 'ms to open the files and show the chains').toBeLessThan(10_000);
+  expect(await page.evaluate(() => window.demViewer.viewer.chains.drawn), 'the chain to particle 2147483647').toBe(1);
+});

@@ -320,7 +320,7 @@ class LivePanel {
     let text = ` ${percent(progress)}`;
     if (job.state === 'running' && Number.isFinite(job.secondsLeft)) text += `, ${Math.round(job.secondsLeft)} s left`;
     li.querySelector('.job-progress').textContent = text;
-    const details = [`job ${job.id}: ${job.state}`, `step ${job.step ?? 0} of ${job.totalSteps ?? '?'}`, `${job.particles ?? '?'} particles`];
+    const details = [`job ${job.id}: ${job.state}`, `step ${job.step ?? 0} of ${job.totalSteps ?? '?'}`, job.particles === undefined || job.particles === null ? '? particles' : counted(job.particles, 'particle')];
     if (job.error) details.push(job.error);
     li.title = `${details.join(', ')}. Click: ${ACTIVE.has(job.state) ? 'follow it live' : 'replay it'}.`;
   }
@@ -883,7 +883,7 @@ class LivePanel {
     try {
       const job = await server.submitJob(spec);
       this.rememberUnit(job.id, spec);
-      this.say(`job ${job.id} submitted: ${job.particles ?? '?'} particles, ${job.totalSteps ?? '?'} steps`);
+      this.say(`job ${job.id} submitted: ${job.particles ?? '?'} particle${job.particles === 1 ? '' : 's'}, ${job.totalSteps ?? '?'} step${job.totalSteps === 1 ? '' : 's'}`);
       await this.refreshJobs();
       this.follow(job);
     } catch (e) {

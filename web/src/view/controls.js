@@ -216,7 +216,7 @@ export function colourLegend(viewer) {
     const length = viewer.run && viewer.run.unit === 'm' ? 'm' : 'file length unit';
     return { label: quantity.label, unit: quantity.unit(length) };
   }
-  if (mode === 'part') return { label: `Part (${viewer.bounds ? viewer.bounds.partMax : 0} parts)`, unit: '' };
+  if (mode === 'part') return { label: `Part (${counted(viewer.bounds ? viewer.bounds.partMax : 0, 'part')})`, unit: '' };
   return { label: 'Constant colour', unit: '' };
 }
 

@@ -92,7 +92,7 @@ async function load(viewer, files, signal) {
     }
     if (result.kind === 'mesh') {
       viewer.setMesh(result.mesh);
-      notes.push(`${name}: mesh of ${result.mesh.vertices.length / 3} vertices and ${result.mesh.triangles.length / 3} triangles`);
+      notes.push(`${name}: mesh of ${counted(result.mesh.vertices.length / 3, 'vertex', 'vertices')} and ${counted(result.mesh.triangles.length / 3, 'triangle')}`);
       continue;
     }
     if (!result.frames.length) {
@@ -107,8 +107,8 @@ async function load(viewer, files, signal) {
       const keepMesh = previous && !previous.frames.length ? previous.mesh : null;
       viewer.setRun({ frames: result.frames, mesh: keepMesh, unit: 'file' }, { fromFiles: true });
       const count = result.frames[0].count;
-      const what = result.frames[0].planar ? 'discs (2D, the x-z plane seen from -y)' : 'particles';
-      notes.push(`${name}: ${counted(result.frames.length, 'frame')} of ${count} ${what}${cut}`);
+      const what = result.frames[0].planar ? `${counted(count, 'disc')} (2D, the x-z plane seen from -y)` : counted(count, 'particle');
+      notes.push(`${name}: ${counted(result.frames.length, 'frame')} of ${what}${cut}`);
       if (waitingChains) {
         const matched = viewer.setForceChains(waitingChains.frames);
         notes.push(`${waitingChains.name} (opened before): ${counted(matched, 'frame')} matched by step`);

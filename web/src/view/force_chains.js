@@ -11,7 +11,8 @@ export class ForceChainView {
     this.stage = stage;
     this.capacity = 0;
     this.mesh = null;
-    this.geometry = new THREE.CylinderGeometry(1, 1, 1, 8, 1, true); // along +y, height 1
+    // along +y, height 1, closed: an open end showed the tube's inside as notches and holes
+    this.geometry = new THREE.CylinderGeometry(1, 1, 1, 8, 1, false);
     this.material = new THREE.MeshPhongMaterial({ color: 0xffffff, shininess: 20 });
     this.drawn = 0;
     this.unknown = 0; // chains of the frame naming a particle the frame does not have
