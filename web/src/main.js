@@ -23,6 +23,8 @@ const LIVE_BYTES = 512 * 1024 * 1024;
 const LIVE_FRAMES = 5000;
 const FRAME_OVERHEAD = 2048;
 const BYTES_PER_CONTACT = 16;
+// The particles' opacity while force chains are drawn, unless the user chose one.
+const CHAIN_PARTICLE_OPACITY = 0.3;
 
 // The bytes a live frame holds (an estimate, for the live memory cap).
 function frameBytes(frame) {
@@ -59,6 +61,7 @@ export class Viewer {
       colourRangeManual: [0, 1],
       sectionFront: 0, sectionRear: 1000, sectionAxis: [0, 1, 0], // the section's direction (unit vector)
       showChains: false, chainThickness: 30, chainShowParticles: true, particleOpacity: 1,
+      opacityChosen: false, // the user set the particles' opacity: chains no longer change it
       showBoundary: true,
     };
     this.visible = new Uint32Array(0); // indices of the particles left by the section
@@ -84,6 +87,7 @@ export class Viewer {
     this.liveSet = false;
     this.follow = true;
     this.chainsByStep = new Map();
+    this.latestChains = null; // live: the newest frame's chains that had any, and its step
     this.fnMax = 0;
     this.bounds = null;
     this.runRanges = new Map(); // a quantity's [min, max] over the run's frames, by colour mode
@@ -115,6 +119,7 @@ export class Viewer {
     addStats(frame);
     if (!frame.forceChains && this.chainsByStep.has(frame.step)) frame.forceChains = this.chainsByStep.get(frame.step);
     this.extendChainScale(frame.forceChains);
+    if (frame.forceChains) this.latestChains = { chains: frame.forceChains, step: frame.step };
     const first = this.run.frames.length === 0;
     frame.liveBytes = frameBytes(frame);
     this.run.frames.push(frame);
@@ -402,14 +407,23 @@ export class Viewer {
     this.particles.draw(frame, this.visible, drawn, this.colours);
     this.particles.setVisible(!s.showChains || s.chainShowParticles);
 
-    if (s.showChains && frame.forceChains) {
+    // A live job sends chains with its output frames only: between them, the latest chains
+    // received are drawn between the particles' new places (the legend names their step).
+    const chains = this.chainsShown(frame);
+    if (s.showChains && chains) {
       const baseRadius = (this.bounds ? this.bounds.diameter[1] / 2 : 1) * 0.5 * (s.chainThickness / 30);
       // Scaled to this frame's strongest chain: a run's largest force is often an impact early on,
       // which would leave the resting packing's network uniformly thin and blue.
-      const fnMax = addStats(frame.forceChains).stats.fnMax;
-      this.chains.draw(frame, frame.forceChains, this.indexOfId(frame), this.shown, fnMax, baseRadius);
+      const fnMax = addStats(chains.chains).stats.fnMax;
+      this.chains.draw(frame, chains.chains, this.indexOfId(frame), this.shown, fnMax, baseRadius);
     } else {
       this.chains.hide();
+    }
+    // Opaque particles hide the chains between their centres: while chains are drawn they are made
+    // translucent (the legacy T/C), unless the user chose an opacity.
+    if (!s.opacityChosen) {
+      const opacity = s.showChains && this.chains.drawn > 0 ? CHAIN_PARTICLE_OPACITY : 1;
+      if (this.particles.opacity !== opacity) this.particles.setOpacity(opacity);
     }
     this.boundary.drawFrame(frame);
     this.changed();
@@ -427,6 +441,13 @@ export class Viewer {
       hi = Math.max(hi, c);
     }
     return [lo, hi];
+  }
+
+  // The force chains to draw with `frame`: its own ({ chains, step }), or on a live run the latest
+  // received; null when none.
+  chainsShown(frame) {
+    if (frame.forceChains) return { chains: frame.forceChains, step: frame.step };
+    return this.live && this.latestChains && this.latestChains.step <= frame.step ? this.latestChains : null;
   }
 
   // Maps a 0-based particle id (force chains) to the particle's index in the frame: the identity

@@ -53,7 +53,7 @@ test('Part and Constant modes show no rainbow scale', async ({ page }) => {
   expect(constant.colour).toBe('rgb(46, 139, 87)');  // #2e8b57, the constant colour's default
 });
 
-test('showing force chains makes the particles translucent, unless an opacity was chosen', async ({ page }) => {
+test('showing force chains makes the particles translucent, unless an opacity was chosen', async ({ page }, testInfo) => {
   await openViewer(page);
   await loadFiles(page, [ANIMATION(), FORCE_CHAINS()], readAnimation(ANIMATION()).length);
   await showFrame(page, readAnimation(ANIMATION()).length - 1);
@@ -65,6 +65,15 @@ test('showing force chains makes the particles translucent, unless an opacity wa
   expect(Number(await page.locator('#particle-opacity').inputValue())).toBeLessThan(50);
   await page.locator('#show-force-chains').uncheck();
   expect(await opacity(), 'chains off again').toBe(1);
+  // chains on, then a run with none: nothing to see through, the particles opaque again
+  await page.locator('#show-force-chains').check();
+  expect(await opacity()).toBeLessThan(0.5);
+  await loadFiles(page, writeOneFrame(testInfo.outputPath('one')).slice(0, 1), 1);
+  expect(await opacity(), 'a run without chains').toBe(1);
+  expect(Number(await page.locator('#particle-opacity').inputValue())).toBe(100);
+  await page.locator('#show-force-chains').uncheck();
+  await loadFiles(page, [ANIMATION(), FORCE_CHAINS()], readAnimation(ANIMATION()).length);
+  await showFrame(page, readAnimation(ANIMATION()).length - 1);
   // the user's own opacity is kept
   await page.locator('#particle-opacity').evaluate((el) => { el.value = '80'; el.dispatchEvent(new Event('input', { bubbles: true })); });
   await page.locator('#show-force-chains').check();

@@ -8,9 +8,6 @@ import { savePicture, Recorder } from './capture.js';
 
 const $ = (id) => document.getElementById(id);
 
-// The particles' opacity (%) while force chains are shown, unless the user chose one.
-const CHAIN_PARTICLE_OPACITY = 30;
-
 function formatTime(t) {
   return Number.isFinite(t) ? String(Number(t.toPrecision(6))) : '-';
 }
@@ -87,25 +84,18 @@ export function wireControls(viewer) {
     viewer.set({ sectionRear: number('section-rear') });
   });
 
-  // Force chains. Opaque particles hide the chains between their centres: showing the chains makes
-  // the particles translucent (the legacy T/C), and hiding them makes them opaque again, until the
-  // user sets the opacity.
-  let opacityChosen = false;
+  // Force chains (the particles turn translucent while chains are drawn: Viewer.redraw)
   on('show-force-chains', 'change', () => {
-    if (!opacityChosen) {
-      const opacity = $('show-force-chains').checked ? CHAIN_PARTICLE_OPACITY : 100;
-      $('particle-opacity').value = String(opacity);
-      viewer.particles.setOpacity(opacity / 100);
-    }
     viewer.set({ showChains: $('show-force-chains').checked });
-    if ($('show-force-chains').checked && !viewer.chainsByStep.size) {
+    const frames = viewer.run ? viewer.run.frames : [];
+    if ($('show-force-chains').checked && !viewer.live && !frames.some((f) => f.forceChains)) {
       viewer.message('No force chains loaded: open ForceChain_3D.dat as well (or a run written with forceChains on).');
     }
   });
   on('chain-thickness', 'input', () => viewer.set({ chainThickness: number('chain-thickness') }));
   on('chain-show-particles', 'change', () => viewer.set({ chainShowParticles: $('chain-show-particles').checked }));
   on('particle-opacity', 'input', () => {
-    opacityChosen = true;
+    viewer.settings.opacityChosen = true;
     viewer.particles.setOpacity(number('particle-opacity') / 100);
   });
 
@@ -196,9 +186,12 @@ function refresh(viewer) {
   const playing = viewer.playback.playing;
   $('play').setAttribute('aria-pressed', String(playing));
   $('pause').setAttribute('aria-pressed', 'false');
-  const chains = frame && frame.forceChains;
+  const shown = frame && viewer.chainsShown(frame);
+  const chains = shown && shown.chains;
   $('chain-legend').hidden = !viewer.settings.showChains || !chains;
   $('chain-max').textContent = chains && chains.stats ? formatValue(chains.stats.fnMax) : '';
+  $('chain-step').textContent = shown && shown.step !== frame.step ? `; the chains drawn are the latest received, from step ${shown.step}` : '';
+  if (!viewer.settings.opacityChosen) $('particle-opacity').value = String(Math.round(viewer.particles.opacity * 100));
   $('chain-run-max').textContent = formatValue(viewer.fnMax);
   const unknown = viewer.settings.showChains && chains ? viewer.chains.unknown : 0;
   $('chain-unknown').hidden = !unknown;

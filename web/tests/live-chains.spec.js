@@ -1,0 +1,36 @@
+// Force chains of a job followed live: they come only with the job's output frames, so between them
+// the view shows the latest chains received (by particle id, at the particles' new places) and says
+// from which step; switching them on says nothing false about files.
+import { test, expect, serverUrl, openViewer, state, keepPage } from './helpers.js';
+
+test('live force chains: shown between output frames, no message about files', async ({ page, request }, testInfo) => {
+  test.setTimeout(300_000);
+  const api = (p) => `${serverUrl()}${p}`;
+  await openViewer(page);
+  const select = page.locator('#case-select');
+  await expect.poll(() => select.evaluate((s) => [...s.options].some((o) => o.value === 'demo'))).toBe(true);
+  await select.selectOption('demo');
+  await expect.poll(() => page.locator('#case-spec').inputValue()).toContain('spheres poured into a box');
+  await page.locator('#case-duration').fill('0.4');
+  await page.locator('#case-duration').dispatchEvent('change');
+  await expect.poll(() => page.locator('#case-spec').inputValue().then((t) => JSON.parse(t).time.duration)).toBe(0.4);
+  await page.locator('#submit-case').click();
+  await expect.poll(async () => (await state(page)).live, { message: 'following the job' }).toBe(true);
+  await page.locator('#show-force-chains').check();
+  await expect(page.locator('#message')).not.toContainText('No force chains loaded');
+  // while the job runs, frames without chains of their own show the latest chains received
+  let between = 0;
+  await expect.poll(async () => {
+    const seen = await page.evaluate(() => {
+      const v = window.demViewer.viewer;
+      const frame = v.currentFrame();
+      return { own: Boolean(frame && frame.forceChains), drawn: v.chains.drawn, live: v.live };
+    });
+    if (!seen.own && seen.drawn > 0) between += 1;
+    return between > 0 || !seen.live;
+  }, { message: 'a live frame without chains of its own shows the latest chains', timeout: 240_000, intervals: [200] }).toBe(true);
+  expect(between, 'seen while the job ran').toBeGreaterThan(0);
+  await expect(page.locator('#chain-legend')).toBeVisible();
+  await expect(page.locator('#chain-step')).toContainText('the latest received, from step');
+  await keepPage(page, testInfo, 'live-chains');
+});
