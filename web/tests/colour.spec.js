@@ -112,3 +112,28 @@ test('the saved picture carries the legend and what is shown', async ({ page }, 
   expect(found.yellow, 'its yellow end').toBeGreaterThan(10);
   expect(found.text, 'the caption at the top').toBeGreaterThan(30);
 });
+
+test('Part, as the legacy viewer: the large masses red, the small ones green, the largest listed', async ({ page }, testInfo) => {
+  // parts 1 (six particles), 2 (three) and 3 (one), and one particle with no part (0)
+  const parts = [1, 1, 1, 1, 1, 1, 2, 2, 2, 3, 0];
+  const rows = parts.map((part, k) => `${k + 1} ${10 * k} 0 0 6 0 0 0 0 0 0 0 ${part}`);
+  const dir = testInfo.outputPath('parts');
+  fs.mkdirSync(dir, { recursive: true });
+  fs.writeFileSync(`${dir}/ANIMATION_3D.dat`, ['3DA:', '-5 105 -5 5 -5 5', '0 0 0 0', '0', `1 ${rows.length} 0`, ...rows, ''].join('\n'));
+  await openViewer(page);
+  await loadFiles(page, [`${dir}/ANIMATION_3D.dat`], 1);
+  await page.locator('#colour-mode').selectOption('part');
+  await expect(page.locator('#colour-label')).toContainText('green (small) to red (large)');
+  expect(await range(page), 'one sphere to the largest part').toEqual([1, 6]);
+  const red = [0.84, 0.1, 0.1].map(srgbToLinear), green = [0.13, 0.63, 0.17].map(srgbToLinear);
+  expect(near(await colourOf(page, 0), red), 'part 1, the largest: red').toBe(true);
+  expect(near(await colourOf(page, 9), green), 'part 3, one particle: green').toBe(true);
+  expect(near(await colourOf(page, 10), [0.6, 0.6, 0.6].map(srgbToLinear)), 'no part: grey').toBe(true);
+  const items = page.locator('#part-legend li');
+  await expect(items).toHaveCount(3);
+  await expect(items.nth(0)).toHaveText('part 1: 6 particles');
+  await expect(items.nth(1)).toHaveText('part 2: 3 particles');
+  await expect(items.nth(2)).toHaveText('part 3: 1 particle');
+  expect(await page.locator('#colour-bar').evaluate((el) => getComputedStyle(el).backgroundImage)).toContain('rgb(214, 26, 26)');
+  await keep(testInfo, 'part-by-size', await canvasShot(page));
+});

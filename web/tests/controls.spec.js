@@ -37,7 +37,7 @@ test('a one-frame file, and a chain to a particle the frame does not have', asyn
   await expect(page.locator('#chain-unknown')).toBeHidden();
 });
 
-test('Part and Constant modes show no rainbow scale', async ({ page }) => {
+test('Parts and Constant modes show no rainbow scale', async ({ page }) => {
   await openViewer(page);
   await loadFiles(page, [ANIMATION()], readAnimation(ANIMATION()).length);
   const bar = page.locator('#colour-bar');
@@ -45,8 +45,8 @@ test('Part and Constant modes show no rainbow scale', async ({ page }) => {
                                               colour: getComputedStyle(el).backgroundColor, inactive: el.classList.contains('inactive') }));
   const speed = await looks();
   expect(speed.shown && speed.background.includes('gradient') && !speed.inactive, JSON.stringify(speed)).toBe(true);
-  await page.locator('#colour-mode').selectOption('part');
-  expect((await looks()).shown, 'Part mode: no bar').toBe(false);
+  await page.locator('#colour-mode').selectOption('parts');
+  expect((await looks()).shown, 'Parts mode (a colour each): no bar').toBe(false);
   await page.locator('#colour-mode').selectOption('constant');
   const constant = await looks();
   expect(constant.shown && constant.background === 'none' && !constant.inactive, JSON.stringify(constant)).toBe(true);
@@ -90,8 +90,8 @@ test('counts of one read in the singular everywhere', async ({ page }, testInfo)
   await expect(page.locator('#message')).toContainText('1 frame of 1 particle');
   await expect(page.locator('#message')).toContainText('mesh of 3 vertices and 1 triangle');
   await expect(page.locator('#message')).not.toContainText(/\b1 (particles|triangles|frames)\b/);
-  await page.locator('#colour-mode').selectOption('part');
-  await expect(page.locator('#colour-label')).toHaveText('Part (1 part)');
+  await page.locator('#colour-mode').selectOption('parts');
+  await expect(page.locator('#colour-label')).toHaveText('Parts, a colour each (1 part)');
 });
 
 test('a particle id of 2,147,483,647 does not freeze the page', async ({ page }, testInfo) => {

@@ -17,8 +17,10 @@ const LEGACY = [
 const VIRIDIS = ['#440154', '#472d7b', '#3b528b', '#2c728e', '#21918c', '#28ae80', '#5ec962', '#addc30', '#fde725']
   .map((hex, k, all) => [k / (all.length - 1), hexToRgb(hex)]);
 const GREY = [[0, [0.08, 0.08, 0.08]], [1, [0.92, 0.92, 0.92]]];
+// the manual's Part: green for few particles, red for many
+const PART_SIZE = [[0, [0.13, 0.63, 0.17]], [0.5, [0.95, 0.8, 0.1]], [1, [0.84, 0.1, 0.1]]];
 
-export const COLOUR_MAPS = { legacy: LEGACY, viridis: VIRIDIS, grey: GREY };
+export const COLOUR_MAPS = { legacy: LEGACY, viridis: VIRIDIS, grey: GREY, partSize: PART_SIZE };
 const STOPS = LEGACY;
 
 // The colour of t in [0, 1] on `stops` into out[offset..offset+2] (linear between the stops).
@@ -33,6 +35,11 @@ function onStops(stops, t, out, offset) {
   out[offset + 1] = c0[1] + (c1[1] - c0[1]) * f;
   out[offset + 2] = c0[2] + (c1[2] - c0[2]) * f;
   return out;
+}
+
+// Writes map `map`'s colour (sRGB) of t in [0, 1] into out[offset..offset+2].
+export function onMap(map, t, out, offset = 0) {
+  return onStops(COLOUR_MAPS[map] || STOPS, t, out, offset);
 }
 
 // Writes the legacy map's colour of t in [0, 1] into out[offset..offset+2].
@@ -116,10 +123,22 @@ export function particleColours(frame, mode, range, rgb, out, { quantity = null,
   const n = frame.count;
   const [lo, hi] = range;
   const scale = hi > lo ? 1 / (hi - lo) : 0;
-  if (quantity) {
-    const lut = lutOf(map);
+  if (quantity && quantity.log) {
+    const lut = lutOf(quantity.map || map);
+    const l0 = Math.log(Math.max(lo, 1e-300)), l1 = Math.log(Math.max(hi, 1e-300));
+    const logScale = l1 > l0 ? 1 / (l1 - l0) : 0;
+    for (let k = 0; k < n; k++) {
+      const v = quantity.value(frame, k, context);
+      if (!(v > 0)) {
+        out[k * 3] = out[k * 3 + 1] = out[k * 3 + 2] = srgbToLinear(0.6); // no part written: grey
+        continue;
+      }
+      mapLinear(logScale > 0 ? (Math.log(v) - l0) * logScale : 1, out, k * 3, lut);
+    }
+  } else if (quantity) {
+    const lut = lutOf(quantity.map || map);
     for (let k = 0; k < n; k++) mapLinear((quantity.value(frame, k, context) - lo) * scale, out, k * 3, lut);
-  } else if (mode === 'part') {
+  } else if (mode === 'parts') {
     const cache = new Map(); // few parts, many particles
     for (let k = 0; k < n; k++) {
       const part = frame.parts[k];

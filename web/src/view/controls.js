@@ -1,9 +1,12 @@
 // Wires the side panel (index.html; ids in docs/viewer.md) to the Viewer, and keeps the read-outs
 // (counts, time, step, colour bar range, slider positions) in step with what is drawn.
 
-import { barGradient, formatValue, COLOUR_MAPS } from './colours.js';
+import { barGradient, formatValue, COLOUR_MAPS, onMap } from './colours.js';
 import { counted } from '../words.js';
-import { QUANTITIES } from './quantities.js';
+import { QUANTITIES, largestParts } from './quantities.js';
+
+// Part mode lists this many of the frame's largest parts.
+const PARTS_LISTED = 5;
 import { savePicture, Recorder } from './capture.js';
 
 const $ = (id) => document.getElementById(id);
@@ -176,8 +179,22 @@ function refresh(viewer) {
   $('colour-max').textContent = range ? formatValue(range[1]) : '';
   // no scale to read in Part and Constant modes: the constant colour alone, or no bar
   const bar = $('colour-bar');
-  bar.hidden = mode === 'part';
-  bar.style.background = mode === 'constant' ? viewer.settings.constantColour : barGradient(viewer.settings.colourMap);
+  bar.hidden = mode === 'parts';
+  const map = (QUANTITIES[mode] && QUANTITIES[mode].map) || viewer.settings.colourMap;
+  bar.style.background = mode === 'constant' ? viewer.settings.constantColour : barGradient(map);
+  // Part: the largest parts of the frame, with their colours
+  const legend = $('part-legend');
+  legend.hidden = mode !== 'part' || !frame;
+  if (!legend.hidden) {
+    const colour = [0, 0, 0];
+    legend.innerHTML = largestParts(frame, PARTS_LISTED).map(({ part, size }) => {
+      const [lo, hi] = range || [1, 1];
+      const t = hi > lo ? (Math.log(size) - Math.log(lo)) / (Math.log(hi) - Math.log(lo)) : 1;
+      onMap('partSize', t, colour);
+      const css = `rgb(${colour.map((c) => Math.round(c * 255)).join(',')})`;
+      return `<li><span class="swatch" style="background:${css}"></span>part ${part}: ${counted(size, 'particle')}</li>`;
+    }).join('');
+  }
   bar.classList.toggle('inactive', !range && mode !== 'constant');
   const { label, unit } = colourLegend(viewer);
   $('colour-label').textContent = label;
@@ -209,7 +226,7 @@ export function colourLegend(viewer) {
     const length = viewer.run && viewer.run.unit === 'm' ? 'm' : 'file length unit';
     return { label: quantity.label, unit: quantity.unit(length) };
   }
-  if (mode === 'part') return { label: `Part (${counted(viewer.bounds ? viewer.bounds.partMax : 0, 'part')})`, unit: '' };
+  if (mode === 'parts') return { label: `Parts, a colour each (${counted(viewer.bounds ? viewer.bounds.partMax : 0, 'part')})`, unit: '' };
   return { label: 'Constant colour', unit: '' };
 }
 
@@ -237,7 +254,8 @@ function drawLegend(viewer, g, width, height) {
   g.fillText(unit ? `${label} (${unit})` : label, x, y - 18 * scale);
   if (range) {
     const gradient = g.createLinearGradient(x, 0, x + barW, 0);
-    for (const [t, c] of COLOUR_MAPS[viewer.settings.colourMap] || COLOUR_MAPS.legacy) {
+    const quantity = QUANTITIES[viewer.settings.colourMode];
+    for (const [t, c] of COLOUR_MAPS[(quantity && quantity.map) || viewer.settings.colourMap] || COLOUR_MAPS.legacy) {
       gradient.addColorStop(t, `rgb(${c.map((v) => Math.round(v * 255)).join(',')})`);
     }
     g.fillStyle = gradient;

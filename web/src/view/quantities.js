@@ -32,7 +32,23 @@ export const QUANTITIES = {
     unit: () => 'particles',
     value: (f, k, context) => context.partSizes(f).get(f.parts[k]) ?? NaN,
   },
+  // The PDEM-EGD manual's Part (section 3.2, figure 3.17): the particles that hold together in one
+  // colour by how many they are, red for the large masses and green for the small ones, to judge
+  // the scale of the disaster. On a log scale (one sphere to the intact block), on its own map.
+  part: {
+    label: 'Part: its size, green (small) to red (large)',
+    unit: () => 'particles, log scale',
+    value: (f, k, context) => (f.parts[k] > 0 ? context.partSizes(f).get(f.parts[k]) : NaN),
+    log: true,
+    map: 'partSize',
+  },
 };
+
+// The largest parts of a frame: [{ part, size }], largest first, at most `count`.
+export function largestParts(frame, count) {
+  return [...partSizes(frame)].filter(([part]) => part > 0).map(([part, size]) => ({ part, size }))
+    .sort((a, b) => b.size - a.size || a.part - b.part).slice(0, count);
+}
 
 // The particles of each part of a frame ({part: count}), computed once a frame.
 export function partSizes(frame) {
