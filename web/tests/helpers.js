@@ -60,11 +60,13 @@ export function readForceChains(file) {
 // --- driving the page ---
 
 // The axes indicator is switched off: the tests' pictures are of the scene alone (camera.spec.js
-// checks the indicator).
+// checks the indicator); the panel's folded sections are opened (layout.spec.js checks the folds).
 export async function openViewer(page, { axes = false } = {}) {
   await page.goto(`${serverUrl()}/`);
   await page.waitForFunction(() => window.demViewer && typeof window.demViewer.state === 'function',
                              null, { timeout: 60_000 });
+  // every folded section of the panel opened, so that the tests reach its controls
+  await page.evaluate(() => document.querySelectorAll('details.group').forEach((d) => { d.open = true; }));
   if (!axes) await page.locator('#show-axes').uncheck();
 }
 
@@ -134,7 +136,7 @@ export async function viewCanvas(page) {
 // Messages and the probe's boxes shown over the view are left out (hidden while the picture is taken).
 export async function canvasShot(page) {
   await settle(page);
-  return (await viewCanvas(page)).screenshot({ style: '#message-box, #probe, #hover-readout { visibility: hidden !important; }' });
+  return (await viewCanvas(page)).screenshot({ style: '#message-box, #probe, #hover-readout, #empty-hint { visibility: hidden !important; }' });
 }
 
 // Keeps a picture for a person: a PNG in the test's output folder, attached to the report.

@@ -4,6 +4,9 @@
 
 import * as THREE from 'three';
 
+// A fixed mesh's edges are drawn where its faces meet at more than this angle (and along its rim).
+const CREASE_DEGREES = 12;
+
 export class BoundaryView {
   constructor(stage) {
     this.stage = stage;
@@ -17,8 +20,13 @@ export class BoundaryView {
 
     this.moving = new THREE.Mesh(new THREE.BufferGeometry(), this.material);
     this.movingEdges = new THREE.LineSegments(new THREE.BufferGeometry(), this.edgeMaterial);
-    this.fixed = new THREE.Mesh(new THREE.BufferGeometry(), this.material);
-    for (const o of [this.moving, this.movingEdges, this.fixed]) {
+    // A terrain reads as relief with faceted shading and its creases drawn: a smooth, see-through
+    // grey surface looked flat (the slope of a 4 km mountain was hard to tell from a plane).
+    this.fixedMaterial = this.material.clone();
+    this.fixedMaterial.flatShading = true;
+    this.fixed = new THREE.Mesh(new THREE.BufferGeometry(), this.fixedMaterial);
+    this.fixedEdges = new THREE.LineSegments(new THREE.BufferGeometry(), this.edgeMaterial);
+    for (const o of [this.moving, this.movingEdges, this.fixed, this.fixedEdges]) {
       o.frustumCulled = false;
       this.group.add(o);
     }
@@ -63,10 +71,14 @@ export class BoundaryView {
   setMesh(mesh) {
     this.fixed.geometry.dispose();
     this.fixed.geometry = new THREE.BufferGeometry();
+    this.fixedEdges.geometry.dispose();
+    this.fixedEdges.geometry = new THREE.BufferGeometry();
     if (mesh) {
       this.fixed.geometry.setAttribute('position', new THREE.BufferAttribute(mesh.vertices, 3));
       this.fixed.geometry.setIndex(new THREE.BufferAttribute(mesh.triangles, 1));
-      this.fixed.geometry.computeVertexNormals(); // shared vertices: smooth terrain
+      this.fixed.geometry.computeVertexNormals();
+      // creases: edges where the faces meet at more than CREASE_DEGREES, and the mesh's rim
+      this.fixedEdges.geometry = new THREE.EdgesGeometry(this.fixed.geometry, CREASE_DEGREES);
     }
     this.stage.requestRender();
   }
@@ -86,14 +98,17 @@ export class BoundaryView {
 
   setColour(colour) {
     this.material.color.set(colour);
+    this.fixedMaterial.color.set(colour);
     this.stage.requestRender();
   }
 
   setOpacity(opacity) {
-    this.material.opacity = opacity;
-    this.material.transparent = opacity < 1;
-    this.material.depthWrite = opacity >= 1; // see-through walls must not hide what is behind them
-    this.material.needsUpdate = true;
+    for (const m of [this.material, this.fixedMaterial]) {
+      m.opacity = opacity;
+      m.transparent = opacity < 1;
+      m.depthWrite = opacity >= 1; // see-through walls must not hide what is behind them
+      m.needsUpdate = true;
+    }
     this.edgeMaterial.opacity = Math.max(opacity, 0.3);
     this.edgeMaterial.transparent = opacity < 1;
     this.stage.requestRender();

@@ -64,7 +64,7 @@ export function wireCamera(viewer) {
     if (handled) event.preventDefault();
   });
 
-  addAxesIndicator(stage);
+  addAxesIndicator(stage, () => Boolean(viewer.run && (viewer.run.frames.length || viewer.run.mesh)));
 }
 
 // Turns the camera round the target: left and right about the up axis, up and down about the
@@ -103,7 +103,7 @@ function zoom(stage, factor) {
 
 // x (red), y (green) and z (blue) arrows in the view's lower right corner, turned as the camera
 // (#show-axes).
-function addAxesIndicator(stage) {
+function addAxesIndicator(stage, somethingShown) {
   const scene = new THREE.Scene();
   const camera = new THREE.OrthographicCamera(-1.45, 1.45, 1.45, -1.45, 0.1, 10);
   const colours = { x: 0xd62728, y: 0x2ca02c, z: 0x1f77b4 };
@@ -117,7 +117,7 @@ function addAxesIndicator(stage) {
   const shown = $('show-axes');
   shown.addEventListener('change', () => stage.requestRender());
   stage.afterRender.push((main) => {
-    if (!shown.checked) return;
+    if (!shown.checked || !somethingShown()) return;
     const r = stage.renderer;
     const size = r.getSize(new THREE.Vector2());
     const s = Math.min(INDICATOR, size.x / 4, size.y / 4);

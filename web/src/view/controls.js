@@ -216,6 +216,7 @@ function refresh(viewer) {
     ? `${counted(unknown, 'chain')} of this frame not drawn: ${unknown === 1 ? 'it names' : 'they name'} particles not in the frame (the first: id ${viewer.chains.firstUnknownId})`
     : '';
   document.body.classList.toggle('live', viewer.live);
+  document.body.classList.toggle('has-run', Boolean(viewer.run && (viewer.run.frames.length || viewer.run.mesh)));
 }
 
 // The colour bar's label and unit for the current mode (also drawn in saved pictures).
