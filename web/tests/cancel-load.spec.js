@@ -17,7 +17,7 @@ function largeAnimation(megabytes) {
 }
 
 let large;
-test.beforeAll(() => { large = largeAnimation(200); });
+test.beforeAll(() => { large = largeAnimation(120); });
 test.afterAll(() => { if (large) fs.rmSync(path.dirname(large), { recursive: true, force: true }); });
 
 // Chooses the large file and waits until its load is under way (the progress bar moves).
@@ -76,7 +76,7 @@ test('cancelling one parse leaves another parse under way alone (a replay beside
     while (!started) await new Promise((r) => setTimeout(r, 20));
     controller.abort();
     return { mine: await mine, other: await other };
-  }, { text, copies: Math.ceil((60 << 20) / text.length) });
+  }, { text, copies: Math.ceil((30 << 20) / text.length) });
   expect(outcome.mine).toBe('AbortError');
-  expect(outcome.other, 'the other parse').toBe(`parsed ${frames * Math.ceil((60 << 20) / text.length)} frames`);
+  expect(outcome.other, 'the other parse').toBe(`parsed ${frames * Math.ceil((30 << 20) / text.length)} frames`);
 });

@@ -2,7 +2,7 @@
 // frame it has and skips the ones in between, and it says the run has ended when it has.
 import { test, expect, serverUrl, openViewer, state, keepPage } from './helpers.js';
 
-const DURATION = 0.5;  // s of the demo case: several seconds of frames at the server's 30 a second
+const DURATION = 0.3;  // s of the demo case: seconds of frames at the server's 30 a second
 const SLOW_DRAW_MS = 250;  // each picture of the view takes this long (a slow GPU, a huge run)
 
 test('a slow view shows the newest live frame and ends with the job', async ({ page, request }, testInfo) => {
