@@ -1,4 +1,5 @@
 // Live use: submit a bundled case from the page, follow its frames, replay the finished run.
+import fs from 'node:fs';
 import { test, expect, serverUrl, openViewer, state, shownNumber, pause, canvasShot, keep, keepPage } from './helpers.js';
 
 const DURATION = 0.2;  // s of the demo case (1,571 spheres): a few seconds of wall time, ~20 frames
@@ -67,4 +68,21 @@ test('submit the demo case, follow it live, replay it', async ({ page, request }
   await pause(page);
   await keep(testInfo, 'replay-view', await canvasShot(page));
   await keepPage(page, testInfo, 'replay');
+
+  // a chart's numbers and picture, exported
+  const chart = page.locator('.chart[data-chart="kinetic-energy"]');
+  await expect(chart).toBeVisible();
+  const points = Number(await chart.locator('canvas').getAttribute('data-points'));
+  expect(points).toBeGreaterThan(1);
+  const [csvDownload] = await Promise.all([page.waitForEvent('download'), chart.locator('[data-export="csv"]').click()]);
+  expect(csvDownload.suggestedFilename()).toBe('kinetic-energy.csv');
+  const csv = fs.readFileSync(await csvDownload.path(), 'utf8').trim().split('\n');
+  expect(csv[0]).toBe('series,time (s),"kinetic energy (J)"');
+  expect(csv.length - 1, 'a row a point').toBe(points);
+  const [first] = csv.slice(1).map((row) => row.split(','));
+  expect(first[0]).toBe('"kinetic energy"');
+  expect(Number.isFinite(Number(first[1])) && Number.isFinite(Number(first[2]))).toBe(true);
+  const [pngDownload] = await Promise.all([page.waitForEvent('download'), chart.locator('[data-export="png"]').click()]);
+  expect(pngDownload.suggestedFilename()).toBe('kinetic-energy.png');
+  expect(fs.readFileSync(await pngDownload.path()).subarray(1, 4).toString()).toBe('PNG');
 });

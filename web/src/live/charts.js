@@ -10,6 +10,7 @@
 // logarithmic (positive values only).
 
 import { niceTicks, decadeTicks } from './ticks.js';
+import { download } from '../view/capture.js';
 
 // A live series keeps at most this many points: when full, every other point is dropped.
 const LIVE_POINTS = 10000;
@@ -56,7 +57,10 @@ export function parseRows(text, columns) {
 const STYLE = `
 #charts.live-charts:not(:empty) { display: grid; grid-template-columns: repeat(auto-fill, minmax(300px, 1fr));
   gap: 4px 12px; padding: 6px 10px; }
+#charts.live-charts .chart { position: relative; }
 #charts.live-charts .chart canvas { width: 100%; height: 150px; display: block; cursor: pointer; }
+#charts.live-charts .chart-export { position: absolute; top: 0; right: 0; display: flex; gap: 2px; }
+#charts.live-charts .chart-export button { font-size: 10px; padding: 0 4px; }
 `;
 
 function addStyle() {
@@ -88,12 +92,39 @@ class Chart {
       this.draw();
     });
     this.element.appendChild(this.canvas);
+    // export: the picture as PNG, the numbers as CSV (one row a point: series, time, value)
+    const exports = document.createElement('div');
+    exports.className = 'chart-export';
+    for (const [kind, title] of [['PNG', 'save this chart as a picture'], ['CSV', 'save this chart\'s numbers']]) {
+      const button = document.createElement('button');
+      button.type = 'button';
+      button.textContent = kind;
+      button.title = title;
+      button.dataset.export = kind.toLowerCase();
+      button.addEventListener('click', (event) => {
+        event.stopPropagation();
+        if (kind === 'PNG') this.canvas.toBlob((blob) => blob && download(blob, `${def.id}.png`), 'image/png');
+        else download(new Blob([this.csv()], { type: 'text/csv' }), `${def.id}.csv`);
+      });
+      exports.appendChild(button);
+    }
+    this.element.appendChild(exports);
     this.element.dataset.order = String(order);
     // Attached to the container only while it has data (#charts stays :empty without any).
   }
 
   points() {
     return this.series[0].x.length;
+  }
+
+  // The chart's numbers: a header naming the columns and units, then a row a point, in full precision.
+  csv() {
+    const y = this.yLabel().replace(/"/g, "'");
+    const rows = ['series,time (s),"' + y + '"'];
+    for (const s of this.series) {
+      for (let k = 0; k < s.x.length; k++) rows.push(`"${s.name.replace(/"/g, "'")}",${s.x[k]},${s.y[k]}`);
+    }
+    return `${rows.join('\n')}\n`;
   }
 
   hasData() {
