@@ -21,7 +21,6 @@ const STATS_EVERY_POLLS = 5; // statistics files of a followed job re-read every
 const STATS_FILES = ['Force_Displacement.dat', 'Fragments.dat', 'Bond_Breaks.dat'];
 const RECONNECTS = 5;
 const METRES_PER = { m: 1, cm: 0.01, mm: 0.001 };
-const UNITS_KEY = 'dem-live-job-units';
 
 // The element with this id, made (tag, attributes, parent) when the page has none.
 function ensure(id, tag, parent, attributes = {}) {
@@ -744,30 +743,12 @@ class LivePanel {
 
   // ---- units -----------------------------------------------------------------------------------
 
-  rememberUnit(id, spec) {
-    try {
-      const units = JSON.parse(sessionStorage.getItem(UNITS_KEY) || '{}');
-      units[id] = (spec && spec.outputs && (spec.outputs.lengthUnit || spec.outputs.length_unit)) || 'm';
-      sessionStorage.setItem(UNITS_KEY, JSON.stringify(units));
-    } catch {
-      /* no storage */
-    }
-  }
-
-  // The length unit of a job's files: known when this page submitted it, or when its name is a
-  // bundled case's title; '' otherwise.
+  // The length unit of a job's files ("m", "cm", "mm"), from its record (the server says it), asked
+  // again when the record at hand is an old one without it; '' when the server cannot be asked.
   async unitOfJob(job) {
+    if (job.lengthUnit) return job.lengthUnit;
     try {
-      const units = JSON.parse(sessionStorage.getItem(UNITS_KEY) || '{}');
-      if (units[job.id]) return units[job.id];
-    } catch {
-      /* no storage */
-    }
-    const c = this.cases.find((k) => k.title === job.name);
-    if (!c) return '';
-    try {
-      const spec = await this.caseSpec(c.name);
-      return (spec.outputs && (spec.outputs.lengthUnit || spec.outputs.length_unit)) || 'm';
+      return (await server.getJob(job.id)).lengthUnit || 'm';
     } catch {
       return '';
     }
@@ -882,7 +863,6 @@ class LivePanel {
     this.submitButton.disabled = true;
     try {
       const job = await server.submitJob(spec);
-      this.rememberUnit(job.id, spec);
       this.say(`job ${job.id} submitted: ${job.particles ?? '?'} particle${job.particles === 1 ? '' : 's'}, ${job.totalSteps ?? '?'} step${job.totalSteps === 1 ? '' : 's'}`);
       await this.refreshJobs();
       this.follow(job);
