@@ -2,7 +2,7 @@
 // framed), views along the axes, orthographic, following the particles, the keyboard, and the
 // axes indicator.
 import fs from 'node:fs';
-import { test, expect, openViewer, loadFiles, showFrame, settle, canvasShot, keep, keepPage, pngColourCount, expectPicturesDiffer } from './helpers.js';
+import { test, expect, openViewer, loadFiles, showFrame, settle, canvasShot, keep, keepPage, pngColourCount, expectPicturesDiffer, countPixels } from './helpers.js';
 
 // A 4 km square terrain (two triangles) and a 20 m block of 27 particles on it at (1000, 500, 10),
 // which moves 300 m along x in the second frame.
@@ -113,23 +113,11 @@ test('the axes indicator in the corner turns with the view', async ({ page }, te
   await loadFiles(page, writeScene(testInfo.outputPath('scene')), 2);
   const corner = async () => {
     const shot = await canvasShot(page);
-    return page.evaluate(async (b64) => {
-      const img = new Image();
-      img.src = `data:image/png;base64,${b64}`;
-      await img.decode();
-      const c = document.createElement('canvas');
-      c.width = img.naturalWidth; c.height = img.naturalHeight;
-      const g = c.getContext('2d');
-      g.drawImage(img, 0, 0);
-      const d = g.getImageData(c.width - 110, c.height - 110, 110, 110).data;
-      const seen = { red: 0, green: 0, blue: 0 };
-      for (let i = 0; i < d.length; i += 4) {
-        if (d[i] > 150 && d[i + 1] < 90 && d[i + 2] < 90) seen.red++;
-        if (d[i + 1] > 120 && d[i] < 90 && d[i + 2] < 90) seen.green++;
-        if (d[i + 2] > 150 && d[i] < 90 && d[i + 1] < 160) seen.blue++;
-      }
-      return seen;
-    }, shot.toString('base64'));
+    return countPixels(page, shot, {
+      red: '(r, g, b) => r > 150 && g < 90 && b < 90',
+      green: '(r, g, b) => g > 120 && r < 90 && b < 90',
+      blue: '(r, g, b) => b > 150 && r < 90 && g < 160',
+    }, { x: -110, y: -110, width: 110, height: 110 });
   };
   const start = await corner();
   expect(start.red > 20 && start.green > 20 && start.blue > 20, `x, y and z drawn: ${JSON.stringify(start)}`).toBe(true);

@@ -2,7 +2,7 @@
 // small sphere inside it must not show. A tube whose frame is left-handed has its near half culled
 // and shows its inside, and the sphere in it, as notches and "blades" along the chain.
 import fs from 'node:fs';
-import { test, expect, openViewer, loadFiles, canvasShot, keep, setRange } from './helpers.js';
+import { test, expect, openViewer, loadFiles, canvasShot, keep, setRange, countPixels } from './helpers.js';
 
 // One frame, three particles along x: two of D 10 at the chain's ends, one of D 4 at its middle;
 // one chain between the outer two (ids 1 and 3), the frame's strongest, so its radius is the
@@ -35,24 +35,11 @@ async function countColours(page, png) {
     const [x1, y1] = at(up.x, up.y, up.z);
     return [x0, y0, Math.max(4, Math.hypot(x1 - x0, y1 - y0))];
   });
-  return page.evaluate(async ([b64, cx, cy, reach]) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.naturalWidth; c.height = img.naturalHeight;
-    const g = c.getContext('2d');
-    g.drawImage(img, 0, 0);
-    const d = g.getImageData(0, 0, c.width, c.height).data;
-    let green = 0, red = 0;
-    for (let i = 0; i < d.length; i += 4) {
-      const x = (i / 4) % c.width, y = Math.floor(i / 4 / c.width);
-      const near = Math.hypot(x - cx, y - cy) <= reach;
-      if (near && d[i + 1] > 60 && d[i + 1] > 2 * d[i] && d[i + 1] > 2 * d[i + 2]) green++;
-      if (d[i] > 60 && d[i] > 2 * d[i + 1] && d[i] > 2 * d[i + 2]) red++;
-    }
-    return { green, red };
-  }, [png.toString('base64'), cx, cy, reach]);
+  const near = `Math.hypot(x - ${cx}, y - ${cy}) <= ${reach}`;
+  return countPixels(page, png, {
+    green: `(r, g, b, x, y) => ${near} && g > 60 && g > 2 * r && g > 2 * b`,
+    red: '(r, g, b) => r > 60 && r > 2 * g && r > 2 * b',
+  });
 }
 
 test('a force-chain tube hides what is inside it, from every side', async ({ page }, testInfo) => {
@@ -112,23 +99,14 @@ test('a force-chain tube is closed at its ends: seen end-on it is a disc, not a 
   });
   const shot = await canvasShot(page);
   await keep(testInfo, 'tube-end-on', shot);
-  const centre = await page.evaluate(async (b64) => {
+  const [x, y] = await page.evaluate(() => {
     const { stage } = window.demViewer.viewer;
     const v = stage.camera.position.clone().set(50, 0, 0).project(stage.camera);
     const rect = stage.canvas.getBoundingClientRect();
-    const x = Math.round((v.x + 1) / 2 * rect.width), y = Math.round((1 - v.y) / 2 * rect.height);
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.naturalWidth; c.height = img.naturalHeight;
-    const g = c.getContext('2d');
-    g.drawImage(img, 0, 0);
-    // the pixels round the end's centre: white background through an open end, the cap's red otherwise
-    const d = g.getImageData(x - 3, y - 3, 7, 7).data;
-    let white = 0;
-    for (let i = 0; i < d.length; i += 4) if (d[i] > 240 && d[i + 1] > 240 && d[i + 2] > 240) white++;
-    return white;
-  }, shot.toString('base64'));
+    return [Math.round((v.x + 1) / 2 * rect.width), Math.round((1 - v.y) / 2 * rect.height)];
+  });
+  // the pixels round the end's centre: white background through an open end, the cap's red otherwise
+  const { white: centre } = await countPixels(page, shot, { white: '(r, g, b) => r > 240 && g > 240 && b > 240' },
+                                              { x: x - 3, y: y - 3, width: 7, height: 7 });
   expect(centre, 'background pixels seen through the end of the tube').toBe(0);
 });

@@ -2,7 +2,7 @@
 // hand), any quantity of the files (height, displacement, spin, contacts, fragment size), and the
 // legend in the saved picture.
 import fs from 'node:fs';
-import { test, expect, openViewer, loadFiles, showFrame, settle, canvasShot, keep, expectPicturesDiffer } from './helpers.js';
+import { test, expect, openViewer, loadFiles, showFrame, settle, canvasShot, keep, expectPicturesDiffer, countPixels } from './helpers.js';
 
 // Two frames of 5 particles in a column (z 0..40 in frame 1, 0..80 in frame 2, each moved up by
 // its id's share); spin |w| = id, contacts = id - 1, parts: 1,1,1,2,2.
@@ -89,25 +89,14 @@ test('the saved picture carries the legend and what is shown', async ({ page }, 
   const png = fs.readFileSync(await download.path());
   fs.writeFileSync(testInfo.outputPath('dem-view.png'), png);
   await keep(testInfo, 'saved-with-legend', png);
-  const found = await page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.naturalWidth; c.height = img.naturalHeight;
-    const g = c.getContext('2d');
-    g.drawImage(img, 0, 0);
-    // the lower left corner, where the bar is: viridis' dark purple and its yellow
-    const d = g.getImageData(0, c.height - 80, 300, 80).data;
-    let purple = 0, yellow = 0, text = 0;
-    for (let i = 0; i < d.length; i += 4) {
-      if (Math.abs(d[i] - 0x44) < 12 && d[i + 1] < 20 && Math.abs(d[i + 2] - 0x54) < 14) purple++;
-      if (d[i] > 230 && d[i + 1] > 210 && d[i + 2] < 80) yellow++;
-    }
-    const top = g.getImageData(0, 0, 400, 30).data;
-    for (let i = 0; i < top.length; i += 4) if (top[i] < 100 && top[i + 1] < 100 && top[i + 2] < 100) text++;
-    return { purple, yellow, text };
-  }, png.toString('base64'));
+  // the lower left corner, where the bar is: viridis' dark purple and its yellow; the caption's text at the top
+  const found = {
+    ...(await countPixels(page, png, {
+      purple: '(r, g, b) => Math.abs(r - 0x44) < 12 && g < 20 && Math.abs(b - 0x54) < 14',
+      yellow: '(r, g, b) => r > 230 && g > 210 && b < 80',
+    }, { x: 0, y: -80, width: 300, height: 80 })),
+    ...(await countPixels(page, png, { text: '(r, g, b) => r < 100 && g < 100 && b < 100' }, { x: 0, y: 0, width: 400, height: 30 })),
+  };
   expect(found.purple, `the bar's purple end (${JSON.stringify(found)})`).toBeGreaterThan(10);
   expect(found.yellow, 'its yellow end').toBeGreaterThan(10);
   expect(found.text, 'the caption at the top').toBeGreaterThan(30);

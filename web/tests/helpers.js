@@ -205,3 +205,55 @@ export async function expectPicturesDiffer(page, a, b, what) {
 }
 
 export const closeTo = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(Math.abs(a), Math.abs(b)) + 1e-9;
+
+// Counts the pixels of a PNG (decoded in the page) that each predicate accepts. `kinds` maps a name
+// to the source of a predicate `(r, g, b, x, y) => boolean` (a string: it runs in the page);
+// `region` ({ x, y, width, height }, optional; negative x and y count from the right and bottom)
+// limits the count to part of the picture.
+export async function countPixels(page, png, kinds, region = null) {
+  return page.evaluate(async ([b64, kinds, region]) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.naturalWidth; c.height = img.naturalHeight;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const r = region || { x: 0, y: 0, width: c.width, height: c.height };
+    const x0 = r.x < 0 ? c.width + r.x : r.x, y0 = r.y < 0 ? c.height + r.y : r.y;
+    const d = g.getImageData(x0, y0, r.width, r.height).data;
+    const tests = Object.entries(kinds).map(([name, source]) => [name, new Function(`return (${source});`)()]);
+    const counts = Object.fromEntries(tests.map(([name]) => [name, 0]));
+    for (let i = 0; i < d.length; i += 4) {
+      const x = x0 + ((i / 4) % r.width), y = y0 + Math.floor(i / 4 / r.width);
+      for (const [name, test] of tests) if (test(d[i], d[i + 1], d[i + 2], x, y)) counts[name] += 1;
+    }
+    return counts;
+  }, [png.toString('base64'), kinds, region]);
+}
+
+// Submits the bundled demo case for `duration` s from the page's case form; returns the new job
+// (the server's record) once the server lists it.
+export async function submitDemo(page, request, duration) {
+  const api = (p) => `${serverUrl()}${p}`;
+  const jobsBefore = new Set(((await (await request.get(api('/api/jobs'))).json()).jobs).map((j) => j.id));
+  const select = page.locator('#case-select');
+  await expect.poll(() => select.evaluate((s) => [...s.options].some((o) => o.value === 'demo')),
+                    { message: '#case-select offers the demo case' }).toBe(true);
+  await select.selectOption('demo');
+  // the demo's own name: the first case (ballast, also granite) loads at start and may arrive late
+  await expect.poll(() => page.locator('#case-spec').inputValue(), { message: '#case-spec holds the demo spec' })
+    .toContain('spheres poured into a box');
+  await page.locator('#case-duration').fill(String(duration));
+  await page.locator('#case-duration').dispatchEvent('change');
+  await expect.poll(() => page.locator('#case-spec').inputValue().then((t) => JSON.parse(t).time.duration),
+                    { message: '#case-spec takes the duration typed' }).toBe(duration);
+  await page.locator('#submit-case').click();
+  let job;
+  await expect.poll(async () => {
+    const jobs = (await (await request.get(api('/api/jobs'))).json()).jobs.filter((j) => !jobsBefore.has(j.id));
+    job = jobs[jobs.length - 1];
+    return jobs.length;
+  }, { message: 'submitting makes one job on the server' }).toBe(1);
+  return job;
+}

@@ -1,20 +1,12 @@
 // Force chains of a job followed live: they come only with the job's output frames, so between them
 // the view shows the latest chains received (by particle id, at the particles' new places) and says
 // from which step; switching them on says nothing false about files.
-import { test, expect, serverUrl, openViewer, state, keepPage } from './helpers.js';
+import { test, expect, openViewer, state, keepPage, submitDemo } from './helpers.js';
 
 test('live force chains: shown between output frames, no message about files', async ({ page, request }, testInfo) => {
   test.setTimeout(300_000);
-  const api = (p) => `${serverUrl()}${p}`;
   await openViewer(page);
-  const select = page.locator('#case-select');
-  await expect.poll(() => select.evaluate((s) => [...s.options].some((o) => o.value === 'demo'))).toBe(true);
-  await select.selectOption('demo');
-  await expect.poll(() => page.locator('#case-spec').inputValue()).toContain('spheres poured into a box');
-  await page.locator('#case-duration').fill('0.4');
-  await page.locator('#case-duration').dispatchEvent('change');
-  await expect.poll(() => page.locator('#case-spec').inputValue().then((t) => JSON.parse(t).time.duration)).toBe(0.4);
-  await page.locator('#submit-case').click();
+  await submitDemo(page, request, 0.4);
   await expect.poll(async () => (await state(page)).live, { message: 'following the job' }).toBe(true);
   await page.locator('#show-force-chains').check();
   await expect(page.locator('#message')).not.toContainText('No force chains loaded');

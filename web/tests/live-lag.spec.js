@@ -1,6 +1,6 @@
 // A live view that cannot keep up: whatever the time a picture takes, the page shows the newest
 // frame it has and skips the ones in between, and it says the run has ended when it has.
-import { test, expect, serverUrl, openViewer, state, keepPage } from './helpers.js';
+import { test, expect, serverUrl, openViewer, state, keepPage, submitDemo } from './helpers.js';
 
 const DURATION = 0.3;  // s of the demo case: seconds of frames at the server's 30 a second
 const SLOW_DRAW_MS = 250;  // each picture of the view takes this long (a slow GPU, a huge run)
@@ -8,7 +8,6 @@ const SLOW_DRAW_MS = 250;  // each picture of the view takes this long (a slow G
 test('a slow view shows the newest live frame and ends with the job', async ({ page, request }, testInfo) => {
   test.setTimeout(300_000);
   const api = (p) => `${serverUrl()}${p}`;
-  const jobsBefore = new Set(((await (await request.get(api('/api/jobs'))).json()).jobs).map((j) => j.id));
   await openViewer(page);
   // every redraw of the view busy-waits SLOW_DRAW_MS first
   await page.evaluate((ms) => {
@@ -23,21 +22,7 @@ test('a slow view shows the newest live frame and ends with the job', async ({ p
     };
   }, SLOW_DRAW_MS);
 
-  const select = page.locator('#case-select');
-  await expect.poll(() => select.evaluate((s) => [...s.options].some((o) => o.value === 'demo'))).toBe(true);
-  await select.selectOption('demo');
-  await expect.poll(() => page.locator('#case-spec').inputValue()).toContain('spheres poured into a box');
-  await page.locator('#case-duration').fill(String(DURATION));
-  await page.locator('#case-duration').dispatchEvent('change');
-  await expect.poll(() => page.locator('#case-spec').inputValue().then((t) => JSON.parse(t).time.duration)).toBe(DURATION);
-  await page.locator('#submit-case').click();
-
-  let job;
-  await expect.poll(async () => {
-    const jobs = (await (await request.get(api('/api/jobs'))).json()).jobs.filter((j) => !jobsBefore.has(j.id));
-    job = jobs[jobs.length - 1];
-    return jobs.length;
-  }, { message: 'submitting makes one job on the server' }).toBe(1);
+  const job = await submitDemo(page, request, DURATION);
   await expect.poll(async () => (await state(page)).live, { message: 'the page follows the job live' }).toBe(true);
 
   // while it runs, the view moves on (each picture shows the newest frame the page has)

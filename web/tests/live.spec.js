@@ -1,38 +1,15 @@
 // Live use: submit a bundled case from the page, follow its frames, replay the finished run.
 import fs from 'node:fs';
-import { test, expect, serverUrl, openViewer, state, shownNumber, pause, canvasShot, keep, keepPage } from './helpers.js';
+import { test, expect, serverUrl, openViewer, state, shownNumber, pause, canvasShot, keep, keepPage, submitDemo } from './helpers.js';
 
 const DURATION = 0.2;  // s of the demo case (1,571 spheres): a few seconds of wall time, ~20 frames
 
 test('submit the demo case, follow it live, replay it', async ({ page, request }, testInfo) => {
   test.setTimeout(360_000);
   const api = (p) => `${serverUrl()}${p}`;
-  const jobsBefore = new Set(((await (await request.get(api('/api/jobs'))).json()).jobs).map((j) => j.id));
 
   await openViewer(page);
-  const select = page.locator('#case-select');
-  await expect.poll(() => select.evaluate((s) => [...s.options].some((o) => /demo/i.test(o.value + o.text))),
-                    { message: '#case-select offers the demo case' }).toBe(true);
-  const demo = await select.evaluate((s) => [...s.options].find((o) => o.value === 'demo' || /demo/i.test(o.value + o.text)).value);
-  await select.selectOption(demo);
-  // the demo's own name: the first case (ballast, also granite) loads at start and may arrive late
-  await expect.poll(() => page.locator('#case-spec').inputValue(), { message: '#case-spec holds the demo spec' })
-    .toContain('spheres poured into a box');
-  await page.locator('#case-duration').fill(String(DURATION));
-  await page.locator('#case-duration').dispatchEvent('change');
-  await expect.poll(() => page.locator('#case-spec').inputValue().then((t) => JSON.parse(t).time.duration),
-                    { message: '#case-spec takes the duration typed' }).toBe(DURATION);
-  await keepPage(page, testInfo, 'case-form');
-
-  await page.locator('#submit-case').click();
-
-  // the new job on the server, with the duration asked for
-  let job;
-  await expect.poll(async () => {
-    const jobs = (await (await request.get(api('/api/jobs'))).json()).jobs.filter((j) => !jobsBefore.has(j.id));
-    job = jobs[jobs.length - 1];
-    return jobs.length;
-  }, { message: 'submitting makes one job on the server' }).toBe(1);
+  const job = await submitDemo(page, request, DURATION);
   expect(job.totalSteps * job.timeStep, `the job runs ${DURATION} s (#case-duration)`).toBeCloseTo(DURATION, 3);
 
   // frames arrive: #live-step shows two different steps
