@@ -96,6 +96,7 @@ export class Viewer {
       this.extendChainScale(frame.forceChains);
     }
     this.boundary.setMesh(this.run.mesh);
+    if (this.probe) this.probe.forget();
     this.frameCamera();
     this.frameIndex = -1;
     this.liveBytes = 0;
@@ -282,6 +283,13 @@ export class Viewer {
   // The largest |Fn| of the run (shown in the legend next to the frame's own).
   extendChainScale(chains) {
     if (chains) this.fnMax = Math.max(this.fnMax, addStats(chains).stats.fnMax);
+  }
+
+  // The name of the run's length unit: metres for live frames, the files' unit when known (a job's
+  // replay: its lengthUnit), else null (files opened from disk do not say).
+  lengthUnitName() {
+    if (!this.run) return null;
+    return this.run.unit === 'm' ? 'm' : this.run.lengthUnit || null;
   }
 
   // What a quantity needs beside the frame: the run's first frame (displacement) and part sizes.

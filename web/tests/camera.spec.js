@@ -129,3 +129,15 @@ test('the axes indicator in the corner turns with the view', async ({ page }, te
   expect(off.red + off.green + off.blue, 'switched off').toBe(0);
   await keepPage(page, testInfo, 'axes');
 });
+
+test('the keys work after a click on a checkbox or a button of the panel', async ({ page }, testInfo) => {
+  await openViewer(page);
+  await loadFiles(page, writeScene(testInfo.outputPath('scene')), 2);
+  await page.locator('#camera-orthographic').click();
+  expect(await page.evaluate(() => window.demViewer.viewer.stage.camera.isOrthographicCamera)).toBe(true);
+  await page.keyboard.press('o');
+  expect(await page.evaluate(() => window.demViewer.viewer.stage.camera.isPerspectiveCamera), 'o after clicking the checkbox').toBe(true);
+  await page.locator('#show-force-chains').click();
+  await page.keyboard.press('y');
+  expect(await lookDirection(page)).toEqual([0, 1, 0]);
+});

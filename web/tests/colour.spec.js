@@ -126,3 +126,27 @@ test('Part, as the legacy viewer: the large masses red, the small ones green, th
   expect(await page.locator('#colour-bar').evaluate((el) => getComputedStyle(el).backgroundImage)).toContain('rgb(214, 26, 26)');
   await keep(testInfo, 'part-by-size', await canvasShot(page));
 });
+
+test('displacement names its reference frame, fragment size leaves out particles of no part, a reversed range is said', async ({ page }, testInfo) => {
+  await openViewer(page);
+  await loadFiles(page, [writeColumn(testInfo.outputPath('column'))], 2);
+  await page.locator('#colour-mode').selectOption('displacement');
+  await expect(page.locator('#colour-label')).toContainText('since step 100');
+  // parts 1, 1, 1, 2, 2 in the column; a file whose particles have no part (0) has no fragments
+  const dir = testInfo.outputPath('no-parts');
+  fs.mkdirSync(dir, { recursive: true });
+  fs.writeFileSync(`${dir}/ANIMATION_3D.dat`, ['3DA:', '-5 5 -5 5 -5 5', '0 0 0 0', '0', '1 3 0',
+    '1 0 0 0 2 0 0 0 0 0 0 0 0', '2 3 0 0 2 0 0 0 0 0 0 0 0', '3 6 0 0 2 0 0 0 0 0 0 0 4', ''].join('\n'));
+  await loadFiles(page, [`${dir}/ANIMATION_3D.dat`], 1);
+  await page.locator('#colour-mode').selectOption('fragmentSize');
+  expect(await range(page), 'only particle 3 has a part: one fragment of one').toEqual([1, 1]);
+  // a reversed range by hand is refused out loud
+  await page.locator('#colour-mode').selectOption('speed');
+  await page.locator('#colour-range').selectOption('manual');
+  await expect(page.locator('#colour-range-max'), 'an empty range seeds a usable one').not.toHaveValue('0');
+  await page.locator('#colour-range-min').fill('0.9');
+  await page.locator('#colour-range-max').fill('0.2');
+  await page.locator('#colour-range-max').dispatchEvent('change');
+  await expect(page.locator('#message')).toContainText('From < to');
+  await expect(page.locator('#message')).toHaveClass(/error/);
+});

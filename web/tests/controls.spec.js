@@ -108,3 +108,15 @@ test('a particle id of 2,147,483,647 does not freeze the page', async ({ page },
   expect(Date.now() - started, 'ms to open the files and show the chains').toBeLessThan(10_000);
   expect(await page.evaluate(() => window.demViewer.viewer.chains.drawn), 'the chain to particle 2147483647').toBe(1);
 });
+
+test('messages say what was loaded: the file names in the saved caption, particle counts that vary', async ({ page }, testInfo) => {
+  const dir = testInfo.outputPath('vary');
+  fs.mkdirSync(dir, { recursive: true });
+  const frame = (step, n) => ['3DA:', '-9 9 -9 9 -9 9', '0 0 0 0', '0', `${step} ${n} 0`,
+    ...Array.from({ length: n }, (_, k) => `${k + 1} ${k} 0 0 1 0 0 0 0 0 0 0 1`)].join('\n');
+  fs.writeFileSync(`${dir}/ANIMATION_3D.dat`, `${frame(1, 3)}\n${frame(2, 6)}\n${frame(3, 2)}\n`);
+  await openViewer(page);
+  await loadFiles(page, [`${dir}/ANIMATION_3D.dat`], 3);
+  await expect(page.locator('#message')).toContainText('3 frames of 2 to 6 particles');
+  expect(await page.evaluate(() => window.demViewer.viewer.run.source)).toBe('ANIMATION_3D.dat');
+});

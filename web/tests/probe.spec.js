@@ -84,3 +84,48 @@ test('click a particle to see its values; shift-click another for the distance',
   await expect(probe).toBeHidden();
   await settle(page);
 });
+
+// Three frames: frame 3 has lost particle 3 (ids 1, 2, 4 left).
+function writeVanishing(dir) {
+  const row = (id, x, v) => `${id} ${x} 0 0 8 ${v} 0 0 0 0 0 0 ${id}`;
+  const frame = (step, rows) => ['3DA:', '-50 50 -50 50 -50 50', `${step / 100} 0 0 0`, '0', `${step} ${rows.length} 0`, ...rows].join('\n');
+  fs.mkdirSync(dir, { recursive: true });
+  fs.writeFileSync(`${dir}/ANIMATION_3D.dat`, [
+    frame(10, [row(1, -30, 5), row(2, -10, 0), row(3, 10, 0), row(4, 30, 0)]),
+    frame(20, [row(1, -30, 5), row(2, -10, 0), row(3, 10, 0), row(4, 30, 0)]),
+    frame(30, [row(1, -45, 1), row(2, -10, 0), row(4, 30, 0)]), ''].join('\n'));
+  return `${dir}/ANIMATION_3D.dat`;
+}
+
+test('the probe after frames change and files change: the right particle named, nothing stale', async ({ page }, testInfo) => {
+  await openViewer(page);
+  await loadFiles(page, [writeVanishing(testInfo.outputPath('vanishing'))], 3);
+  await showFrame(page, 0);
+  const probe = page.locator('#probe');
+  const field = (name) => probe.locator(`[data-field="${name}"]`);
+  // probe 3, measure to 1; in frame 3 particle 3 is gone: it is the one named missing
+  const at3 = await whereIs(page, 3);
+  await page.mouse.click(at3.x, at3.y);
+  const at1 = await whereIs(page, 1);
+  await page.keyboard.down('Shift');
+  await page.mouse.click(at1.x, at1.y);
+  await page.keyboard.up('Shift');
+  await showFrame(page, 2);
+  await expect(probe.locator('h3')).toHaveText('Particle 3');
+  await expect(field('distance')).toHaveText('Particle 3 is not in this frame');
+  // shift-click the probed particle itself: no distance to itself
+  await showFrame(page, 0);
+  await page.mouse.click(at3.x, at3.y);
+  await page.keyboard.down('Shift');
+  await page.mouse.click(at3.x, at3.y);
+  await page.keyboard.up('Shift');
+  await expect(field('distance')).toHaveCount(0);
+  // the hover readout follows the frame: particle 1 under the pointer at speed 5, then gone from there
+  await page.mouse.move(at1.x, at1.y);
+  await expect(page.locator('#hover-readout')).toContainText('particle 1 · speed 5');
+  await showFrame(page, 2);
+  await expect(page.locator('#hover-readout'), 'particle 1 has moved away from the pointer').toBeHidden();
+  // another file: the probe stops
+  await loadFiles(page, [writeFixture(testInfo.outputPath('other'))[0]], 2);
+  await expect(probe).toBeHidden();
+});

@@ -59,7 +59,7 @@ const STYLE = `
   gap: 4px 12px; padding: 6px 10px; }
 #charts.live-charts .chart { position: relative; }
 #charts.live-charts .chart canvas { width: 100%; height: 150px; display: block; cursor: pointer; }
-#charts.live-charts .chart-export { position: absolute; top: 0; right: 0; display: flex; gap: 2px; }
+#charts.live-charts .chart-export { display: flex; justify-content: flex-end; gap: 2px; }
 #charts.live-charts .chart-export button { font-size: 10px; padding: 0 4px; }
 `;
 

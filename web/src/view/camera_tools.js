@@ -50,7 +50,10 @@ export function wireCamera(viewer) {
   document.addEventListener('keydown', (event) => {
     if (event.ctrlKey || event.metaKey || event.altKey) return;
     const t = event.target;
-    if (t && (t.isContentEditable || ['INPUT', 'SELECT', 'TEXTAREA'].includes(t.tagName))) return;
+    // not while typing or moving a slider (its arrows); a checkbox or button clicked keeps the focus
+    const typing = t && (t.isContentEditable || ['SELECT', 'TEXTAREA'].includes(t.tagName) ||
+                         (t.tagName === 'INPUT' && !['checkbox', 'radio', 'button', 'submit', 'file', 'color'].includes(t.type)));
+    if (typing) return;
     const key = event.key.toLowerCase();
     let handled = true;
     if (key === 'f') actions.fit();

@@ -52,6 +52,7 @@ export function wireControls(viewer) {
     const valid = Number.isFinite(lo) && Number.isFinite(hi) && hi > lo && $('colour-range-min').value !== '' && $('colour-range-max').value !== '';
     for (const id of ['colour-range-min', 'colour-range-max']) $(id).setCustomValidity(valid ? '' : 'the range needs From < to');
     if (valid) viewer.set({ colourRangeManual: [lo, hi] });
+    else viewer.message(`Colour range not changed: it needs From < to (got ${$('colour-range-min').value || 'nothing'} and ${$('colour-range-max').value || 'nothing'})`, true);
   };
   on('colour-range-min', 'change', manualRange);
   on('colour-range-max', 'change', manualRange);
@@ -224,8 +225,9 @@ export function colourLegend(viewer) {
   const mode = viewer.settings.colourMode;
   const quantity = QUANTITIES[mode];
   if (quantity) {
-    const length = viewer.run && viewer.run.unit === 'm' ? 'm' : 'file length unit';
-    return { label: quantity.label, unit: quantity.unit(length) };
+    const length = viewer.lengthUnitName() || 'file length unit';
+    const label = quantity.labelFor ? quantity.labelFor(viewer.colourContext()) : quantity.label;
+    return { label, unit: quantity.unit(length) };
   }
   if (mode === 'parts') return { label: `Parts, a colour each (${counted(viewer.bounds ? viewer.bounds.partMax : 0, 'part')})`, unit: '' };
   return { label: 'Constant colour', unit: '' };
@@ -233,7 +235,12 @@ export function colourLegend(viewer) {
 
 // Puts the range in use into the From and to fields (force: even when the user typed there).
 function fillRangeInputs(viewer, force) {
-  const [lo, hi] = viewer.colourRange() || viewer.settings.colourRangeManual;
+  let [lo, hi] = viewer.colourRange() || viewer.settings.colourRangeManual;
+  if (!(hi > lo)) {
+    // every value the same (or none): a range round it, since From < to
+    hi = lo + (Math.abs(lo) || 1);
+    viewer.settings.colourRangeManual = [lo, hi];
+  }
   if (force || $('colour-range-min').value === '') $('colour-range-min').value = String(Number(lo.toPrecision(6)));
   if (force || $('colour-range-max').value === '') $('colour-range-max').value = String(Number(hi.toPrecision(6)));
 }
@@ -248,11 +255,23 @@ function drawLegend(viewer, g, width, height) {
   g.textBaseline = 'top';
   g.fillStyle = '#1d2733';
   const source = viewer.run && viewer.run.source ? `${viewer.run.source} · ` : '';
-  if (frame) g.fillText(`${source}t = ${formatTime(frame.time)} s · step ${frame.step} · ${counted(frame.count, 'particle')}`, 10 * scale, 8 * scale);
+  const backing = (x, y, w, h) => {
+    g.save();
+    g.fillStyle = 'rgba(255, 255, 255, 0.85)';
+    g.fillRect(x, y, w, h);
+    g.restore();
+  };
+  if (frame) {
+    const caption = `${source}t = ${formatTime(frame.time)} s · step ${frame.step} · ${counted(frame.count, 'particle')}`;
+    backing(4 * scale, 4 * scale, g.measureText(caption).width + 12 * scale, 22 * scale);
+    g.fillText(caption, 10 * scale, 8 * scale);
+  }
   const { label, unit } = colourLegend(viewer);
   const range = viewer.colourRange();
   const x = 10 * scale, barW = 220 * scale, barH = 14 * scale, y = height - 52 * scale;
-  g.fillText(unit ? `${label} (${unit})` : label, x, y - 18 * scale);
+  const title = unit ? `${label} (${unit})` : label;
+  backing(x - 6 * scale, y - 22 * scale, Math.max(barW, g.measureText(title).width) + 12 * scale, 56 * scale);
+  g.fillText(title, x, y - 18 * scale);
   if (range) {
     const gradient = g.createLinearGradient(x, 0, x + barW, 0);
     const quantity = QUANTITIES[viewer.settings.colourMode];

@@ -105,9 +105,13 @@ async function load(viewer, files, signal) {
       // A mesh loaded on its own before any animation (a terrain first) stays with the new run.
       const previous = viewer.run;
       const keepMesh = previous && !previous.frames.length ? previous.mesh : null;
-      viewer.setRun({ frames: result.frames, mesh: keepMesh, unit: 'file' }, { fromFiles: true });
-      const count = result.frames[0].count;
-      const what = result.frames[0].planar ? `${counted(count, 'disc')} (2D, the x-z plane seen from -y)` : counted(count, 'particle');
+      viewer.setRun({ frames: result.frames, mesh: keepMesh, unit: 'file', source: name }, { fromFiles: true });
+      // the particles of the frames: one count, or the least and most when they vary
+      let fewest = Infinity, most = 0;
+      for (const f of result.frames) { fewest = Math.min(fewest, f.count); most = Math.max(most, f.count); }
+      const noun = result.frames[0].planar ? 'disc' : 'particle';
+      const count = fewest === most ? counted(most, noun) : `${fewest} to ${most} ${noun}s`;
+      const what = result.frames[0].planar ? `${count} (2D, the x-z plane seen from -y)` : count;
       notes.push(`${name}: ${counted(result.frames.length, 'frame')} of ${what}${cut}`);
       if (waitingChains) {
         const matched = viewer.setForceChains(waitingChains.frames);

@@ -13,7 +13,7 @@ export const IMPOSTOR_THRESHOLD = 100000;
 function impostorThreshold() {
   const given = typeof window === 'undefined' ? null : new URLSearchParams(window.location.search).get('impostorsAbove');
   const n = Number(given);
-  return given !== null && Number.isFinite(n) && n >= 0 ? n : IMPOSTOR_THRESHOLD;
+  return given !== null && given.trim() !== '' && Number.isFinite(n) && n >= 0 ? n : IMPOSTOR_THRESHOLD;
 }
 
 export class Particles {

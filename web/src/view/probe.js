@@ -116,12 +116,21 @@ export class Probe {
       return;
     }
     const id = this.idOf(k);
-    this.picked = measure && this.picked.length ? [this.picked[0], id] : [id];
+    // a shift-click on the probed particle itself measures nothing
+    if (measure && this.picked.length && id === this.picked[0]) this.picked = [id];
+    else this.picked = measure && this.picked.length ? [this.picked[0], id] : [id];
     this.update();
   }
 
   clear() {
     this.picked = [];
+    this.update();
+  }
+
+  // Another run replaced the one probed: its particles are not these.
+  forget() {
+    this.picked = [];
+    $('hover-readout').hidden = true;
     this.update();
   }
 
@@ -142,14 +151,20 @@ export class Probe {
       const speed = Math.hypot(frame.velocities[k * 3], frame.velocities[k * 3 + 1], frame.velocities[k * 3 + 2]);
       readout.textContent = `particle ${this.idOf(k)} · speed ${formatValue(speed)} · D ${formatValue(2 * frame.radii[k])}`;
       const rect = this.viewer.stage.container.getBoundingClientRect();
-      readout.style.left = `${hx - rect.left + 14}px`;
-      readout.style.top = `${hy - rect.top + 14}px`;
       readout.hidden = false;
+      // beside the pointer, turned to its left or above it near the view's right or bottom edge
+      const w = readout.offsetWidth, h = readout.offsetHeight;
+      const left = hx - rect.left + 14 + w > rect.width ? hx - rect.left - 14 - w : hx - rect.left + 14;
+      const top = hy - rect.top + 14 + h > rect.height ? hy - rect.top - 14 - h : hy - rect.top + 14;
+      readout.style.left = `${Math.max(0, left)}px`;
+      readout.style.top = `${Math.max(0, top)}px`;
     });
   }
 
-  // Refreshes #probe and the rings for the current frame (the particles are found again by id).
+  // Refreshes #probe and the rings for the current frame (the particles are found again by id), and
+  // the hover readout (the particle under the pointer changes with the frame).
   update() {
+    if (!$('hover-readout').hidden && this.hoverAt) this.hover(...this.hoverAt);
     const box = $('probe');
     const frame = this.viewer.currentFrame();
     const found = frame ? this.picked.map((id) => ({ id, k: this.indexOf(id) })) : [];
@@ -159,7 +174,7 @@ export class Probe {
       return;
     }
     box.hidden = false;
-    const unit = this.viewer.run && this.viewer.run.unit === 'm' ? 'm' : '(file length unit)';
+    const unit = this.viewer.lengthUnitName() || '(file length unit)';
     const lines = [];
     const first = found[0];
     if (!first || first.k < 0) {
@@ -187,7 +202,8 @@ export class Probe {
         lines.push(`<p data-field="distance">From particle ${a.id} to ${b.id}: centres ${formatValue(d)} ${unit} apart, ` +
                    `surfaces ${formatValue(gap)} ${unit} (${gap < 0 ? 'overlapping' : 'a gap'})</p>`);
       } else {
-        lines.push(`<p data-field="distance">Particle ${b.id} is not in this frame</p>`);
+        const missing = a.k < 0 ? a : b;
+        lines.push(`<p data-field="distance">Particle ${missing.id} is not in this frame</p>`);
       }
     } else {
       lines.push('<p class="hint">Shift-click another particle to measure the distance.</p>');

@@ -11,6 +11,8 @@ export const QUANTITIES = {
   height: { label: 'Height (z)', unit: (u) => u, value: (f, k) => f.positions[k * 3 + 2] },
   displacement: {
     label: 'Displacement from the first frame',
+    // the first frame held: a job joined while running, or a live run past its memory cap, starts later
+    labelFor: (context) => (context.reference ? `Displacement since step ${context.reference.step}` : 'Displacement'),
     unit: (u) => u,
     value: (f, k, context) => {
       const ref = context.reference;
@@ -30,7 +32,7 @@ export const QUANTITIES = {
   fragmentSize: {
     label: 'Fragment size (particles in its part)',
     unit: () => 'particles',
-    value: (f, k, context) => context.partSizes(f).get(f.parts[k]) ?? NaN,
+    value: (f, k, context) => (f.parts[k] > 0 ? context.partSizes(f).get(f.parts[k]) : NaN), // part 0: none
   },
   // The PDEM-EGD manual's Part (section 3.2, figure 3.17): the particles that hold together in one
   // colour by how many they are, red for the large masses and green for the small ones, to judge
