@@ -422,8 +422,7 @@ export class Viewer {
       const baseRadius = (this.bounds ? this.bounds.diameter[1] / 2 : 1) * 0.5 * (s.chainThickness / 30);
       // Scaled to this frame's strongest chain: a run's largest force is often an impact early on,
       // which would leave the resting packing's network uniformly thin and blue.
-      const fnMax = addStats(chains.chains).stats.fnMax;
-      this.chains.draw(frame, chains.chains, this.indexOfId(frame), this.shown, fnMax, baseRadius);
+      this.chains.draw(frame, chains.chains, this.indexOfId(frame), this.shown, baseRadius);
     } else {
       this.chains.hide();
     }

@@ -33,6 +33,8 @@ test('a one-frame file, and a chain to a particle the frame does not have', asyn
   await expect(page.locator('#chain-unknown')).toBeVisible();
   await expect(page.locator('#chain-unknown')).toContainText('1 chain of this frame not drawn');
   await expect(page.locator('#chain-unknown')).toContainText('id 5');
+  // the scale's top is the strongest chain drawn (10 N), not the 20 N one to the missing particle
+  await expect(page.locator('#chain-max')).toHaveText('10');
   await page.locator('#show-force-chains').uncheck();
   await expect(page.locator('#chain-unknown')).toBeHidden();
 });

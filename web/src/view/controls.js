@@ -207,7 +207,7 @@ function refresh(viewer) {
   const shown = frame && viewer.chainsShown(frame);
   const chains = shown && shown.chains;
   $('chain-legend').hidden = !viewer.settings.showChains || !chains;
-  $('chain-max').textContent = chains && chains.stats ? formatValue(chains.stats.fnMax) : '';
+  $('chain-max').textContent = chains ? formatValue(viewer.chains.fnMax) : '';
   $('chain-step').textContent = shown && shown.step !== frame.step ? `; the chains drawn are the latest received, from step ${shown.step}` : '';
   if (!viewer.settings.opacityChosen) $('particle-opacity').value = String(Math.round(viewer.particles.opacity * 100));
   $('chain-run-max').textContent = formatValue(viewer.fnMax);

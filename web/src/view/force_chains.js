@@ -16,6 +16,7 @@ export class ForceChainView {
     this.material = new THREE.MeshPhongMaterial({ color: 0xffffff, shininess: 20 });
     this.drawn = 0;
     this.unknown = 0; // chains of the frame naming a particle the frame does not have
+    this.fnMax = 0; // the top of the colour scale: the strongest chain of the frame that can be drawn
     this.firstUnknownId = 0; // the first such particle's id (1-based, as in the files)
   }
 
@@ -35,9 +36,10 @@ export class ForceChainView {
 
   // chains: { i, j (0-based ids), fn } of the frame; indexOf(id0) gives the particle's index in the
   // frame or -1; shown: Uint8Array, 1 for the particles left visible by the section (a chain is
-  // drawn when both its particles are); fnMax: the force at the top of the colour scale;
-  // baseRadius: the radius of the strongest chain at thickness 1.
-  draw(frame, chains, indexOf, shown, fnMax, baseRadius) {
+  // drawn when both its particles are); baseRadius: the radius of the strongest chain at thickness
+  // 1. The colour scale's top (`fnMax`, kept for the legend) is the strongest chain whose particles
+  // the frame has: one naming a missing particle is neither drawn nor counted.
+  draw(frame, chains, indexOf, shown, baseRadius) {
     const count = chains ? chains.count ?? chains.i.length : 0; // live frames may carry no count
     if (!count) {
       this.hide();
@@ -47,6 +49,11 @@ export class ForceChainView {
     const m = this.mesh.instanceMatrix.array;
     const col = this.mesh.instanceColor.array;
     const p = frame.positions;
+    let fnMax = 0;
+    for (let k = 0; k < count; k++) {
+      if (indexOf(chains.i[k]) >= 0 && indexOf(chains.j[k]) >= 0) fnMax = Math.max(fnMax, Math.abs(chains.fn[k]));
+    }
+    this.fnMax = fnMax;
     const scale = fnMax > 0 ? 1 / fnMax : 0;
     let n = 0;
     let unknown = 0;
