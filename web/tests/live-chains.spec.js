@@ -6,7 +6,8 @@ import { test, expect, openViewer, state, keepPage, submitDemo } from './helpers
 test('live force chains: shown between output frames, no message about files', async ({ page, request }, testInfo) => {
   test.setTimeout(300_000);
   await openViewer(page);
-  await submitDemo(page, request, 0.4);
+  // long enough to be still running when the box is ticked (0.4 s ended first on a quiet machine)
+  await submitDemo(page, request, 1.0);
   await expect.poll(async () => (await state(page)).live, { message: 'following the job' }).toBe(true);
   await page.locator('#show-force-chains').check();
   await expect(page.locator('#message')).not.toContainText('No force chains loaded');

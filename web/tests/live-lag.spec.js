@@ -2,7 +2,9 @@
 // frame it has and skips the ones in between, and it says the run has ended when it has.
 import { test, expect, serverUrl, openViewer, state, keepPage, submitDemo } from './helpers.js';
 
-const DURATION = 0.3;  // s of the demo case: seconds of frames at the server's 30 a second
+// s of the demo case: several seconds of frames at the server's 30 a second on a quiet machine
+// (0.3 s ended before the view had been sampled twice)
+const DURATION = 0.8;
 const SLOW_DRAW_MS = 250;  // each picture of the view takes this long (a slow GPU, a huge run)
 
 test('a slow view shows the newest live frame and ends with the job', async ({ page, request }, testInfo) => {
