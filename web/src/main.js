@@ -8,7 +8,7 @@ import { Particles } from './view/particles.js';
 import { ForceChainView } from './view/force_chains.js';
 import { BoundaryView } from './view/boundary.js';
 import { particleColours, hexToRgb } from './view/colours.js';
-import { QUANTITIES, frameRange, partSizes } from './view/quantities.js';
+import { QUANTITIES, frameRange, partSizes, widen } from './view/quantities.js';
 import { addStats } from './formats/stats.js';
 import { wireControls } from './view/controls.js';
 import { Playback } from './view/playback.js';
@@ -143,9 +143,11 @@ export class Viewer {
       this.frameIndex = Math.max(0, this.frameIndex - drop);
     }
     this.extendBounds(frame);
-    for (const [mode, range] of this.runRanges) {
-      const more = range && frameRange(QUANTITIES[mode], frame, this.colourContext());
-      if (more) this.runRanges.set(mode, [Math.min(range[0], more[0]), Math.max(range[1], more[1])]);
+    if (this.runRanges.size) {
+      const context = this.colourContext();
+      for (const [mode, range] of this.runRanges) {
+        if (range) this.runRanges.set(mode, widen(range, frameRange(QUANTITIES[mode], frame, context)));
+      }
     }
     if (first) {
       this.frameCamera();
@@ -298,15 +300,22 @@ export class Viewer {
     return { reference, referenceIndex: reference ? this.indexOfId(reference) : () => -1, partSizes };
   }
 
+  // The colour map the current mode draws with: its own (Part's green to red), or the one chosen.
+  colourMapName() {
+    const quantity = QUANTITIES[this.settings.colourMode];
+    return (quantity && quantity.map) || this.settings.colourMap;
+  }
+
   // The colour scale's [min, max] for the current mode: over the run (as the legacy bar), over the
-  // frame shown, or as set by hand; null for Part and Constant colour.
-  colourRange() {
+  // frame shown, or as set by hand (`rangeMode`: 'run', 'frame', 'manual'; the one chosen by
+  // default); null for Parts and Constant colour.
+  colourRange(rangeMode = this.settings.colourRangeMode) {
     const mode = this.settings.colourMode;
     const quantity = QUANTITIES[mode];
     if (!quantity || !this.bounds) return null;
     const s = this.settings;
-    if (s.colourRangeMode === 'manual') return s.colourRangeManual;
-    if (s.colourRangeMode === 'frame') {
+    if (rangeMode === 'manual') return s.colourRangeManual;
+    if (rangeMode === 'frame') {
       const frame = this.currentFrame();
       return frame ? frameRange(quantity, frame, this.colourContext()) : null;
     }
@@ -315,10 +324,7 @@ export class Viewer {
     if (!this.runRanges.has(mode)) {
       let range = null;
       const context = this.colourContext();
-      for (const frame of this.run.frames) {
-        const r = frameRange(quantity, frame, context);
-        if (r) range = range ? [Math.min(range[0], r[0]), Math.max(range[1], r[1])] : r;
-      }
+      for (const frame of this.run.frames) range = widen(range, frameRange(quantity, frame, context));
       this.runRanges.set(mode, range);
     }
     return this.runRanges.get(mode);
@@ -338,8 +344,7 @@ export class Viewer {
         max[c] = Math.max(max[c], p[k * 3 + c] + r[k]);
       }
     }
-    const direction = this.stage.camera.getWorldDirection(this.stage.camera.position.clone());
-    this.stage.frame(min, max, { planar: Boolean(frame.planar), direction: [direction.x, direction.y, direction.z] });
+    this.stage.frame(min, max, { planar: Boolean(frame.planar), direction: this.stage.viewDirection() });
   }
 
   // The mean position of the particles left by the section (the camera's target when following).
@@ -411,7 +416,7 @@ export class Viewer {
     this.drawnCount = drawn;
 
     particleColours(frame, s.colourMode, this.colourRange() || [0, 1], hexToRgb(s.constantColour), this.colours,
-                    { quantity: QUANTITIES[s.colourMode] || null, context: this.colourContext(), map: s.colourMap });
+                    { quantity: QUANTITIES[s.colourMode] || null, context: this.colourContext(), map: this.colourMapName() });
     this.particles.draw(frame, this.visible, drawn, this.colours);
     this.particles.setVisible(!s.showChains || s.chainShowParticles);
 

@@ -21,7 +21,18 @@ const GREY = [[0, [0.08, 0.08, 0.08]], [1, [0.92, 0.92, 0.92]]];
 const PART_SIZE = [[0, [0.13, 0.63, 0.17]], [0.5, [0.95, 0.8, 0.1]], [1, [0.84, 0.1, 0.1]]];
 
 export const COLOUR_MAPS = { legacy: LEGACY, viridis: VIRIDIS, grey: GREY, partSize: PART_SIZE };
-const STOPS = LEGACY;
+const stopsOf = (map) => COLOUR_MAPS[map] || LEGACY;
+
+// An sRGB colour [r, g, b] in [0, 1] as CSS.
+export function cssColour(c) {
+  return `rgb(${c.map((v) => Math.round(v * 255)).join(',')})`;
+}
+
+// Where v stands in [lo, hi] on a log scale, 0 to 1 (1 when the range is a single value).
+export function logPosition(v, lo, hi) {
+  const l0 = Math.log(Math.max(lo, 1e-300)), l1 = Math.log(Math.max(hi, 1e-300));
+  return l1 > l0 ? (Math.log(v) - l0) / (l1 - l0) : 1;
+}
 
 // The colour of t in [0, 1] on `stops` into out[offset..offset+2] (linear between the stops).
 function onStops(stops, t, out, offset) {
@@ -39,19 +50,12 @@ function onStops(stops, t, out, offset) {
 
 // Writes map `map`'s colour (sRGB) of t in [0, 1] into out[offset..offset+2].
 export function onMap(map, t, out, offset = 0) {
-  return onStops(COLOUR_MAPS[map] || STOPS, t, out, offset);
-}
-
-// Writes the legacy map's colour of t in [0, 1] into out[offset..offset+2].
-export function blueToRed(t, out, offset = 0) {
-  return onStops(LEGACY, t, out, offset);
+  return onStops(stopsOf(map), t, out, offset);
 }
 
 // The CSS gradient of the bar for a map (the legacy one by default).
 export function barGradient(map = 'legacy') {
-  const stops = COLOUR_MAPS[map] || STOPS;
-  return `linear-gradient(to right, ${stops.map(([t, c]) =>
-    `rgb(${c.map((v) => Math.round(v * 255)).join(',')}) ${t * 100}%`).join(', ')})`;
+  return `linear-gradient(to right, ${stopsOf(map).map(([t, c]) => `${cssColour(c)} ${t * 100}%`).join(', ')})`;
 }
 
 // Distinct colours for "Part" (the cluster a particle belongs to: a block of a landslide, a
@@ -98,7 +102,7 @@ const LUT_SIZE = 256;
 const LUTS = new Map();
 function lutOf(map) {
   if (!LUTS.has(map)) {
-    const stops = COLOUR_MAPS[map] || STOPS;
+    const stops = stopsOf(map);
     const lut = new Float32Array(LUT_SIZE * 3);
     for (let k = 0; k < LUT_SIZE; k++) {
       onStops(stops, k / (LUT_SIZE - 1), lut, k * 3);
@@ -118,25 +122,23 @@ export function mapLinear(t, out, offset, lut = lutOf('legacy')) {
 }
 
 // Linear RGB for each particle of `frame` (3 floats each): by a quantity (quantities.js; `quantity`
-// with its `context`) on colour map `map` over range [lo, hi], or in mode 'constant' (rgb) or 'part'.
+// with its `context`) on colour map `map` over range [lo, hi], or in mode 'constant' (rgb) or 'parts'.
 export function particleColours(frame, mode, range, rgb, out, { quantity = null, context = null, map = 'legacy' } = {}) {
   const n = frame.count;
   const [lo, hi] = range;
   const scale = hi > lo ? 1 / (hi - lo) : 0;
   if (quantity && quantity.log) {
-    const lut = lutOf(quantity.map || map);
-    const l0 = Math.log(Math.max(lo, 1e-300)), l1 = Math.log(Math.max(hi, 1e-300));
-    const logScale = l1 > l0 ? 1 / (l1 - l0) : 0;
+    const lut = lutOf(map);
     for (let k = 0; k < n; k++) {
       const v = quantity.value(frame, k, context);
       if (!(v > 0)) {
         out[k * 3] = out[k * 3 + 1] = out[k * 3 + 2] = srgbToLinear(0.6); // no part written: grey
         continue;
       }
-      mapLinear(logScale > 0 ? (Math.log(v) - l0) * logScale : 1, out, k * 3, lut);
+      mapLinear(logPosition(v, lo, hi), out, k * 3, lut);
     }
   } else if (quantity) {
-    const lut = lutOf(quantity.map || map);
+    const lut = lutOf(map);
     for (let k = 0; k < n; k++) mapLinear((quantity.value(frame, k, context) - lo) * scale, out, k * 3, lut);
   } else if (mode === 'parts') {
     const cache = new Map(); // few parts, many particles

@@ -1,13 +1,13 @@
 // Wires the side panel (index.html; ids in docs/viewer.md) to the Viewer, and keeps the read-outs
 // (counts, time, step, colour bar range, slider positions) in step with what is drawn.
 
-import { barGradient, formatValue, COLOUR_MAPS, onMap } from './colours.js';
+import { barGradient, formatValue, COLOUR_MAPS, onMap, cssColour, logPosition } from './colours.js';
 import { counted } from '../words.js';
 import { QUANTITIES, largestParts } from './quantities.js';
+import { savePicture, Recorder } from './capture.js';
 
 // Part mode lists this many of the frame's largest parts.
 const PARTS_LISTED = 5;
-import { savePicture, Recorder } from './capture.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -28,9 +28,7 @@ export function wireControls(viewer) {
     s.colourMode = $('colour-mode').value;
     if (s.colourRangeMode === 'manual') {
       // a hand-set range belongs to the quantity it was set for: start the new one at its run's range
-      s.colourRangeMode = 'run';
-      s.colourRangeManual = [...(viewer.colourRange() || [0, 1])];
-      s.colourRangeMode = 'manual';
+      s.colourRangeManual = [...(viewer.colourRange('run') || [0, 1])];
       fillRangeInputs(viewer, true);
     }
     viewer.set({});
@@ -71,12 +69,7 @@ export function wireControls(viewer) {
   // Section: along an axis, or along the camera's direction when chosen (a plane through the view)
   on('section-axis', 'change', () => {
     const choice = $('section-axis').value;
-    let axis = { x: [1, 0, 0], y: [0, 1, 0], z: [0, 0, 1] }[choice];
-    if (!axis) {
-      const d = stage.camera.getWorldDirection(stage.camera.position.clone());
-      axis = [d.x, d.y, d.z];
-    }
-    viewer.set({ sectionAxis: axis });
+    viewer.set({ sectionAxis: { x: [1, 0, 0], y: [0, 1, 0], z: [0, 0, 1] }[choice] || stage.viewDirection() });
   });
   // the two sliders never cross (Front stays left of Rear)
   on('section-front', 'input', () => {
@@ -181,18 +174,14 @@ function refresh(viewer) {
   // no scale to read in Part and Constant modes: the constant colour alone, or no bar
   const bar = $('colour-bar');
   bar.hidden = mode === 'parts';
-  const map = (QUANTITIES[mode] && QUANTITIES[mode].map) || viewer.settings.colourMap;
-  bar.style.background = mode === 'constant' ? viewer.settings.constantColour : barGradient(map);
+  bar.style.background = mode === 'constant' ? viewer.settings.constantColour : barGradient(viewer.colourMapName());
   // Part: the largest parts of the frame, with their colours
   const legend = $('part-legend');
   legend.hidden = mode !== 'part' || !frame;
   if (!legend.hidden) {
-    const colour = [0, 0, 0];
+    const [lo, hi] = range || [1, 1];
     legend.innerHTML = largestParts(frame, PARTS_LISTED).map(({ part, size }) => {
-      const [lo, hi] = range || [1, 1];
-      const t = hi > lo ? (Math.log(size) - Math.log(lo)) / (Math.log(hi) - Math.log(lo)) : 1;
-      onMap('partSize', t, colour);
-      const css = `rgb(${colour.map((c) => Math.round(c * 255)).join(',')})`;
+      const css = cssColour(onMap(viewer.colourMapName(), logPosition(size, lo, hi), [0, 0, 0]));
       return `<li><span class="swatch" style="background:${css}"></span>part ${part}: ${counted(size, 'particle')}</li>`;
     }).join('');
   }
@@ -274,10 +263,7 @@ function drawLegend(viewer, g, width, height) {
   g.fillText(title, x, y - 18 * scale);
   if (range) {
     const gradient = g.createLinearGradient(x, 0, x + barW, 0);
-    const quantity = QUANTITIES[viewer.settings.colourMode];
-    for (const [t, c] of COLOUR_MAPS[(quantity && quantity.map) || viewer.settings.colourMap] || COLOUR_MAPS.legacy) {
-      gradient.addColorStop(t, `rgb(${c.map((v) => Math.round(v * 255)).join(',')})`);
-    }
+    for (const [t, c] of COLOUR_MAPS[viewer.colourMapName()]) gradient.addColorStop(t, cssColour(c));
     g.fillStyle = gradient;
     g.fillRect(x, y, barW, barH);
     g.strokeStyle = '#5b6775';

@@ -61,6 +61,12 @@ export function partSizes(frame) {
   return sizes;
 }
 
+// [min, max] widened to take in `more` (either may be null).
+export function widen(range, more) {
+  if (!range || !more) return range || more;
+  return [Math.min(range[0], more[0]), Math.max(range[1], more[1])];
+}
+
 // [min, max] of a quantity over a frame's particles (NaN values skipped); null when none.
 export function frameRange(quantity, frame, context) {
   let lo = Infinity, hi = -Infinity;

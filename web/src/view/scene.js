@@ -170,6 +170,12 @@ export class Stage {
     this.requestRender();
   }
 
+  // Where the camera looks, as [x, y, z] (a unit vector).
+  viewDirection() {
+    const d = this.camera.getWorldDirection(new THREE.Vector3());
+    return [d.x, d.y, d.z];
+  }
+
   // The light's direction in view space (towards the light), for the sphere impostor shader.
   lightDirectionInView(out) {
     out.copy(this.light.position).sub(this.light.target.position).normalize();
