@@ -4,14 +4,9 @@
 // parsing beside a file load goes on). When no module worker can be started (an old browser, or the
 // page opened from file://), the same parser runs on the main thread, in chunks.
 
-import { parseBlob } from './parse.js';
+import { parseBlob, cancelled } from './parse.js';
 
 let workersBroken = false;
-
-// The error a parse cancelled through its AbortSignal rejects with.
-export function cancelled() {
-  return new DOMException('the load was cancelled', 'AbortError');
-}
 
 function startWorker() {
   if (workersBroken) return null;

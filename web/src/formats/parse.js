@@ -94,13 +94,18 @@ export function parseText(text) {
   return parse.finish();
 }
 
+// The error a cancelled parse rejects with (an AbortSignal's abort).
+export function cancelled() {
+  return new DOMException('the load was cancelled', 'AbortError');
+}
+
 // Reads a Blob/File in pieces so that neither the text nor the parse blocks for long, and reports
 // progress as a fraction. Works in a worker and on the main thread.
 export async function parseBlob(blob, onProgress = () => {}, chunkBytes = 4 << 20, signal = null) {
   const parse = new ChunkedParse();
   const decoder = new TextDecoder('utf-8');
   for (let at = 0; at < blob.size; at += chunkBytes) {
-    if (signal && signal.aborted) throw new DOMException('the load was cancelled', 'AbortError');
+    if (signal && signal.aborted) throw cancelled();
     const bytes = await blob.slice(at, Math.min(at + chunkBytes, blob.size)).arrayBuffer();
     const more = parse.push(decoder.decode(bytes, { stream: at + chunkBytes < blob.size }));
     onProgress(Math.min(at + chunkBytes, blob.size) / blob.size);
