@@ -152,13 +152,11 @@ export async function keepPage(page, testInfo, name) {
   await keep(testInfo, name, await page.screenshot());
 }
 
-// Decodes one or two PNGs in the browser and measures them: the size and the number of distinct
-// colours (sampled) of the first, and with a second the share of pixels (0 to 1) with a channel
-// that differs by more than 8 of 255 (so that dithering and rounding do not count; 1 when the sizes
-// differ).
-async function measurePngs(page, a, b) {
-  return page.evaluate(async ([a64, b64]) => {
-    const pixels = async (data) => {
+// Runs `measure(images, arg)` in the page on PNGs decoded there (each an ImageData). `measure` is
+// sent as its source: it sees only its arguments, not this file's names.
+async function onPixels(page, pngs, measure, arg = null) {
+  return page.evaluate(async ([pngs64, source, arg]) => {
+    const decode = async (data) => {
       const img = new Image();
       img.src = `data:image/png;base64,${data}`;
       await img.decode();
@@ -168,14 +166,22 @@ async function measurePngs(page, a, b) {
       g.drawImage(img, 0, 0);
       return g.getImageData(0, 0, c.width, c.height);
     };
-    const pa = await pixels(a64);
+    const images = await Promise.all(pngs64.map(decode));
+    return new Function(`return (${source});`)()(images, arg);
+  }, [pngs.map((png) => png.toString('base64')), measure.toString(), arg]);
+}
+
+// Measures one or two PNGs: the size and the number of distinct colours (sampled) of the first, and
+// with a second the share of pixels (0 to 1) with a channel that differs by more than 8 of 255 (so
+// that dithering and rounding do not count; 1 when the sizes differ).
+async function measurePngs(page, a, b) {
+  return onPixels(page, b ? [a, b] : [a], ([pa, pb]) => {
     const seen = new Set();
     const stride = Math.max(1, Math.floor(pa.data.length / 4 / 200000)) * 4;
     for (let i = 0; i < pa.data.length; i += stride)
       seen.add((pa.data[i] << 24) | (pa.data[i + 1] << 16) | (pa.data[i + 2] << 8) | pa.data[i + 3]);
     const out = { width: pa.width, height: pa.height, colours: seen.size, differ: null };
-    if (b64 === null) return out;
-    const pb = await pixels(b64);
+    if (!pb) return out;
     if (pa.width !== pb.width || pa.height !== pb.height) return { ...out, differ: 1 };
     let differ = 0;
     for (let i = 0; i < pa.data.length; i += 4) {
@@ -183,7 +189,7 @@ async function measurePngs(page, a, b) {
           Math.abs(pa.data[i + 2] - pb.data[i + 2]) > 8) differ++;
     }
     return { ...out, differ: differ / (pa.width * pa.height) };
-  }, [a.toString('base64'), b ? b.toString('base64') : null]);
+  });
 }
 
 // Distinct colours in a PNG (sampled): a blank picture has one or two.
@@ -211,25 +217,21 @@ export const closeTo = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(Math.abs(a),
 // `region` ({ x, y, width, height }, optional; negative x and y count from the right and bottom)
 // limits the count to part of the picture.
 export async function countPixels(page, png, kinds, region = null) {
-  return page.evaluate(async ([b64, kinds, region]) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.naturalWidth; c.height = img.naturalHeight;
-    const g = c.getContext('2d');
-    g.drawImage(img, 0, 0);
-    const r = region || { x: 0, y: 0, width: c.width, height: c.height };
-    const x0 = r.x < 0 ? c.width + r.x : r.x, y0 = r.y < 0 ? c.height + r.y : r.y;
-    const d = g.getImageData(x0, y0, r.width, r.height).data;
+  return onPixels(page, [png], ([image], { kinds, region }) => {
+    const r = region || { x: 0, y: 0, width: image.width, height: image.height };
+    const x0 = r.x < 0 ? image.width + r.x : r.x, y0 = r.y < 0 ? image.height + r.y : r.y;
     const tests = Object.entries(kinds).map(([name, source]) => [name, new Function(`return (${source});`)()]);
     const counts = Object.fromEntries(tests.map(([name]) => [name, 0]));
-    for (let i = 0; i < d.length; i += 4) {
-      const x = x0 + ((i / 4) % r.width), y = y0 + Math.floor(i / 4 / r.width);
-      for (const [name, test] of tests) if (test(d[i], d[i + 1], d[i + 2], x, y)) counts[name] += 1;
+    for (let y = y0; y < y0 + r.height; y++) {
+      for (let x = x0; x < x0 + r.width; x++) {
+        if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+        const i = (y * image.width + x) * 4;
+        const d = image.data;
+        for (const [name, test] of tests) if (test(d[i], d[i + 1], d[i + 2], x, y)) counts[name] += 1;
+      }
     }
     return counts;
-  }, [png.toString('base64'), kinds, region]);
+  }, { kinds, region });
 }
 
 // Submits the bundled demo case for `duration` s from the page's case form; returns the new job
