@@ -1,29 +1,15 @@
 // Builds web/dist/: bundles src/main.js -> viewer.js and the parse worker -> parse_worker.js (both ES
 // modules), and copies index.html and style.css. `node build.mjs --dev` keeps the code readable and
 // writes source maps.
-//
-// src/live/panel.js is written separately (the live panel). While it does not exist, the import of
-// it in main.js resolves to an empty module, so the offline viewer always builds.
 
 import * as esbuild from 'esbuild';
-import { copyFileSync, existsSync, mkdirSync, rmSync } from 'node:fs';
+import { copyFileSync, mkdirSync, rmSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const root = dirname(fileURLToPath(import.meta.url));
 const dist = join(root, 'dist');
 const dev = process.argv.includes('--dev');
-
-const optionalLivePanel = {
-  name: 'optional-live-panel',
-  setup(build) {
-    build.onResolve({ filter: /^\.\/live\/panel\.js$/ }, (args) => {
-      const file = join(args.resolveDir, 'live', 'panel.js');
-      return existsSync(file) ? { path: file } : { path: 'live-panel', namespace: 'optional' };
-    });
-    build.onLoad({ filter: /.*/, namespace: 'optional' }, () => ({ contents: 'export {};', loader: 'js' }));
-  },
-};
 
 rmSync(dist, { recursive: true, force: true });
 mkdirSync(dist, { recursive: true });
@@ -42,7 +28,6 @@ await esbuild.build({
   ...common,
   entryPoints: { viewer: join(root, 'src/main.js'), parse_worker: join(root, 'src/formats/parse_worker.js') },
   outdir: dist,
-  plugins: [optionalLivePanel],
 });
 
 for (const file of ['index.html', 'style.css']) copyFileSync(join(root, file), join(dist, file));

@@ -521,10 +521,9 @@ function start() {
     if (event.dataTransfer && event.dataTransfer.files.length) loadFiles(viewer, [...event.dataTransfer.files]);
   });
 
-  // The live panel (src/live/panel.js) is optional: the build supplies an empty module when the
-  // file does not exist, and a failure in it must not take the offline viewer down.
+  // The server's side (src/live/): a failure in it must not take the offline viewer down.
   import('./live/panel.js')
-    .then((module) => module.initLivePanel && module.initLivePanel(viewer))
+    .then((module) => module.initLivePanel(viewer))
     .catch((error) => viewer.message(`live panel: ${error.message}`, true));
 }
 

@@ -1,7 +1,7 @@
 // The charts' axes are labelled at round numbers (src/live/ticks.js): steps of 1, 2 or 5 times a
 // power of ten, the axis widened to the ticks around the data. No browser.
 import { test, expect } from '@playwright/test';
-import { niceTicks, decadeTicks } from '../src/live/ticks.js';
+import { niceTicks, decadeTicks, tickLabels } from '../src/live/ticks.js';
 
 const round = (v, step) => Math.abs(v / step - Math.round(v / step)) < 1e-6;
 
@@ -31,4 +31,14 @@ test('a log axis is labelled at whole decades', () => {
   const wide = decadeTicks(1e-12, 1e6);
   expect(wide.ticks.length).toBeLessThanOrEqual(8);
   expect(wide.min).toBe(1e-12);
+});
+
+test('an axis is labelled in one format, without trailing zeros', () => {
+  // a log axis over 1e-5 .. 10 had "1.00e-5", "1.00e-4", "0.001", "0.01", "0.1", "1", "10"
+  expect(tickLabels(decadeTicks(2e-5, 8).ticks, true)).toEqual(['1e-5', '1e-4', '1e-3', '1e-2', '1e-1', '1e0', '1e1']);
+  expect(tickLabels(decadeTicks(0.03, 400).ticks, true)).toEqual(['0.01', '0.1', '1', '10', '100', '1000']);
+  expect(tickLabels([0, 2e5, 4e5, 6e5], false)).toEqual(['0', '2e5', '4e5', '6e5']);
+  expect(tickLabels([0, 0.5, 1, 1.5], false)).toEqual(['0', '0.5', '1', '1.5']);
+  expect(tickLabels([0, 2.5e-4, 5e-4], false)).toEqual(['0', '2.5e-4', '5e-4']);
+  expect(tickLabels([51840, 51850, 51860], false)).toEqual(['51840', '51850', '51860']);
 });

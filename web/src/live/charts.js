@@ -9,13 +9,14 @@
 // number of points of its first series). Click a chart to switch its y axis between linear and
 // logarithmic (positive values only).
 
-import { niceTicks, decadeTicks } from './ticks.js';
+import { niceTicks, decadeTicks, tickLabels } from './ticks.js';
 import { download } from '../view/capture.js';
 
 // A live series keeps at most this many points: when full, every other point is dropped.
 const LIVE_POINTS = 10000;
 
-const COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd'];
+// Tableau's ten: distinct for the runs of a study overlaid, the first five for a job's series.
+const COLOURS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#7f7f7f', '#bcbd22', '#17becf'];
 
 const DEFINITIONS = [
   { id: 'kinetic-energy', title: 'Kinetic energy', y: 'kinetic energy (J)', series: ['kinetic energy'] },
@@ -25,15 +26,6 @@ const DEFINITIONS = [
   { id: 'largest-fragment', title: 'Largest fragment', y: 'particles (count)', series: ['largest fragment'] },
   { id: 'fragments', title: 'Fragments', y: 'fragments (count)', series: ['fragments'] },
 ];
-
-// Numbers as axis labels: short, with an exponent for very large or small magnitudes.
-export function formatTick(v) {
-  if (!Number.isFinite(v)) return '';
-  if (v === 0) return '0';
-  const a = Math.abs(v);
-  if (a >= 1e5 || a < 1e-3) return v.toExponential(2).replace('e+', 'e');
-  return Number(v.toPrecision(a >= 1000 ? 5 : 3)).toString();
-}
 
 // Parses the rows of a statistics file (docs/formats.md section 5): whitespace-separated reals, one
 // row per line; blank lines skipped; a row with another column count (a cut last line) ends the read.
@@ -53,30 +45,31 @@ export function parseRows(text, columns) {
   return rows;
 }
 
-// The charts' own look (the page's style.css is the core's): a grid of charts, added once.
-const STYLE = `
-#charts.live-charts:not(:empty) { display: grid; grid-template-columns: repeat(auto-fill, minmax(300px, 1fr));
-  gap: 4px 12px; padding: 6px 10px; }
-#charts.live-charts .chart { position: relative; }
-#charts.live-charts .chart canvas { width: 100%; height: 150px; display: block; cursor: pointer; }
-#charts.live-charts .chart-export { display: flex; justify-content: flex-end; gap: 2px; }
-#charts.live-charts .chart-export button { font-size: 10px; padding: 0 4px; }
-`;
+// The canvas's CSS height with a legend of one line (style.css has the same).
+const BASE_HEIGHT = 150;
 
-function addStyle() {
-  if (typeof document === 'undefined' || document.getElementById('live-charts-style')) return;
-  const style = document.createElement('style');
-  style.id = 'live-charts-style';
-  style.textContent = STYLE;
-  document.head.appendChild(style);
+// The series' names in lines no wider than `width`: [{ series, width }].
+function legendLines(g, series, width) {
+  const lines = [];
+  for (const s of series) {
+    const w = g.measureText(s.name).width;
+    const line = lines[lines.length - 1];
+    if (line && line.width + 12 + w <= width) {
+      line.series.push(s);
+      line.width += 12 + w;
+    } else {
+      lines.push({ series: [s], width: w });
+    }
+  }
+  return lines;
 }
 
-class Chart {
+export class Chart {
   constructor(container, def, order) {
     this.container = container;
     this.order = order;
     this.def = def;
-    this.series = def.series.map((name, k) => ({ name, colour: COLOURS[k % COLOURS.length], x: [], y: [] }));
+    this.setSeries(def.series);
     this.log = false;
     this.unit = '';
     this.cursor = NaN;
@@ -113,8 +106,13 @@ class Chart {
     // Attached to the container only while it has data (#charts stays :empty without any).
   }
 
+  // The series by name, each empty (a study's runs).
+  setSeries(names) {
+    this.series = names.map((name, k) => ({ name, colour: COLOURS[k % COLOURS.length], x: [], y: [] }));
+  }
+
   points() {
-    return this.series[0].x.length;
+    return this.series.length ? this.series[0].x.length : 0;
   }
 
   // The chart's numbers: a header naming the columns and units, then a row a point, in full precision.
@@ -197,12 +195,15 @@ class Chart {
 
     const title = `${this.def.title}${this.log ? ' (log scale)' : ''}`;
     const shown = this.series.filter((s) => s.x.length);
-    const legendWidth = shown.length > 1 ? shown.reduce((w, s) => w + g.measureText(s.name).width + 12, -12) : 0;
     const left = 64;
     const right = 10;
-    // The legend goes right of the title when they fit side by side, else on a line of its own.
-    const legendBelow = shown.length > 1 && g.measureText(title).width + 16 + legendWidth > cssWidth - left - right;
-    const top = legendBelow ? 32 : 20;
+    // The legend (more than one series with data) goes right of the title when it fits there, else
+    // on lines of its own below it, as many as its names need (a study's runs); the canvas grows.
+    const legend = shown.length > 1 ? legendLines(g, shown, cssWidth - left - right) : [];
+    const legendBeside = legend.length === 1 && g.measureText(title).width + 16 + legend[0].width <= cssWidth - left - right;
+    const top = legend.length && !legendBeside ? 18 + 13 * legend.length : 20;
+    const wanted = `${BASE_HEIGHT + (legendBeside ? 0 : 13 * Math.max(0, legend.length - 1))}px`;
+    if (canvas.style.height !== wanted) canvas.style.height = wanted; // the next drawing has its size
     const bottom = 32;
     const plotW = Math.max(10, cssWidth - left - right);
     const plotH = Math.max(10, cssHeight - top - bottom);
@@ -268,10 +269,13 @@ class Chart {
     g.globalAlpha = 1;
     g.textBaseline = 'top';
     g.textAlign = 'center';
-    for (const t of xAxis.ticks) g.fillText(formatTick(t), px(t), top + plotH + 5);
+    const xLabels = tickLabels(xAxis.ticks);
+    xAxis.ticks.forEach((t, k) => g.fillText(xLabels[k], px(t), top + plotH + 5));
     g.textAlign = 'right';
     g.textBaseline = 'middle';
-    for (const t of yAxis.ticks) g.fillText(formatTick(t), left - 6, py(t));
+    const yLabels = tickLabels(yAxis.ticks, useLog);
+    this.labels = { x: xLabels, y: yLabels }; // what the last picture wrote (for tests)
+    yAxis.ticks.forEach((t, k) => g.fillText(yLabels[k], left - 6, py(t)));
     // Axis labels.
     g.textAlign = 'center';
     g.textBaseline = 'bottom';
@@ -291,13 +295,16 @@ class Chart {
       g.fillStyle = s.colour;
       g.beginPath();
       let started = false;
-      let column = NaN, lo = 0, hi = 0, last = 0;
+      // a column's first point, its extremes, then its last: the line enters and leaves the
+      // column where the data does (a count's jump is a step, not a slope from the left)
+      let column = NaN, first = 0, lo = 0, hi = 0, last = 0;
       const flush = () => {
         if (Number.isNaN(column)) return;
         if (!started) {
-          g.moveTo(column, lo);
+          g.moveTo(column, first);
           started = true;
-        } else g.lineTo(column, lo);
+        } else g.lineTo(column, first);
+        if (lo !== first) g.lineTo(column, lo);
         if (hi !== lo) g.lineTo(column, hi);
         if (last !== hi) g.lineTo(column, last);
       };
@@ -309,7 +316,7 @@ class Chart {
         if (cx !== column) {
           flush();
           column = cx;
-          lo = hi = last = cy;
+          first = lo = hi = last = cy;
         } else {
           lo = Math.min(lo, cy);
           hi = Math.max(hi, cy);
@@ -339,19 +346,19 @@ class Chart {
       g.restore();
     }
 
-    // Legend for charts with more than one series with data.
-    if (shown.length > 1) {
-      g.textAlign = 'right';
-      g.textBaseline = 'top';
-      const y = legendBelow ? 16 : 3;
+    // The legend, each line right-aligned.
+    g.textAlign = 'right';
+    g.textBaseline = 'top';
+    legend.forEach((line, row) => {
+      const y = legendBeside ? 3 : 16 + 13 * row;
       let x = left + plotW;
-      for (let k = shown.length - 1; k >= 0; k--) {
-        const s = shown[k];
+      for (let k = line.series.length - 1; k >= 0; k--) {
+        const s = line.series[k];
         g.fillStyle = s.colour;
         g.fillText(s.name, x, y);
         x -= g.measureText(s.name).width + 12;
       }
-    }
+    });
   }
 
   yLabel() {
@@ -359,16 +366,16 @@ class Chart {
   }
 }
 
-// The charts of one job. All methods are safe to call when #charts is missing (they do nothing).
+// A set of charts in one container: a job's (the methods below), or a study's (studies.js). All
+// methods are safe to call when #charts is missing (they do nothing).
 export class Charts {
-  constructor(container) {
+  // definitions: the charts ({ id, title, y, unitKey, series }), a job's by default.
+  constructor(container, definitions = DEFINITIONS) {
     this.container = container || null;
     this.charts = new Map();
     this.pending = false;
     if (!this.container) return;
-    addStyle();
-    this.container.classList.add('live-charts');
-    DEFINITIONS.forEach((def, k) => this.charts.set(def.id, new Chart(this.container, def, k)));
+    definitions.forEach((def, k) => this.charts.set(def.id, new Chart(this.container, def, k)));
     if (typeof ResizeObserver === 'function') {
       this.resize = new ResizeObserver(() => this.redraw());
       this.resize.observe(this.container);
@@ -387,10 +394,9 @@ export class Charts {
     this.redraw();
   }
 
-  // The length unit of the files ("m", "cm", "mm"; "" when unknown) for the displacement axis.
+  // The length unit of the files ("m", "cm", "mm"; "" when unknown) for the lengths' axes.
   setLengthUnit(unit) {
-    const c = this.chart('plate-displacement');
-    if (c) c.unit = unit || 'file length unit';
+    for (const c of this.charts.values()) if (c.def.unitKey === 'length') c.unit = unit || 'file length unit';
     this.redraw();
   }
 
@@ -473,8 +479,11 @@ export class Charts {
       series[k][1].push(counts[k]);
     };
     if (rows.length) for (let k = 0; k < 3; k++) push(k, Math.min(0, rows[0][0]));
+    // a staircase: the count before each break, then after it, at its time
     for (const r of rows) {
       const mode = r[3] === 2 ? 2 : 1;
+      push(0, r[0]);
+      push(mode, r[0]);
       counts[0] += 1;
       counts[mode] += 1;
       push(0, r[0]);

@@ -205,3 +205,14 @@ export function openFrames(jobId, { forceChains = false, onMessage, onClose, onE
 export function setForceChains(socket, on) {
   if (socket && socket.readyState === 1) socket.send(JSON.stringify({ forceChains: !!on }));
 }
+
+// GET /api/studies: the parameter studies, as GET /api/studies/{id} gives each.
+export async function listStudies() {
+  const body = await json('/api/studies');
+  return (body && body.studies) || [];
+}
+
+// GET /api/studies/{id}: the study, with its runs' jobs and parameter values.
+export function getStudy(studyId) {
+  return json(`/api/studies/${id(studyId)}`);
+}

@@ -39,3 +39,25 @@ function clean(v, step) {
   const r = Number(v.toFixed(Math.min(decimals, 20)));
   return r === 0 ? 0 : r;
 }
+
+// One number as a label: short, an exponent for very large or small magnitudes, no trailing zeros
+// ("2.5e-4", "4e5", "0.5", "51840").
+function label(v) {
+  if (!Number.isFinite(v)) return '';
+  if (v === 0) return '0';
+  const a = Math.abs(v);
+  if (a >= 1e5 || a < 1e-3) return exponential(v);
+  return Number(v.toPrecision(a >= 1000 ? 5 : 3)).toString();
+}
+
+function exponential(v) {
+  return v.toExponential(2).replace(/\.?0+e/, 'e').replace('e+', 'e');
+}
+
+// The labels of an axis's ticks, all in one format: on a log axis that reaches an exponent, every
+// decade as one (1e-5 ... 1e1, not 1e-4 beside 0.001).
+export function tickLabels(ticks, log = false) {
+  const labels = ticks.map(label);
+  if (log && labels.some((l) => l.includes('e'))) return ticks.map(exponential);
+  return labels;
+}

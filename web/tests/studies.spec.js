@@ -1,0 +1,88 @@
+// A parameter study's runs overlaid in the charts (src/live/studies.js): three runs of a bonded
+// block under a cyclically loaded plate, the plate's peak load the parameter; each line checked
+// against its job's own file.
+import fs from 'node:fs';
+import { test, expect, serverUrl, openViewer, countPixels, keepPage } from './helpers.js';
+
+const BASE = {
+  name: 'block under a plate',
+  materials: [{ name: 'rock', density: 2500, youngsModulus: 1e7, poissonRatio: 0.25 },
+              { name: 'steel', rigid: true, density: 7800 }],
+  interactions: [{ a: 'rock', b: 'rock', restitution: 0.5, friction: 0.5 },
+                 { a: 'rock', b: 'steel', restitution: 0.5, friction: 0.5 }],
+  contact: { normal: 'HERTZ' },
+  lattices: [{ kind: 'CUBIC', min: { x: 0, y: 0, z: 0.01 }, max: { x: 0.06, y: 0.06, z: 0.07 },
+               radius: 0.01, spacing: 1.0, material: 'rock' }],
+  bonds: { youngsModulus: 1e7, tensileStrength: 2e3, shearStrength: 2e3, gapTolerance: 0.01 },
+  walls: [{ name: 'floor', material: 'steel', plane: { point: { z: 0 }, normal: { z: 1 } } },
+          { name: 'press', material: 'steel', plate: { c1: { x: -0.1, y: -0.1, z: 0.08 }, c2: { x: 0.1, y: -0.1, z: 0.08 },
+            c3: { x: 0.1, y: 0.1, z: 0.08 }, c4: { x: -0.1, y: 0.1, z: 0.08 } },
+            load: { direction: { z: -1 }, mass: 0.5, cyclic: { fMin: 2, fMax: 30, frequency: 20, cycles: 2 } } }],
+  gravity: { z: -9.81 },
+  time: { steps: 6000 },
+  outputs: { everySteps: 200, lengthUnit: 'mm' },
+};
+const PEAKS = [10, 30, 60];
+const COLOURS = { first: [0x1f, 0x77, 0xb4], second: [0xd6, 0x27, 0x28], third: [0x2c, 0xa0, 0x2c] };
+
+test('a study\'s runs are overlaid in the charts, one line a run, and leave for a job', async ({ page, request }, testInfo) => {
+  test.setTimeout(240_000);
+  const api = (p) => `${serverUrl()}${p}`;
+  const made = await request.post(api('/api/v1/studies'), {
+    data: { name: 'peak load', base: BASE, parameters: [{ path: 'walls[1].load.cyclic.fMax', values: PEAKS }] },
+  });
+  expect(made.status(), await made.text()).toBe(201);
+  const study = await made.json();
+  await expect.poll(async () => (await (await request.get(api(`/api/v1/studies/${study.id}`))).json()).finished,
+                    { message: 'the study ends', timeout: 180_000 }).toBe(true);
+
+  await openViewer(page);
+  await page.locator('#live-studies summary').click();
+  const select = page.locator('#study-select');
+  await expect.poll(() => select.evaluate((s, id) => [...s.options].some((o) => o.value === String(id)), study.id),
+                    { message: '#study-select offers the study' }).toBe(true);
+  await select.selectOption(String(study.id));
+
+  const force = page.locator('canvas[data-chart="study-plate-force"]');
+  await expect(force).toBeVisible();
+  await expect(page.locator('#study-status')).toContainText('3 of 3 runs with time series');
+  const series = await page.evaluate(() => window.demLive.studies.charts.chart('study-plate-force').series
+    .map((s) => ({ name: s.name, x: s.x, y: s.y })));
+  expect(series.map((s) => s.name)).toEqual(PEAKS.map((p) => `fMax = ${p}`));
+  // each line is its own run's Force_Displacement.dat: time, and the force column
+  for (let k = 0; k < PEAKS.length; k++) {
+    const text = await (await request.get(api(`/api/v1/jobs/${study.jobs[k].job}/artifacts/Force_Displacement.dat`))).text();
+    const rows = text.trim().split('\n').map((l) => l.trim().split(/\s+/).map(Number));
+    expect(series[k].x.length, `${series[k].name}: a point a row`).toBe(rows.length);
+    expect(rows.length).toBeGreaterThan(10);
+    expect(series[k].x).toEqual(rows.map((r) => r[0]));
+    expect(series[k].y).toEqual(rows.map((r) => r[2]));
+  }
+  expect(series[0].y, 'the runs differ').not.toEqual(series[2].y);
+  await expect(page.locator('canvas[data-chart="study-plate-displacement"]')).toBeVisible();
+  await expect(page.locator('canvas[data-chart="study-broken-bonds"]')).toBeVisible();
+
+  // the three lines are drawn, each in its own colour
+  await page.waitForTimeout(300);
+  const png = await force.screenshot();
+  await testInfo.attach('study-plate-force.png', { body: png, contentType: 'image/png' });
+  await keepPage(page, testInfo, 'study-overlay');
+  const near = ([r, g, b]) => `(r, g, b) => Math.abs(r - ${r}) + Math.abs(g - ${g}) + Math.abs(b - ${b}) < 60`;
+  const counts = await countPixels(page, png, Object.fromEntries(Object.entries(COLOURS).map(([k, c]) => [k, near(c)])));
+  for (const [name, n] of Object.entries(counts)) expect(n, `pixels of the ${name} run's colour`).toBeGreaterThan(30);
+
+  // the overlay's numbers as CSV: a series a run
+  const [download] = await Promise.all([
+    page.waitForEvent('download'),
+    page.locator('.chart[data-chart="study-plate-force"] button[data-export="csv"]').click(),
+  ]);
+  const csv = fs.readFileSync(await download.path(), 'utf8').trim().split('\n');
+  expect(csv[0]).toBe('series,time (s),"force (N)"');
+  expect(new Set(csv.slice(1).map((l) => l.split(',')[0]))).toEqual(new Set(PEAKS.map((p) => `"fMax = ${p}"`)));
+
+  // a job chosen ends the overlay: its own charts only
+  await page.locator(`#jobs li[data-id="${study.jobs[1].job}"]`).click();
+  await expect(page.locator('canvas[data-chart^="study-"]')).toHaveCount(0);
+  await expect(select).toHaveValue('');
+  await expect(page.locator('canvas[data-chart="plate-force"]')).toBeVisible();
+});
