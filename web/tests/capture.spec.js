@@ -91,3 +91,27 @@ test('record downloads a WebM that Chromium plays', async ({ page, context }, te
   await keep(testInfo, 'webm-playing', await player.screenshot());
   await player.close();
 });
+
+test('print: the view as a picture with its legend, caption and time stamp, alone with the charts', async ({ page }, testInfo) => {
+  const frames = readAnimation(ANIMATION());
+  await openViewer(page);
+  await loadFiles(page, [ANIMATION()], frames.length);
+  await showFrame(page, frames.length - 1);
+  // what the Print button does before the browser's print dialog (which a headless page has not)
+  await page.evaluate(() => window.dispatchEvent(new Event('beforeprint')));
+  await page.emulateMedia({ media: 'print' });
+  await expect(page.locator('#side-panel')).toBeHidden();
+  await expect(page.locator('#view')).toBeHidden();
+  const picture = page.locator('#print-picture');
+  await expect(picture).toBeVisible();
+  await expect.poll(() => picture.evaluate((img) => img.naturalWidth), { message: 'the picture is decoded' }).toBeGreaterThan(100);
+  const caption = page.locator('#print-caption');
+  await expect(caption).toContainText(`step ${frames[frames.length - 1].step}`);
+  await expect(caption).toContainText('ANIMATION_3D.dat');
+  await expect(caption).toContainText(/printed \d{4}-\d\d-\d\d \d\d:\d\d/);
+  const sheet = await page.screenshot({ fullPage: true });
+  await keep(testInfo, 'print', sheet);
+  expect((await pngColourCount(page, await picture.screenshot())).colours, 'the printed picture is not blank').toBeGreaterThan(16);
+  const pdf = await page.pdf({ format: 'A4' });
+  expect(pdf.subarray(0, 5).toString(), 'a PDF of the page').toBe('%PDF-');
+});

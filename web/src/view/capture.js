@@ -17,19 +17,23 @@ export function download(blob, name) {
   setTimeout(() => URL.revokeObjectURL(url), 10000);
 }
 
-// Draws the scene once more and downloads it as dem-view.png; `decorate(context2d, width, height)`
-// (optional) draws over the picture (the legend).
-export function savePicture(stage, name = 'dem-view.png', decorate = null) {
+// The view as a picture: the scene drawn once more, then `decorate(context2d, width, height)`
+// (optional: the legend) drawn over it. A canvas.
+export function composePicture(stage, decorate = null) {
   stage.renderNow(); // preserveDrawingBuffer keeps it, but draw so the picture is current
-  let canvas = stage.canvas;
-  if (decorate) {
-    canvas = document.createElement('canvas');
-    canvas.width = stage.canvas.width;
-    canvas.height = stage.canvas.height;
-    const g = canvas.getContext('2d');
-    g.drawImage(stage.canvas, 0, 0);
-    decorate(g, canvas.width, canvas.height);
-  }
+  if (!decorate) return stage.canvas;
+  const canvas = document.createElement('canvas');
+  canvas.width = stage.canvas.width;
+  canvas.height = stage.canvas.height;
+  const g = canvas.getContext('2d');
+  g.drawImage(stage.canvas, 0, 0);
+  decorate(g, canvas.width, canvas.height);
+  return canvas;
+}
+
+// Downloads the view (composePicture) as a PNG named `name`; resolves with the Blob.
+export function savePicture(stage, name = 'dem-view.png', decorate = null) {
+  const canvas = composePicture(stage, decorate);
   return new Promise((resolve, reject) => {
     canvas.toBlob((blob) => {
       if (!blob) return reject(new Error('the browser could not encode the picture'));

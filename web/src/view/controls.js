@@ -5,6 +5,7 @@ import { barGradient, formatValue, COLOUR_MAPS, onMap, cssColour, logPosition } 
 import { counted } from '../words.js';
 import { QUANTITIES, largestParts } from './quantities.js';
 import { savePicture, Recorder } from './capture.js';
+import { wirePrint, timeStamp } from './print.js';
 
 // Part mode lists this many of the frame's largest parts.
 const PARTS_LISTED = 5;
@@ -116,8 +117,9 @@ export function wireControls(viewer) {
   });
 
   // Pictures and video
-  on('save-picture', 'click', () => savePicture(stage, 'dem-view.png', (g, w, h) => drawLegend(viewer, g, w, h))
-    .catch((e) => viewer.message(e.message, true)));
+  const legend = (g, w, h) => drawLegend(viewer, g, w, h);
+  on('save-picture', 'click', () => savePicture(stage, 'dem-view.png', legend).catch((e) => viewer.message(e.message, true)));
+  wirePrint(stage, legend, () => pictureCaption(viewer));
   const recorder = new Recorder(stage);
   on('record', 'click', () => {
     if (recorder.recording) {
@@ -234,27 +236,38 @@ function fillRangeInputs(viewer, force) {
   if (force || $('colour-range-max').value === '') $('colour-range-max').value = String(Number(hi.toPrecision(6)));
 }
 
-// The legend of a saved picture, drawn over it: the colour bar with its quantity, unit and range
-// (or the Part mode's note) at the lower left, and what is shown (source, time, step) at the top.
-function drawLegend(viewer, g, width, height) {
+// What a saved or printed picture shows, one line: source, time, step, particles ('' with no frame).
+function pictureCaption(viewer) {
   const frame = viewer.currentFrame();
+  if (!frame) return '';
+  const source = viewer.run && viewer.run.source ? `${viewer.run.source} · ` : '';
+  return `${source}t = ${formatTime(frame.time)} s · step ${frame.step} · ${counted(frame.count, 'particle')}`;
+}
+
+// The legend of a saved picture, drawn over it: the colour bar with its quantity, unit and range
+// (or the Part mode's note) at the lower left, what is shown (source, time, step) at the top, and
+// when the picture was made at the lower right.
+function drawLegend(viewer, g, width, height) {
   const scale = Math.max(1, width / 1200);
   g.save();
   g.font = `${Math.round(13 * scale)}px sans-serif`;
   g.textBaseline = 'top';
   g.fillStyle = '#1d2733';
-  const source = viewer.run && viewer.run.source ? `${viewer.run.source} · ` : '';
   const backing = (x, y, w, h) => {
     g.save();
     g.fillStyle = 'rgba(255, 255, 255, 0.85)';
     g.fillRect(x, y, w, h);
     g.restore();
   };
-  if (frame) {
-    const caption = `${source}t = ${formatTime(frame.time)} s · step ${frame.step} · ${counted(frame.count, 'particle')}`;
+  const caption = pictureCaption(viewer);
+  if (caption) {
     backing(4 * scale, 4 * scale, g.measureText(caption).width + 12 * scale, 22 * scale);
     g.fillText(caption, 10 * scale, 8 * scale);
   }
+  const stamp = timeStamp();
+  const stampWidth = g.measureText(stamp).width;
+  backing(width - stampWidth - 16 * scale, height - 26 * scale, stampWidth + 12 * scale, 22 * scale);
+  g.fillText(stamp, width - stampWidth - 10 * scale, height - 22 * scale);
   const { label, unit } = colourLegend(viewer);
   const range = viewer.colourRange();
   const x = 10 * scale, barW = 220 * scale, barH = 14 * scale, y = height - 52 * scale;
