@@ -122,3 +122,15 @@ test('messages say what was loaded: the file names in the saved caption, particl
   await expect(page.locator('#message')).toContainText('3 frames of 2 to 6 particles');
   expect(await page.evaluate(() => window.demViewer.viewer.run.source)).toBe('ANIMATION_3D.dat');
 });
+
+test('a particle id given twice in a frame is named when the file opens', async ({ page }, testInfo) => {
+  const dir = testInfo.outputPath('repeated-id');
+  fs.mkdirSync(dir, { recursive: true });
+  const frame = (step, ids) => ['3DA:', '-9 9 -9 9 -9 9', '0 0 0 0', '0', `${step} ${ids.length} 0`,
+    ...ids.map((id, k) => `${id} ${k} 0 0 1 0 0 0 0 0 0 0 1`)].join('\n');
+  fs.writeFileSync(`${dir}/ANIMATION_3D.dat`, `${frame(10, [1, 2, 3])}\n${frame(20, [1, 3, 2, 3])}\n${frame(30, [1, 3, 3])}\n`);
+  await openViewer(page);
+  await loadFiles(page, [`${dir}/ANIMATION_3D.dat`], 3);
+  await expect(page.locator('#message')).toContainText('particle id 3 is given twice at step 20 (and in 1 more frame)');
+  await expect(page.locator('#message')).toContainText('force chains and the probe take the last particle of an id');
+});

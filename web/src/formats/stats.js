@@ -31,5 +31,22 @@ export function addStats(frame) {
   }
   frame.stats = n ? { min, max, speed: [speedMin, speedMax], diameter: [dMin, dMax], partMax }
     : { min: [0, 0, 0], max: [0, 0, 0], speed: [0, 0], diameter: [0, 0], partMax: 0 };
+  frame.stats.repeatedId = firstRepeatedId(frame.ids, n);
   return frame;
+}
+
+// The first id the frame gives to two particles (0: none): force chains and the probe find a
+// particle by its id, and can reach only one of them. Ids 1..N in order, as the engine writes them,
+// need no set.
+function firstRepeatedId(ids, n) {
+  if (!ids) return 0;
+  let ordered = true;
+  for (let k = 0; k < n && ordered; k++) ordered = ids[k] === k + 1;
+  if (ordered) return 0;
+  const seen = new Set();
+  for (let k = 0; k < n; k++) {
+    if (seen.has(ids[k])) return ids[k];
+    seen.add(ids[k]);
+  }
+  return 0;
 }

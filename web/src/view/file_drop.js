@@ -113,6 +113,12 @@ async function load(viewer, files, signal) {
       const count = fewest === most ? counted(most, noun) : `${fewest} to ${most} ${noun}s`;
       const what = result.frames[0].planar ? `${count} (2D, the x-z plane seen from -y)` : count;
       notes.push(`${name}: ${counted(result.frames.length, 'frame')} of ${what}${cut}`);
+      const repeated = result.frames.filter((f) => f.stats.repeatedId);
+      if (repeated.length) {
+        const more = repeated.length > 1 ? ` (and in ${counted(repeated.length - 1, 'more frame')})` : '';
+        notes.push(`${name}: particle id ${repeated[0].stats.repeatedId} is given twice at step ${repeated[0].step}${more}; ` +
+          'force chains and the probe take the last particle of an id');
+      }
       if (waitingChains) {
         const matched = viewer.setForceChains(waitingChains.frames);
         notes.push(`${waitingChains.name} (opened before): ${counted(matched, 'frame')} matched by step`);
