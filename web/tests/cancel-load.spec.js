@@ -80,3 +80,65 @@ test('cancelling one parse leaves another parse under way alone (a replay beside
   expect(outcome.mine).toBe('AbortError');
   expect(outcome.other, 'the other parse').toBe(`parsed ${frames * Math.ceil((30 << 20) / text.length)} frames`);
 });
+
+// A finished job of the server (a few spheres on a floor), for the replay tests.
+async function finishedJob(request) {
+  const api = (p) => `${process.env.DEM_SERVER_URL}${p}`;
+  const spec = {
+    name: 'replay to cancel',
+    materials: [{ name: 'rock', density: 2600, normalStiffness: 2e4 }, { name: 'steel', rigid: true }],
+    interactions: [{ a: 'rock', b: 'rock', restitution: 0.3, friction: 0.4 }, { a: 'rock', b: 'steel', restitution: 0.3, friction: 0.4 }],
+    lattices: [{ kind: 'CUBIC', material: 'rock', radius: 0.005, spacing: 1.2, min: { x: 0, y: 0, z: 0.01 }, max: { x: 0.05, y: 0.05, z: 0.05 } }],
+    walls: [{ name: 'floor', material: 'steel', plane: { normal: { z: 1 } } }],
+    gravity: { z: -9.81 },
+    time: { duration: 0.05 },
+    outputs: { everySteps: 500 },
+  };
+  const job = await (await request.post(api('/api/v1/jobs'), { data: spec })).json();
+  await expect.poll(async () => (await (await request.get(api(`/api/v1/jobs/${job.id}`))).json()).state,
+                    { timeout: 60_000 }).toBe('succeeded');
+  return job;
+}
+
+// Holds the job's ANIMATION_3D.dat download until release() is called.
+async function holdAnimation(page, job) {
+  let release;
+  const released = new Promise((resolve) => { release = resolve; });
+  await page.route(`**/jobs/${job.id}/artifacts/ANIMATION_3D.dat`, async (route) => {
+    await released;
+    await route.continue().catch(() => {}); // the page may have aborted it meanwhile
+  });
+  return release;
+}
+
+test('a replay can be cancelled, and the run shown before stays', async ({ page, request }) => {
+  const job = await finishedJob(request);
+  const frames = readAnimation(ANIMATION());
+  await openViewer(page);
+  await loadFiles(page, [ANIMATION()], frames.length);
+  const release = await holdAnimation(page, job);
+  await page.locator(`#jobs li[data-id="${job.id}"]`).click();
+  await expect(page.locator('#load-cancel')).toBeVisible();
+  await page.locator('#load-cancel').click();
+  await expect(page.locator('#message')).toContainText('replay cancelled');
+  await expect(page.locator('#load-cancel')).toBeHidden();
+  await expect(page.locator('#load-progress')).toBeHidden();
+  release();
+  await page.waitForTimeout(1500);
+  expect((await state(page)).frames, 'the files\' run').toBe(frames.length);
+  expect(await page.evaluate(() => window.demViewer.viewer.run.source)).toBe('ANIMATION_3D.dat');
+});
+
+test('files chosen during a replay end it: the replay does not replace them when its download ends', async ({ page, request }) => {
+  const job = await finishedJob(request);
+  const frames = readAnimation(ANIMATION());
+  await openViewer(page);
+  const release = await holdAnimation(page, job);
+  await page.locator(`#jobs li[data-id="${job.id}"]`).click();
+  await expect(page.locator('#load-cancel')).toBeVisible();
+  await loadFiles(page, [ANIMATION()], frames.length);
+  release();
+  await page.waitForTimeout(1500);
+  expect((await state(page)).frames, 'the files\' run').toBe(frames.length);
+  expect(await page.evaluate(() => window.demViewer.viewer.run.source)).toBe('ANIMATION_3D.dat');
+});
