@@ -8,6 +8,34 @@ import {
 const PNG_SIGNATURE = Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]);
 const EBML_HEADER = Buffer.from([0x1a, 0x45, 0xdf, 0xa3]);
 
+// Plays a WebM in a fresh page from a blob URL: its metadata, and how far it played.
+async function playedVideo(context, webm) {
+  const player = await context.newPage();
+  await player.setContent('<body style="margin:0;background:#222"><video id="v" muted playsinline style="width:100%"></video></body>');
+  const played = await player.evaluate(async (b64) => {
+    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const video = document.getElementById('v');
+    const ready = new Promise((resolve, reject) => {
+      video.onloadedmetadata = resolve;
+      video.onerror = () => reject(new Error(`video error ${video.error && video.error.code}: ${video.error && video.error.message}`));
+    });
+    video.src = URL.createObjectURL(new Blob([bytes], { type: 'video/webm' }));
+    await ready;
+    const result = { readyState: video.readyState, duration: video.duration, width: video.videoWidth, height: video.videoHeight };
+    await video.play();
+    await new Promise((resolve) => {
+      const t0 = performance.now();
+      const check = () => (video.currentTime > 0 || video.ended || performance.now() - t0 > 10000 ? resolve() : setTimeout(check, 50));
+      check();
+    });
+    video.pause();
+    result.currentTime = video.currentTime;
+    return result;
+  }, webm.toString('base64'));
+  played.player = player;
+  return played;
+}
+
 test('save picture downloads a PNG of the view', async ({ page }, testInfo) => {
   const frames = readAnimation(ANIMATION());
   await openViewer(page);
@@ -57,30 +85,8 @@ test('record downloads a WebM that Chromium plays', async ({ page, context }, te
   expect(webm.subarray(0, 4).equals(EBML_HEADER), 'dem-run.webm starts with the EBML header 1A 45 DF A3').toBe(true);
   expect(webm.length, 'dem-run.webm holds more than a header').toBeGreaterThan(1000);
 
-  // play it in a fresh page, from a blob URL
-  const player = await context.newPage();
-  await player.setContent('<body style="margin:0;background:#222"><video id="v" muted playsinline style="width:100%"></video></body>');
-  const played = await player.evaluate(async (b64) => {
-    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
-    const video = document.getElementById('v');
-    const ready = new Promise((resolve, reject) => {
-      video.onloadedmetadata = resolve;
-      video.onerror = () => reject(new Error(`video error ${video.error && video.error.code}: ${video.error && video.error.message}`));
-    });
-    video.src = URL.createObjectURL(new Blob([bytes], { type: 'video/webm' }));
-    await ready;
-    const result = { readyState: video.readyState, duration: video.duration, width: video.videoWidth, height: video.videoHeight };
-    await video.play();
-    await new Promise((resolve) => {
-      const t0 = performance.now();
-      const check = () => (video.currentTime > 0 || video.ended || performance.now() - t0 > 10000 ? resolve() : setTimeout(check, 50));
-      check();
-    });
-    video.pause();
-    result.currentTime = video.currentTime;
-    return result;
-  }, webm.toString('base64'));
-  testInfo.annotations.push({ type: 'video', description: JSON.stringify(played) });
+  const played = await playedVideo(context, webm);
+  testInfo.annotations.push({ type: 'video', description: JSON.stringify({ ...played, player: undefined }) });
   expect(played.readyState, 'the video has metadata').toBeGreaterThanOrEqual(1);
   // MediaRecorder's own WebM has no duration (the player says Infinity): it must be written in
   expect(Number.isFinite(played.duration), `the video has a duration (${played.duration})`).toBe(true);
@@ -88,8 +94,8 @@ test('record downloads a WebM that Chromium plays', async ({ page, context }, te
   expect(played.duration).toBeLessThan(30);
   expect(played.width, 'the video has frames of the view').toBeGreaterThan(0);
   expect(played.currentTime, 'the video plays').toBeGreaterThan(0);
-  await keep(testInfo, 'webm-playing', await player.screenshot());
-  await player.close();
+  await keep(testInfo, 'webm-playing', await played.player.screenshot());
+  await played.player.close();
 });
 
 test('print: the view as a picture with its legend, caption and time stamp, alone with the charts', async ({ page }, testInfo) => {
@@ -114,4 +120,63 @@ test('print: the view as a picture with its legend, caption and time stamp, alon
   expect((await pngColourCount(page, await picture.screenshot())).colours, 'the printed picture is not blank').toBeGreaterThan(16);
   const pdf = await page.pdf({ format: 'A4' });
   expect(pdf.subarray(0, 5).toString(), 'a PDF of the page').toBe('%PDF-');
+});
+
+// A small job that runs a few seconds: its frames arrive while the view is recorded.
+const LIVE = {
+  name: 'recorded live',
+  materials: [{ name: 'rock', density: 2600, normalStiffness: 2e4 }, { name: 'steel', rigid: true }],
+  interactions: [{ a: 'rock', b: 'rock', restitution: 0.3, friction: 0.4 }, { a: 'rock', b: 'steel', restitution: 0.3, friction: 0.4 }],
+  lattices: [{ kind: 'CUBIC', material: 'rock', radius: 0.005, spacing: 1.2, min: { x: 0, y: 0, z: 0.01 }, max: { x: 0.05, y: 0.05, z: 0.1 } }],
+  walls: [{ name: 'floor', material: 'steel', plane: { normal: { z: 1 } } }],
+  gravity: { z: -9.81 },
+  time: { duration: 20 },
+  outputs: { everySteps: 200 },
+};
+
+test('recording while a job is followed live gives a video of the live view', async ({ page, context }, testInfo) => {
+  test.setTimeout(240_000);
+  await openViewer(page);
+  await page.locator('#case-spec').fill(JSON.stringify(LIVE));
+  await page.locator('#submit-case').click();
+  await expect.poll(async () => (await state(page)).frames, { message: 'live frames arrive', timeout: 120_000 }).toBeGreaterThan(1);
+  const record = page.locator('#record');
+  await record.click();
+  // the view changes size meanwhile (the charts appear under it); a software-drawn view draws a few
+  // times a second at best: wait for drawings rather than for time
+  await expect.poll(() => page.evaluate(() => window.demViewer.viewer.recorder.frames), { message: 'drawings recorded', timeout: 120_000 })
+    .toBeGreaterThanOrEqual(8);
+  const [download] = await Promise.all([page.waitForEvent('download', { timeout: 60_000 }), record.click()]);
+  const webm = fs.readFileSync(await download.path());
+  fs.writeFileSync(testInfo.outputPath('live.webm'), webm);
+  await testInfo.attach('live.webm', { path: testInfo.outputPath('live.webm'), contentType: 'video/webm' });
+  // before: an empty file, 4 recordings in 5 (the view resized under the recorder, and a recorder
+  // sampling at 30 fps got nothing from a view drawn twice a second)
+  expect(webm.subarray(0, 4).equals(EBML_HEADER), 'live.webm starts with the EBML header').toBe(true);
+  expect(webm.length, 'live.webm holds frames, not only a header').toBeGreaterThan(5000);
+  const played = await playedVideo(context, webm);
+  testInfo.annotations.push({ type: 'video', description: JSON.stringify({ ...played, player: undefined }) });
+  expect(played.width, 'the video has frames of the view').toBeGreaterThan(0);
+  expect(Number.isFinite(played.duration) && played.duration > 0, `a duration (${played.duration})`).toBe(true);
+  await played.player.close();
+  await page.locator('#live-cancel').click();
+});
+
+test('a recording the browser encoded nothing of is not saved as an empty video, and says why', async ({ page }) => {
+  const frames = readAnimation(ANIMATION());
+  await openViewer(page);
+  await loadFiles(page, [ANIMATION()], frames.length);
+  let downloads = 0;
+  page.on('download', () => { downloads += 1; });
+  // stopped at once: one drawing, which the encoder has not reached
+  const blob = await page.evaluate(async () => {
+    const recorder = window.demViewer.viewer.recorder;
+    recorder.start();
+    return (await recorder.stop()) === null;
+  });
+  expect(blob, 'no video').toBe(true);
+  await expect(page.locator('#message')).toContainText('the recording has no video');
+  await expect(page.locator('#message')).toContainText('nothing was saved');
+  await page.waitForTimeout(500);
+  expect(downloads).toBe(0);
 });

@@ -120,7 +120,7 @@ export function wireControls(viewer) {
   const legend = (g, w, h) => drawLegend(viewer, g, w, h);
   on('save-picture', 'click', () => savePicture(stage, 'dem-view.png', legend).catch((e) => viewer.message(e.message, true)));
   wirePrint(stage, legend, () => pictureCaption(viewer));
-  const recorder = new Recorder(stage);
+  const recorder = new Recorder(stage, (e) => viewer.message(e.message, true));
   on('record', 'click', () => {
     if (recorder.recording) {
       recorder.stop();
