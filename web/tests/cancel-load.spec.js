@@ -3,7 +3,7 @@
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { test, expect, ANIMATION, PLANAR, readAnimation, openViewer, state, loadFiles } from './helpers.js';
+import { test, expect, ANIMATION, PLANAR, readAnimation, openViewer, state, loadFiles, fallingSpheres } from './helpers.js';
 
 // A large ANIMATION_3D.dat: the fixture's frames over and over, about `megabytes` MB.
 function largeAnimation(megabytes) {
@@ -84,16 +84,7 @@ test('cancelling one parse leaves another parse under way alone (a replay beside
 // A finished job of the server (a few spheres on a floor), for the replay tests.
 async function finishedJob(request) {
   const api = (p) => `${process.env.DEM_SERVER_URL}${p}`;
-  const spec = {
-    name: 'replay to cancel',
-    materials: [{ name: 'rock', density: 2600, normalStiffness: 2e4 }, { name: 'steel', rigid: true }],
-    interactions: [{ a: 'rock', b: 'rock', restitution: 0.3, friction: 0.4 }, { a: 'rock', b: 'steel', restitution: 0.3, friction: 0.4 }],
-    lattices: [{ kind: 'CUBIC', material: 'rock', radius: 0.005, spacing: 1.2, min: { x: 0, y: 0, z: 0.01 }, max: { x: 0.05, y: 0.05, z: 0.05 } }],
-    walls: [{ name: 'floor', material: 'steel', plane: { normal: { z: 1 } } }],
-    gravity: { z: -9.81 },
-    time: { duration: 0.05 },
-    outputs: { everySteps: 500 },
-  };
+  const spec = fallingSpheres('replay to cancel', 0.05);
   const job = await (await request.post(api('/api/v1/jobs'), { data: spec })).json();
   await expect.poll(async () => (await (await request.get(api(`/api/v1/jobs/${job.id}`))).json()).state,
                     { timeout: 60_000 }).toBe('succeeded');

@@ -2,7 +2,7 @@
 import fs from 'node:fs';
 import {
   test, expect, ANIMATION, readAnimation, openViewer, state, loadFiles, showFrame, viewCanvas,
-  keep, keepPage, pngColourCount,
+  keep, keepPage, pngColourCount, fallingSpheres,
 } from './helpers.js';
 
 const PNG_SIGNATURE = Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]);
@@ -33,6 +33,21 @@ async function playedVideo(context, webm) {
     return result;
   }, webm.toString('base64'));
   played.player = player;
+  return played;
+}
+
+// Clicks #record to stop, keeps the downloaded dem-run.webm as `name`, checks it is a WebM of more
+// than `minBytes`, and plays it (playedVideo).
+async function stopAndPlay(page, context, testInfo, name, minBytes) {
+  const [download] = await Promise.all([page.waitForEvent('download', { timeout: 60_000 }), page.locator('#record').click()]);
+  expect(download.suggestedFilename()).toBe('dem-run.webm');
+  const webm = fs.readFileSync(await download.path());
+  fs.writeFileSync(testInfo.outputPath(name), webm);
+  await testInfo.attach(name, { path: testInfo.outputPath(name), contentType: 'video/webm' });
+  expect(webm.subarray(0, 4).equals(EBML_HEADER), `${name} starts with the EBML header 1A 45 DF A3`).toBe(true);
+  expect(webm.length, `${name} holds more than a header`).toBeGreaterThan(minBytes);
+  const played = await playedVideo(context, webm);
+  testInfo.annotations.push({ type: 'video', description: JSON.stringify({ ...played, player: undefined }) });
   return played;
 }
 
@@ -74,19 +89,7 @@ test('record downloads a WebM that Chromium plays', async ({ page, context }, te
   await record.click();
   await page.waitForTimeout(2500);
   await keepPage(page, testInfo, 'recording');
-  const [download] = await Promise.all([
-    page.waitForEvent('download', { timeout: 60_000 }),
-    record.click(),
-  ]);
-  expect(download.suggestedFilename()).toBe('dem-run.webm');
-  const webm = fs.readFileSync(await download.path());
-  fs.writeFileSync(testInfo.outputPath('dem-run.webm'), webm);
-  await testInfo.attach('dem-run.webm', { path: testInfo.outputPath('dem-run.webm'), contentType: 'video/webm' });
-  expect(webm.subarray(0, 4).equals(EBML_HEADER), 'dem-run.webm starts with the EBML header 1A 45 DF A3').toBe(true);
-  expect(webm.length, 'dem-run.webm holds more than a header').toBeGreaterThan(1000);
-
-  const played = await playedVideo(context, webm);
-  testInfo.annotations.push({ type: 'video', description: JSON.stringify({ ...played, player: undefined }) });
+  const played = await stopAndPlay(page, context, testInfo, 'dem-run.webm', 1000);
   expect(played.readyState, 'the video has metadata').toBeGreaterThanOrEqual(1);
   // MediaRecorder's own WebM has no duration (the player says Infinity): it must be written in
   expect(Number.isFinite(played.duration), `the video has a duration (${played.duration})`).toBe(true);
@@ -122,22 +125,10 @@ test('print: the view as a picture with its legend, caption and time stamp, alon
   expect(pdf.subarray(0, 5).toString(), 'a PDF of the page').toBe('%PDF-');
 });
 
-// A small job that runs a few seconds: its frames arrive while the view is recorded.
-const LIVE = {
-  name: 'recorded live',
-  materials: [{ name: 'rock', density: 2600, normalStiffness: 2e4 }, { name: 'steel', rigid: true }],
-  interactions: [{ a: 'rock', b: 'rock', restitution: 0.3, friction: 0.4 }, { a: 'rock', b: 'steel', restitution: 0.3, friction: 0.4 }],
-  lattices: [{ kind: 'CUBIC', material: 'rock', radius: 0.005, spacing: 1.2, min: { x: 0, y: 0, z: 0.01 }, max: { x: 0.05, y: 0.05, z: 0.1 } }],
-  walls: [{ name: 'floor', material: 'steel', plane: { normal: { z: 1 } } }],
-  gravity: { z: -9.81 },
-  time: { duration: 20 },
-  outputs: { everySteps: 200 },
-};
-
 test('recording while a job is followed live gives a video of the live view', async ({ page, context }, testInfo) => {
   test.setTimeout(240_000);
   await openViewer(page);
-  await page.locator('#case-spec').fill(JSON.stringify(LIVE));
+  await page.locator('#case-spec').fill(JSON.stringify(fallingSpheres('recorded live', 20, 0.1)));
   await page.locator('#submit-case').click();
   await expect.poll(async () => (await state(page)).frames, { message: 'live frames arrive', timeout: 120_000 }).toBeGreaterThan(1);
   const record = page.locator('#record');
@@ -146,16 +137,9 @@ test('recording while a job is followed live gives a video of the live view', as
   // times a second at best: wait for drawings rather than for time
   await expect.poll(() => page.evaluate(() => window.demViewer.viewer.recorder.frames), { message: 'drawings recorded', timeout: 120_000 })
     .toBeGreaterThanOrEqual(8);
-  const [download] = await Promise.all([page.waitForEvent('download', { timeout: 60_000 }), record.click()]);
-  const webm = fs.readFileSync(await download.path());
-  fs.writeFileSync(testInfo.outputPath('live.webm'), webm);
-  await testInfo.attach('live.webm', { path: testInfo.outputPath('live.webm'), contentType: 'video/webm' });
   // before: an empty file, 4 recordings in 5 (the view resized under the recorder, and a recorder
   // sampling at 30 fps got nothing from a view drawn twice a second)
-  expect(webm.subarray(0, 4).equals(EBML_HEADER), 'live.webm starts with the EBML header').toBe(true);
-  expect(webm.length, 'live.webm holds frames, not only a header').toBeGreaterThan(5000);
-  const played = await playedVideo(context, webm);
-  testInfo.annotations.push({ type: 'video', description: JSON.stringify({ ...played, player: undefined }) });
+  const played = await stopAndPlay(page, context, testInfo, 'live.webm', 5000);
   expect(played.width, 'the video has frames of the view').toBeGreaterThan(0);
   expect(Number.isFinite(played.duration) && played.duration > 0, `a duration (${played.duration})`).toBe(true);
   await played.player.close();

@@ -259,3 +259,18 @@ export async function submitDemo(page, request, duration) {
   }, { message: 'submitting makes one job on the server' }).toBe(1);
   return job;
 }
+
+// A job spec of spheres in a cubic lattice falling onto a floor, small enough to run anywhere:
+// `top` the lattice's top (0.1: 112 spheres), `duration` in seconds.
+export function fallingSpheres(name, duration, top = 0.05) {
+  return {
+    name,
+    materials: [{ name: 'rock', density: 2600, normalStiffness: 2e4 }, { name: 'steel', rigid: true }],
+    interactions: [{ a: 'rock', b: 'rock', restitution: 0.3, friction: 0.4 }, { a: 'rock', b: 'steel', restitution: 0.3, friction: 0.4 }],
+    lattices: [{ kind: 'CUBIC', material: 'rock', radius: 0.005, spacing: 1.2, min: { x: 0, y: 0, z: 0.01 }, max: { x: 0.05, y: 0.05, z: top } }],
+    walls: [{ name: 'floor', material: 'steel', plane: { normal: { z: 1 } } }],
+    gravity: { z: -9.81 },
+    time: { duration },
+    outputs: { everySteps: 200 },
+  };
+}
