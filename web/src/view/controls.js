@@ -245,8 +245,8 @@ function pictureCaption(viewer) {
 }
 
 // The legend of a saved picture, drawn over it: the colour bar with its quantity, unit and range
-// (or the Part mode's note) at the lower left, what is shown (source, time, step) at the top, and
-// when the picture was made at the lower right.
+// (or the Part mode's note) at the lower left, what is shown (source, time, step) at the top left,
+// and when the picture was made at the top right (the axes indicator has the lower right).
 function drawLegend(viewer, g, width, height) {
   const scale = Math.max(1, width / 1200);
   g.save();
@@ -266,8 +266,8 @@ function drawLegend(viewer, g, width, height) {
   }
   const stamp = timeStamp();
   const stampWidth = g.measureText(stamp).width;
-  backing(width - stampWidth - 16 * scale, height - 26 * scale, stampWidth + 12 * scale, 22 * scale);
-  g.fillText(stamp, width - stampWidth - 10 * scale, height - 22 * scale);
+  backing(width - stampWidth - 16 * scale, 4 * scale, stampWidth + 12 * scale, 22 * scale);
+  g.fillText(stamp, width - stampWidth - 10 * scale, 8 * scale);
   const { label, unit } = colourLegend(viewer);
   const range = viewer.colourRange();
   const x = 10 * scale, barW = 220 * scale, barH = 14 * scale, y = height - 52 * scale;
