@@ -37,6 +37,9 @@ test('a study\'s runs are overlaid in the charts, one line a run, and leave for 
                     { message: 'the study ends', timeout: 180_000 }).toBe(true);
 
   await openViewer(page);
+  // a job replayed first: its charts give way to the study's
+  await page.locator(`#jobs li[data-id="${study.jobs[0].job}"]`).click();
+  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible({ timeout: 60_000 });
   await page.locator('#live-studies summary').click();
   const select = page.locator('#study-select');
   await expect.poll(() => select.evaluate((s, id) => [...s.options].some((o) => o.value === String(id)), study.id),
@@ -45,6 +48,7 @@ test('a study\'s runs are overlaid in the charts, one line a run, and leave for 
 
   const force = page.locator('canvas[data-chart="study-plate-force"]');
   await expect(force).toBeVisible();
+  await expect(page.locator('#charts canvas:not([data-chart^="study-"])'), 'the job\'s own charts are gone').toHaveCount(0);
   await expect(page.locator('#study-status')).toContainText('3 of 3 runs with time series');
   const series = await page.evaluate(() => window.demLive.studies.charts.chart('study-plate-force').series
     .map((s) => ({ name: s.name, x: s.x, y: s.y })));

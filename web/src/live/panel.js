@@ -38,7 +38,11 @@ class LivePanel {
     this.cancelButton = $('live-cancel');
     this.charts = new Charts($('charts'));
     this.jobList = new JobList($('jobs'), $('live-server-status'), (id) => this.open(id));
-    this.studies = new Studies($('charts'), () => this.stopFollowing());
+    // a study chosen: the charts are its runs', not the job's
+    this.studies = new Studies($('charts'), () => {
+      this.stopFollowing();
+      this.charts.clear();
+    });
     this.caseForm = new CaseForm((text, isError) => this.say(text, isError), async (job) => {
       await this.refreshJobs();
       this.follow(job);
