@@ -133,3 +133,48 @@ test('files chosen during a replay end it: the replay does not replace them when
   expect((await state(page)).frames, 'the files\' run').toBe(frames.length);
   expect(await page.evaluate(() => window.demViewer.viewer.run.source)).toBe('ANIMATION_3D.dat');
 });
+
+test('a cancelled replay hands the panel back to the job shown, with its charts', async ({ page, request }) => {
+  const shown = await finishedJob(request);
+  const other = await finishedJob(request);
+  await openViewer(page);
+  await page.locator(`#jobs li[data-id="${shown.id}"]`).click();
+  await expect(page.locator('#message')).toContainText(`job ${shown.id}:`);
+  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible();
+  const frames = (await state(page)).frames;
+  const release = await holdAnimation(page, other);
+  await page.locator(`#jobs li[data-id="${other.id}"]`).click();
+  await expect(page.locator('#load-cancel')).toBeVisible();
+  await expect(page.locator('#live-job')).toContainText(`#${other.id}`);
+  await page.locator('#load-cancel').click();
+  // before: the panel named the cancelled job, and the charts of the run still shown were gone
+  await expect(page.locator('#live-job')).toContainText(`#${shown.id}`);
+  await expect(page.locator('#jobs li.selected')).toHaveAttribute('data-id', String(shown.id));
+  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible();
+  expect((await state(page)).frames).toBe(frames);
+  release();
+});
+
+test('a study chosen during a replay stops it and says so', async ({ page, request }) => {
+  const api = (p) => `${process.env.DEM_SERVER_URL}${p}`;
+  const made = await request.post(api('/api/v1/studies'), {
+    data: { name: 'chosen mid-replay', base: fallingSpheres('study base', 0.02), parameters: [{ path: 'gravity.z', values: [-9.81] }] },
+  });
+  expect(made.status(), await made.text()).toBe(201);
+  const study = await made.json();
+  const job = await finishedJob(request);
+  await openViewer(page);
+  const release = await holdAnimation(page, job);
+  await page.locator(`#jobs li[data-id="${job.id}"]`).click();
+  await expect(page.locator('#load-cancel')).toBeVisible();
+  await expect.poll(() => page.locator('#study-select').evaluate((s, id) => [...s.options].some((o) => o.value === String(id)), study.id))
+    .toBe(true);
+  await page.locator('#live-studies').evaluate((d) => { d.open = true; });
+  await page.locator('#study-select').selectOption(String(study.id));
+  // before: the bar vanished and the status said "downloading ... 45%" for good
+  await expect(page.locator('#message')).toContainText(`the replay of job ${job.id} stopped: a study was chosen`);
+  await expect(page.locator('#live-status')).not.toContainText('downloading');
+  await expect(page.locator('#load-progress')).toBeHidden();
+  await expect(page.locator('#live-job')).toHaveText('none');
+  release();
+});

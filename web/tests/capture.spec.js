@@ -164,3 +164,10 @@ test('a recording the browser encoded nothing of is not saved as an empty video,
   await page.waitForTimeout(500);
   expect(downloads).toBe(0);
 });
+
+test('print with nothing shown: no empty frame', async ({ page }) => {
+  await openViewer(page);
+  await page.evaluate(() => window.dispatchEvent(new Event('beforeprint')));
+  await page.emulateMedia({ media: 'print' });
+  await expect(page.locator('#print-sheet')).toBeHidden();
+});

@@ -1,4 +1,5 @@
 // The charts' lines (src/live/charts.js) drawn from known series.
+import fs from 'node:fs';
 import { test, expect, openViewer, countPixels } from './helpers.js';
 
 test('a count that jumps is drawn as a step, not a slope from the start', async ({ page }, testInfo) => {
@@ -28,4 +29,31 @@ test('a count that jumps is drawn as a step, not a slope from the start', async 
   const region = { x: Math.round(plotLeft + 0.1 * (plotRight - plotLeft)), y: 40, width: Math.round(0.3 * (plotRight - plotLeft)), height: Math.round(box.height - 32 - 40 - 20) };
   const counts = await countPixels(page, png, { line: '(r, g, b) => Math.abs(r - 0x1f) + Math.abs(g - 0x77) + Math.abs(b - 0xb4) < 90 || Math.abs(r - 0xd6) + Math.abs(g - 0x27) + Math.abs(b - 0x28) < 90' }, region);
   expect(counts.line, 'line pixels between the start and the jump, above zero').toBe(0);
+});
+
+test('a log y axis keeps the time axis of its neighbours; a saved chart is sharp', async ({ page }) => {
+  await openViewer(page);
+  // Fragments.dat: time, fragments, largest, intact bonds, broken in tension, in shear; no breaks
+  // until 0.02 s, the run to 0.03 s
+  const rows = [[0, 1, 27, 50, 0, 0], [0.01, 1, 27, 50, 0, 0], [0.02, 2, 20, 40, 10, 0], [0.03, 3, 9, 30, 20, 0]]
+    .map((r) => r.join(' ')).join('\n') + '\n';
+  const axes = await page.evaluate((text) => {
+    const charts = window.demLive.charts;
+    charts.setFragments(text);
+    const chart = charts.chart('broken-bonds');
+    chart.draw();
+    const linear = chart.axes.x;
+    chart.log = true;
+    chart.draw();
+    return { linear, log: chart.axes.x };
+  }, rows);
+  // before: the log axis dropped the zero counts' times and began at 0.02
+  expect(axes.log).toEqual(axes.linear);
+  const canvas = page.locator('canvas[data-chart="broken-bonds"]');
+  const box = await canvas.boundingBox();
+  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('.chart[data-chart="broken-bonds"] button[data-export="png"]').click()]);
+  const png = fs.readFileSync(await download.path());
+  const width = png.readUInt32BE(16);
+  // before: the screen's own pixels (312 wide)
+  expect(width, 'three pixels a CSS pixel').toBe(Math.round(3 * box.width));
 });

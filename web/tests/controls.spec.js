@@ -2,7 +2,7 @@
 // Constant modes show no rainbow scale, a chain naming a particle the frame lacks is reported, and
 // showing force chains makes opaque particles translucent.
 import fs from 'node:fs';
-import { test, expect, ANIMATION, FORCE_CHAINS, readAnimation, openViewer, loadFiles, showFrame, settle } from './helpers.js';
+import { test, expect, ANIMATION, FORCE_CHAINS, readAnimation, openViewer, loadFiles, showFrame, settle, serverUrl } from './helpers.js';
 
 // One frame of two particles, and force chains naming a third that is not in it.
 function writeOneFrame(dir) {
@@ -133,4 +133,25 @@ test('a particle id given twice in a frame is named when the file opens', async 
   await loadFiles(page, [`${dir}/ANIMATION_3D.dat`], 3);
   await expect(page.locator('#message')).toContainText('particle id 3 is given twice at step 20 (and in 1 more frame)');
   await expect(page.locator('#message')).toContainText('force chains and the probe take the last particle of an id');
+});
+
+test('a ?job= that is not a job number is named', async ({ page }) => {
+  await page.goto(`${serverUrl()}/?job=abc`);
+  await expect(page.locator('#message')).toContainText('?job=abc in the address is not a job number');
+});
+
+test('the case form: a staged case has no duration box, and frictions that differ are not shown as one', async ({ page }) => {
+  await openViewer(page);
+  const select = page.locator('#case-select');
+  await expect.poll(() => select.evaluate((s) => [...s.options].some((o) => o.value === 'ballast-box'))).toBe(true);
+  await select.selectOption('ballast-box');
+  await expect.poll(() => page.locator('#case-spec').inputValue()).toContain('"stages"');
+  // before: the box took a duration, which the server refuses beside stages
+  await expect(page.locator('#case-duration')).toBeDisabled();
+  // before: it showed 1, the first pair's, and typing set every pair without a word
+  await expect(page.locator('#case-friction')).toHaveValue('');
+  await expect(page.locator('#case-friction')).toHaveAttribute('placeholder', 'varies');
+  await page.locator('#case-friction').fill('0.7');
+  const spec = JSON.parse(await page.locator('#case-spec').inputValue());
+  expect(spec.interactions.map((i) => i.friction)).toEqual(spec.interactions.map(() => 0.7));
 });

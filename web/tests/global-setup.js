@@ -91,7 +91,7 @@ function truncatedAnimation(goodText) {
   return goodText.slice(0, goodText[cut - 1] === '\n' ? cut + 5 : cut);
 }
 
-function waitForListening(server, timeoutMs) {
+export function waitForListening(server, timeoutMs) {
   return new Promise((resolve, reject) => {
     let seen = '';
     const timer = setTimeout(() => {

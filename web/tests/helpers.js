@@ -61,8 +61,8 @@ export function readForceChains(file) {
 
 // The axes indicator is switched off: the tests' pictures are of the scene alone (camera.spec.js
 // checks the indicator); the panel's folded sections are opened (layout.spec.js checks the folds).
-export async function openViewer(page, { axes = false } = {}) {
-  await page.goto(`${serverUrl()}/`);
+export async function openViewer(page, { axes = false, url = serverUrl() } = {}) {
+  await page.goto(`${url}/`);
   await page.waitForFunction(() => window.demViewer && typeof window.demViewer.state === 'function',
                              null, { timeout: 60_000 });
   // every folded section of the panel opened, so that the tests reach its controls

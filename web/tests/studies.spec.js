@@ -3,6 +3,7 @@
 // against its job's own file.
 import fs from 'node:fs';
 import { test, expect, serverUrl, openViewer, countPixels, keepPage } from './helpers.js';
+import { runNames, shortNames } from '../src/live/studies.js';
 
 const BASE = {
   name: 'block under a plate',
@@ -40,7 +41,8 @@ test('a study\'s runs are overlaid in the charts, one line a run, and leave for 
   // a job replayed first: its charts give way to the study's
   await page.locator(`#jobs li[data-id="${study.jobs[0].job}"]`).click();
   await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible({ timeout: 60_000 });
-  await page.locator('#live-studies summary').click();
+  // open by itself once the server has studies (it was folded, and no one found it)
+  await expect.poll(() => page.locator('#live-studies').evaluate((d) => d.open), { message: 'Studies open' }).toBe(true);
   const select = page.locator('#study-select');
   await expect.poll(() => select.evaluate((s, id) => [...s.options].some((o) => o.value === String(id)), study.id),
                     { message: '#study-select offers the study' }).toBe(true);
@@ -50,6 +52,8 @@ test('a study\'s runs are overlaid in the charts, one line a run, and leave for 
   await expect(force).toBeVisible();
   await expect(page.locator('#charts canvas:not([data-chart^="study-"])'), 'the job\'s own charts are gone').toHaveCount(0);
   await expect(page.locator('#study-status')).toContainText('3 of 3 runs with time series');
+  await expect(page.locator('#study-legend')).toContainText(`Study #${study.id} peak load: walls[1].load.cyclic.fMax`);
+  await expect(page.locator('#study-legend li')).toHaveText(PEAKS.map((p, k) => `fMax = ${p} · job ${study.jobs[k].job}`));
   const series = await page.evaluate(() => window.demLive.studies.charts.chart('study-plate-force').series
     .map((s) => ({ name: s.name, x: s.x, y: s.y })));
   expect(series.map((s) => s.name)).toEqual(PEAKS.map((p) => `fMax = ${p}`));
@@ -89,4 +93,46 @@ test('a study\'s runs are overlaid in the charts, one line a run, and leave for 
   await expect(page.locator('canvas[data-chart^="study-"]')).toHaveCount(0);
   await expect(select).toHaveValue('');
   await expect(page.locator('canvas[data-chart="plate-force"]')).toBeVisible();
+});
+
+test('run names tell parameters apart, keep the study\'s order, and say when a run did not succeed', () => {
+  expect(shortNames(['interactions[0].friction', 'interactions[1].friction'])).toEqual(['interactions[0].friction', 'interactions[1].friction']);
+  expect(shortNames(['bonds.tensileStrength', 'walls[1].load.servo.maxSpeed'])).toEqual(['tensileStrength', 'maxSpeed']);
+  expect(shortNames(['/walls/1/load/cyclic/fMax'])).toEqual(['fMax']);
+  const study = {
+    parameters: ['walls[1].load.servo.maxSpeed', 'bonds.tensileStrength = bonds.shearStrength'],
+    jobs: [
+      // the server's parameters object comes back with its keys sorted
+      { run: 1, job: 4, state: 'succeeded', parameters: { 'bonds.tensileStrength = bonds.shearStrength': 5e5, 'walls[1].load.servo.maxSpeed': 0.03 } },
+      { run: 2, job: 5, state: 'cancelled', parameters: { 'bonds.tensileStrength = bonds.shearStrength': 2e6, 'walls[1].load.servo.maxSpeed': 0.03 } },
+      { run: 3, job: 6, state: 'failed', parameters: { 'bonds.tensileStrength = bonds.shearStrength': { a: 1 }, 'walls[1].load.servo.maxSpeed': 0.3 } },
+    ],
+  };
+  expect(runNames(study)).toEqual([
+    'maxSpeed = 0.03, tensileStrength = shearStrength = 5e5',
+    'maxSpeed = 0.03, tensileStrength = shearStrength = 2e6 (cancelled)',
+    'maxSpeed = 0.3, tensileStrength = shearStrength = {"a":1} (failed)',
+  ]);
+});
+
+test('a study\'s many runs: each its own colour, a legend of at most three lines in the chart, all of them above the charts', async ({ page }, testInfo) => {
+  await openViewer(page);
+  const names = Array.from({ length: 12 }, (_, k) => `walls[1].load.servo.gain = {"proportional": ${k}, "integral": ${k * 10}} and more words`);
+  const drawn = await page.evaluate((names) => {
+    const chart = window.demLive.studies.charts.chart('study-plate-force');
+    chart.setSeries(names);
+    names.forEach((_, k) => chart.set(k, [0, 1, 2], [k, k + 1, k + 2]));
+    chart.draw();
+    chart.draw(); // its second drawing has the height the first asked for
+    return { colours: chart.series.map((s) => s.colour), height: chart.canvas.clientHeight };
+  }, names);
+  expect(new Set(drawn.colours).size, 'twelve runs, twelve colours').toBe(12);
+  expect(drawn.height, 'a legend of three lines at most').toBeLessThanOrEqual(150 + 2 * 13);
+  const canvas = page.locator('canvas[data-chart="study-plate-force"]');
+  const png = await canvas.screenshot();
+  await testInfo.attach('many-runs.png', { body: png, contentType: 'image/png' });
+  // nothing in a run's colour left of the plot: long names are cut, not drawn off the left edge
+  const coloured = '(r, g, b) => Math.max(r, g, b) - Math.min(r, g, b) > 80';
+  const left = await countPixels(page, png, { coloured }, { x: 0, y: 0, width: 60, height: 60 });
+  expect(left.coloured, 'run-coloured pixels left of the plot').toBe(0);
 });

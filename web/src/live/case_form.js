@@ -87,15 +87,21 @@ export class CaseForm {
   }
 
   fillQuickFields(spec) {
+    // a staged run lasts as long as its stages: the server refuses a duration beside them
+    const staged = Array.isArray(spec.stages) && spec.stages.length > 0;
+    this.duration.disabled = staged;
+    this.duration.title = staged ? 'a staged case lasts as long as its stages: set each stage\'s duration in the spec' : 'time.duration of the spec, s';
     const duration = spec.time ? Number(spec.time.duration) : NaN;
-    this.duration.value = Number.isFinite(duration) && duration > 0 ? String(duration) : '';
-    this.duration.placeholder = spec.time && spec.time.steps ? `${spec.time.steps} steps` : '';
+    this.duration.value = !staged && Number.isFinite(duration) && duration > 0 ? String(duration) : '';
+    this.duration.placeholder = staged ? 'stages' : spec.time && spec.time.steps ? `${spec.time.steps} steps` : '';
+    // one value for every pair of materials: shown when they agree, else empty with their range
     const frictions = (spec.interactions || []).map((i) => Number(i.friction || 0));
     const distinct = [...new Set(frictions)];
-    this.friction.value = frictions.length ? String(frictions[0]) : '';
+    this.friction.value = distinct.length === 1 ? String(distinct[0]) : '';
+    this.friction.placeholder = distinct.length > 1 ? 'varies' : '';
     this.friction.title = distinct.length > 1
-      ? `the friction of every interaction (now ${frictions.join(', ')}): a value here sets them all`
-      : 'the friction of every interaction';
+      ? `the pairs of materials have frictions ${frictions.join(', ')}: a value here sets every pair's; or edit each in the spec`
+      : 'the friction of every pair of materials';
   }
 
   // The spec in the textarea, or null (and a message when `report`) when it is not a JSON object.
@@ -130,7 +136,8 @@ export class CaseForm {
       delete spec.time.steps; // give duration or steps, not both
     } else {
       for (const interaction of spec.interactions || []) interaction.friction = value;
-      this.friction.title = 'the friction of every interaction';
+      this.friction.placeholder = '';
+      this.friction.title = 'the friction of every pair of materials';
     }
     this.specText.value = formatSpec(spec);
   }

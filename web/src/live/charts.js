@@ -22,9 +22,9 @@ const DEFINITIONS = [
   { id: 'kinetic-energy', title: 'Kinetic energy', y: 'kinetic energy (J)', series: ['kinetic energy'] },
   { id: 'plate-force', title: 'Loading plate force', y: 'force (N)', series: ['force'] },
   { id: 'plate-displacement', title: 'Loading plate displacement', y: 'displacement', unitKey: 'length', series: ['displacement'] },
-  { id: 'broken-bonds', title: 'Broken bonds', y: 'broken bonds (count)', series: ['total', 'tension', 'shear'] },
-  { id: 'largest-fragment', title: 'Largest fragment', y: 'particles (count)', series: ['largest fragment'] },
-  { id: 'fragments', title: 'Fragments', y: 'fragments (count)', series: ['fragments'] },
+  { id: 'broken-bonds', title: 'Broken bonds', y: 'broken bonds (count)', series: ['total', 'tension', 'shear'], steps: true },
+  { id: 'largest-fragment', title: 'Largest fragment', y: 'particles (count)', series: ['largest fragment'], steps: true },
+  { id: 'fragments', title: 'Fragments', y: 'fragments (count)', series: ['fragments'], steps: true },
 ];
 
 // Parses the rows of a statistics file (docs/formats.md section 5): whitespace-separated reals, one
@@ -47,21 +47,69 @@ export function parseRows(text, columns) {
 
 // The canvas's CSS height with a legend of one line (style.css has the same).
 const BASE_HEIGHT = 150;
+// On screen a legend takes at most this many lines (a study of many runs: the panel lists them all).
+const SCREEN_LEGEND_LINES = 3;
+// A saved chart (PNG) is drawn at this many pixels a CSS pixel: sharp in a report.
+const EXPORT_RATIO = 3;
 
-// The series' names in lines no wider than `width`: [{ series, width }].
-function legendLines(g, series, width) {
+// `text` cut with an ellipsis to fit `width` pixels.
+function fitted(g, text, width) {
+  if (g.measureText(text).width <= width) return text;
+  let lo = 0, hi = text.length;
+  while (lo < hi) {
+    const mid = Math.ceil((lo + hi) / 2);
+    if (g.measureText(`${text.slice(0, mid)}…`).width <= width) lo = mid;
+    else hi = mid - 1;
+  }
+  return `${text.slice(0, lo)}…`;
+}
+
+// The series' names in lines no wider than `width` (a name too long for one is cut), at most
+// `maxLines`: the last then ends with how many more there are. [{ entries: [{ text, colour }], width }].
+function legendLines(g, series, width, maxLines = Infinity) {
   const lines = [];
+  let placed = 0;
   for (const s of series) {
-    const w = g.measureText(s.name).width;
+    const text = fitted(g, s.name, width);
+    const w = g.measureText(text).width;
     const line = lines[lines.length - 1];
     if (line && line.width + 12 + w <= width) {
-      line.series.push(s);
+      line.entries.push({ text, colour: s.colour });
       line.width += 12 + w;
+    } else if (lines.length < maxLines) {
+      lines.push({ entries: [{ text, colour: s.colour }], width: w });
     } else {
-      lines.push({ series: [s], width: w });
+      break;
     }
+    placed += 1;
+  }
+  if (placed < series.length) {
+    const line = lines[lines.length - 1];
+    const note = () => `+${series.length - placed} more`;
+    while (line.entries.length > 1 && line.width + 12 + g.measureText(note()).width > width) {
+      const dropped = line.entries.pop();
+      line.width -= 12 + g.measureText(dropped.text).width;
+      placed -= 1;
+    }
+    const text = note();
+    const noteWidth = g.measureText(text).width;
+    if (line.width + 12 + noteWidth > width) {
+      // one name on the line, too long beside the note: cut it shorter
+      const last = line.entries[line.entries.length - 1];
+      line.width -= g.measureText(last.text).width;
+      last.text = fitted(g, last.text.replace(/…$/, ''), Math.max(0, width - line.width - 12 - noteWidth));
+      line.width += g.measureText(last.text).width;
+    }
+    line.entries.push({ text, colour: null });
+    line.width += 12 + noteWidth;
   }
   return lines;
+}
+
+// Tableau's ten for up to ten series; past ten, hues a golden angle apart (no two runs alike).
+function seriesColour(k, count) {
+  if (count <= COLOURS.length) return COLOURS[k];
+  return `hsl(${Math.round((k * 137.508) % 360)}, 70%, 42%)`;
 }
 
 export class Chart {
@@ -96,7 +144,7 @@ export class Chart {
       button.dataset.export = kind.toLowerCase();
       button.addEventListener('click', (event) => {
         event.stopPropagation();
-        if (kind === 'PNG') this.canvas.toBlob((blob) => blob && download(blob, `${def.id}.png`), 'image/png');
+        if (kind === 'PNG') this.picture().toBlob((blob) => blob && download(blob, `${def.id}.png`), 'image/png');
         else download(new Blob([this.csv()], { type: 'text/csv' }), `${def.id}.csv`);
       });
       exports.appendChild(button);
@@ -108,7 +156,7 @@ export class Chart {
 
   // The series by name, each empty (a study's runs).
   setSeries(names) {
-    this.series = names.map((name, k) => ({ name, colour: COLOURS[k % COLOURS.length], x: [], y: [] }));
+    this.series = names.map((name, k) => ({ name, colour: seriesColour(k, names.length), x: [], y: [] }));
   }
 
   points() {
@@ -117,10 +165,10 @@ export class Chart {
 
   // The chart's numbers: a header naming the columns and units, then a row a point, in full precision.
   csv() {
-    const y = this.yLabel().replace(/"/g, "'");
-    const rows = ['series,time (s),"' + y + '"'];
+    const quote = (text) => `"${text.replace(/"/g, '""')}"`; // RFC 4180
+    const rows = [`series,time (s),${quote(this.yLabel())}`];
     for (const s of this.series) {
-      for (let k = 0; k < s.x.length; k++) rows.push(`"${s.name.replace(/"/g, "'")}",${s.x[k]},${s.y[k]}`);
+      for (let k = 0; k < s.x.length; k++) rows.push(`${quote(s.name)},${s.x[k]},${s.y[k]}`);
     }
     return `${rows.join('\n')}\n`;
   }
@@ -173,21 +221,40 @@ export class Chart {
     }
   }
 
+  // Draws on the page's canvas, at the screen's pixel ratio; a legend of many series is cut to a
+  // few lines, and the canvas grows to the lines it has.
   draw() {
     if (!this.element.isConnected) return;
     const canvas = this.canvas;
     const ratio = (typeof window !== 'undefined' && window.devicePixelRatio) || 1;
-    const cssWidth = canvas.clientWidth || 320;
-    const cssHeight = canvas.clientHeight || 150;
+    const lines = this.render(canvas, ratio, canvas.clientWidth || 320, canvas.clientHeight || BASE_HEIGHT, SCREEN_LEGEND_LINES);
+    const wanted = `${BASE_HEIGHT + 13 * Math.max(0, lines - 1)}px`;
+    if (canvas.style.height !== wanted) canvas.style.height = wanted; // the next drawing has its size
+  }
+
+  // The chart as a picture to save: EXPORT_RATIO pixels a CSS pixel, the whole legend.
+  picture() {
+    const canvas = document.createElement('canvas');
+    canvas.style.color = getComputedStyle(this.canvas).color;
+    const width = this.canvas.clientWidth || 320;
+    const probe = this.render(canvas, 1, width, BASE_HEIGHT, Infinity); // how many legend lines
+    this.render(canvas, EXPORT_RATIO, width, BASE_HEIGHT + 13 * Math.max(0, probe - 1), Infinity, this.canvas);
+    return canvas;
+  }
+
+  // Draws the chart on `canvas` at `cssWidth` x `cssHeight` CSS pixels, `ratio` pixels each, with at
+  // most `maxLegendLines` of legend. Returns the number of legend lines below the title (1 when the
+  // legend sits beside it or there is none). `inkFrom`: the element whose CSS colour is the ink.
+  render(canvas, ratio, cssWidth, cssHeight, maxLegendLines, inkFrom = canvas) {
     const width = Math.round(cssWidth * ratio);
     const height = Math.round(cssHeight * ratio);
     if (canvas.width !== width) canvas.width = width;
     if (canvas.height !== height) canvas.height = height;
     const g = canvas.getContext('2d');
-    if (!g) return;
+    if (!g) return 1;
     g.setTransform(ratio, 0, 0, ratio, 0, 0);
     g.clearRect(0, 0, cssWidth, cssHeight);
-    const style = typeof getComputedStyle === 'function' ? getComputedStyle(canvas) : null;
+    const style = typeof getComputedStyle === 'function' && inkFrom.isConnected ? getComputedStyle(inkFrom) : null;
     const ink = (style && style.color) || '#222';
     g.fillStyle = ink;
     g.strokeStyle = ink;
@@ -196,27 +263,28 @@ export class Chart {
     const title = `${this.def.title}${this.log ? ' (log scale)' : ''}`;
     const shown = this.series.filter((s) => s.x.length);
     const left = 64;
-    const right = 10;
-    // The legend (more than one series with data) goes right of the title when it fits there, else
-    // on lines of its own below it, as many as its names need (a study's runs); the canvas grows.
-    const legend = shown.length > 1 ? legendLines(g, shown, cssWidth - left - right) : [];
+    const right = 12;
+    // The legend (more than one series with data, or a study's one) goes right of the title when it
+    // fits there, else on lines of its own below it.
+    const wantsLegend = shown.length > 1 || (this.def.legend === 'always' && shown.length === 1);
+    const legend = wantsLegend ? legendLines(g, shown, cssWidth - left - right, maxLegendLines) : [];
     const legendBeside = legend.length === 1 && g.measureText(title).width + 16 + legend[0].width <= cssWidth - left - right;
     const top = legend.length && !legendBeside ? 18 + 13 * legend.length : 20;
-    const wanted = `${BASE_HEIGHT + (legendBeside ? 0 : 13 * Math.max(0, legend.length - 1))}px`;
-    if (canvas.style.height !== wanted) canvas.style.height = wanted; // the next drawing has its size
     const bottom = 32;
     const plotW = Math.max(10, cssWidth - left - right);
     const plotH = Math.max(10, cssHeight - top - bottom);
+    const legendLinesBelow = legendBeside ? 1 : Math.max(1, legend.length);
 
     // Ranges over every series.
     const useLog = this.log;
     let xMin = Infinity, xMax = -Infinity, yMin = Infinity, yMax = -Infinity;
     for (const s of this.series) {
       for (let k = 0; k < s.x.length; k++) {
-        const y = s.y[k];
-        if (useLog && !(y > 0)) continue;
+        // the time axis is the same on a log scale: it lines up with the charts beside it
         if (s.x[k] < xMin) xMin = s.x[k];
         if (s.x[k] > xMax) xMax = s.x[k];
+        const y = s.y[k];
+        if (useLog && !(y > 0)) continue;
         if (y < yMin) yMin = y;
         if (y > yMax) yMax = y;
       }
@@ -226,7 +294,7 @@ export class Chart {
     g.fillText(title, left, 3);
     if (!(xMin <= xMax) || !(yMin <= yMax)) {
       g.fillText(useLog ? 'no positive values' : 'no data', left + 4, top + plotH / 2);
-      return;
+      return legendLinesBelow;
     }
     // Round ticks, the axes widened to them (ticks.js).
     const xAxis = niceTicks(xMin, xMax, Math.max(2, Math.floor(plotW / 70)));
@@ -270,7 +338,8 @@ export class Chart {
     g.textBaseline = 'top';
     g.textAlign = 'center';
     const xLabels = tickLabels(xAxis.ticks);
-    xAxis.ticks.forEach((t, k) => g.fillText(xLabels[k], px(t), top + plotH + 5));
+    // a label at the right end is kept inside the picture
+    xAxis.ticks.forEach((t, k) => g.fillText(xLabels[k], Math.min(px(t), cssWidth - 1 - g.measureText(xLabels[k]).width / 2), top + plotH + 5));
     g.textAlign = 'right';
     g.textBaseline = 'middle';
     const yLabels = tickLabels(yAxis.ticks, useLog);
@@ -281,10 +350,13 @@ export class Chart {
     g.textBaseline = 'bottom';
     g.fillText('time (s)', left + plotW / 2, cssHeight - 1);
     g.save();
-    g.translate(12, top + plotH / 2);
+    // centred on the plot while it fits there, else on the whole height, cut to it at most
+    const yLabel = fitted(g, this.yLabel(), cssHeight - 4);
+    const half = g.measureText(yLabel).width / 2;
+    g.translate(12, Math.max(half + 2, Math.min(cssHeight - half - 2, top + plotH / 2)));
     g.rotate(-Math.PI / 2);
     g.textBaseline = 'middle';
-    g.fillText(this.yLabel(), 0, 0);
+    g.fillText(yLabel, 0, 0);
     g.restore();
 
     // Lines: at most two points (min and max) per pixel column.
@@ -308,10 +380,8 @@ export class Chart {
         if (hi !== lo) g.lineTo(column, hi);
         if (last !== hi) g.lineTo(column, last);
       };
-      for (let k = 0; k < s.x.length; k++) {
-        const y = s.y[k];
-        if (useLog && !(y > 0)) continue;
-        const cx = Math.round(px(s.x[k]) * 2) / 2;
+      const point = (x, y) => {
+        const cx = Math.round(px(x) * 2) / 2;
         const cy = py(y);
         if (cx !== column) {
           flush();
@@ -322,6 +392,15 @@ export class Chart {
           hi = Math.max(hi, cy);
           last = cy;
         }
+      };
+      let previous = NaN;
+      for (let k = 0; k < s.x.length; k++) {
+        const y = s.y[k];
+        if (useLog && !(y > 0)) continue;
+        // a count sampled at times (Fragments.dat) holds its value until the next sample: a step
+        if (this.def.steps && Number.isFinite(previous)) point(s.x[k], previous);
+        point(s.x[k], y);
+        previous = y;
       }
       flush();
       g.stroke();
@@ -346,19 +425,20 @@ export class Chart {
       g.restore();
     }
 
-    // The legend, each line right-aligned.
+    // The legend, each line right-aligned; "+N more" in the ink.
     g.textAlign = 'right';
     g.textBaseline = 'top';
     legend.forEach((line, row) => {
       const y = legendBeside ? 3 : 16 + 13 * row;
       let x = left + plotW;
-      for (let k = line.series.length - 1; k >= 0; k--) {
-        const s = line.series[k];
-        g.fillStyle = s.colour;
-        g.fillText(s.name, x, y);
-        x -= g.measureText(s.name).width + 12;
+      for (let k = line.entries.length - 1; k >= 0; k--) {
+        const entry = line.entries[k];
+        g.fillStyle = entry.colour || ink;
+        g.fillText(entry.text, x, y);
+        x -= g.measureText(entry.text).width + 12;
       }
     });
+    return legendLinesBelow;
   }
 
   yLabel() {

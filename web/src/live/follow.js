@@ -1,6 +1,7 @@
 // Following a running (or queued) job live: its frames over a WebSocket into the viewer as they
 // come (the viewer shows the newest), its mesh once the first frame is in, its statistics files
-// re-read every few seconds, a reconnect when the connection breaks while the job still runs.
+// re-read every few seconds; when the connection breaks while the job goes on (a network hiccup, the
+// server restarting and resuming it), joining again for up to two minutes.
 
 import * as server from './server.js';
 import { FrameDecoder } from './frame_decode.js';
@@ -9,7 +10,7 @@ import { counted } from '../words.js';
 import { ACTIVE, errorText } from './session.js';
 import { readMesh, readStatistics, unitOfJob } from './job_files.js';
 
-const RECONNECTS = 5;
+const RETRY_SECONDS = 120; // how long a broken follow keeps trying to join again
 
 export class Follow {
   // panel: the LivePanel (its viewer, charts, labels and messages); session: this follow's Session.
@@ -28,6 +29,7 @@ export class Follow {
     const { session, panel } = this;
     // An empty live run (lengths in metres); the frames are appended as they come.
     session.generation = this.viewer.setRun({ frames: [], mesh: null, unit: 'm', source: `job ${session.job.id}` });
+    panel.showing(session);
     panel.setLive(true);
     unitOfJob(session.job).then((unit) => {
       if (!session.ended) panel.charts.setLengthUnit(unit);
@@ -81,6 +83,7 @@ export class Follow {
       return;
     }
     this.reconnects = 0;
+    this.brokenSince = null;
     addStats(frame);
     if (frame.forceChains) {
       frame.forceChains.step = frame.step;
@@ -134,22 +137,29 @@ export class Follow {
     panel.updateButtons();
     const id = session.job.id;
     let job = null;
+    let reachable = true;
     try {
       job = await server.getJob(id);
-    } catch {
-      /* deleted or the server is gone */
+    } catch (e) {
+      reachable = e.status !== 0; // 0: no answer at all (the server is down or restarting)
     }
     if (session.ended) return;
     if (job) panel.selectedChanged(job);
-    if (job && ACTIVE.has(job.state) && code !== 1000 && this.reconnects < RECONNECTS) {
-      // The connection broke (not closed by the server): join again.
+    // The job goes on (the connection broke, or the server restarts and resumes it): join again,
+    // for as long as RETRY_SECONDS from the break.
+    this.brokenSince = this.brokenSince || Date.now();
+    const waited = (Date.now() - this.brokenSince) / 1000;
+    if ((!reachable || (job && ACTIVE.has(job.state))) && waited < RETRY_SECONDS) {
       this.reconnects += 1;
-      panel.statusLabel.textContent = `connection lost (${code}${reason ? ` ${reason}` : ''}); reconnecting`;
+      const delay = Math.min(5, this.reconnects);
+      panel.statusLabel.textContent = `${reachable ? 'connection lost' : 'the server does not answer'}` +
+        `${reason ? ` (${reason})` : ''}; joining again in ${delay} s (${counted(this.framesReceived, 'live frame')} so far)`;
       setTimeout(() => {
         if (!session.ended && !this.socket) this.connect();
-      }, 1000 * this.reconnects);
+      }, 1000 * delay);
       return;
     }
+    if (!reachable) reason = `the server did not answer for ${Math.round(waited)} s; stopped following`;
     panel.setLive(false);
     const why = reason || (job ? `job ${job.state}` : `connection closed (${code})`);
     panel.statusLabel.textContent = `${why}; ${counted(this.framesReceived, 'live frame')}` + (job && !ACTIVE.has(job.state) ? ': Replay loads every frame' : '');

@@ -24,9 +24,10 @@ class LivePanel {
   constructor(viewer) {
     this.viewer = viewer;
     this.root = $('live-panel');
-    this.session = null; // the job shown (followed or replayed)
+    this.session = null; // the job being followed or replayed (loading, or shown)
     this.following = null; // its Follow, while it is followed
-    this.selected = null; // that job's record, kept up to date by the polls
+    this.shown = null; // { job, generation }: the job whose run the viewer shows (setRun's generation)
+    this.selected = null; // the session's job record (or the shown one's), kept up to date by the polls
     this.openToken = 0; // bumped by every job click: an older click's late answer opens nothing
     this.polls = 0;
     this.polling = false;
@@ -40,7 +41,8 @@ class LivePanel {
     this.jobList = new JobList($('jobs'), $('live-server-status'), (id) => this.open(id));
     // a study chosen: the charts are its runs', not the job's
     this.studies = new Studies($('charts'), () => {
-      this.stopFollowing();
+      const loading = this.session && !this.isShown(this.session);
+      this.stopFollowing(loading ? `the replay of job ${this.session.job.id} stopped: a study was chosen; the run shown before stays` : '');
       this.charts.clear();
     });
     this.caseForm = new CaseForm((text, isError) => this.say(text, isError), async (job) => {
@@ -60,8 +62,10 @@ class LivePanel {
     $('load-cancel').addEventListener('click', () => {
       if (this.session && !this.following) this.stopFollowing('replay cancelled; the run shown before stays');
     });
-    // The charts mark the time of the frame in view.
     this.viewer.onChange(() => {
+      // files opened over the job's run: the panel and the charts no longer name that job
+      if (this.shown && this.viewer.runGeneration !== this.shown.generation) this.runReplaced();
+      // the charts mark the time of the frame in view
       const state = this.viewer.state();
       this.charts.setCursor(state.time !== null ? Number(state.time) : NaN);
     });
@@ -89,8 +93,12 @@ class LivePanel {
     this.timer = setInterval(() => this.refreshJobs(), POLL_MS);
     this.caseForm.loadCases();
     // a link to a job (?job=N, as scripts/start prints it) opens it at once: live or replayed
-    const wanted = Number(new URLSearchParams(window.location.search).get('job'));
-    if (Number.isInteger(wanted) && wanted > 0) this.open(wanted);
+    const asked = new URLSearchParams(window.location.search).get('job');
+    if (asked !== null) {
+      const wanted = Number(asked);
+      if (Number.isInteger(wanted) && wanted > 0) this.open(wanted);
+      else this.say(`?job=${asked} in the address is not a job number (1, 2, ...)`, true);
+    }
     return this;
   }
 
@@ -144,26 +152,55 @@ class LivePanel {
     else this.replay(job);
   }
 
-  // Ends the job shown (its connection, downloads and parses) and starts a session for `job`.
+  // Ends the current session (its connection, downloads and parses) and starts one for `job`. The
+  // charts stay those of the run shown until the new run replaces it (showing).
   begin(job) {
     this.leaveJob();
     this.studies.clear();
     this.session = new Session(job);
-    this.selected = { ...job };
-    this.jobList.select(job.id);
-    this.root.dataset.job = String(job.id);
-    this.jobLabel.textContent = `#${job.id} ${job.name || ''}`.trim();
+    this.label(job);
     this.stepLabel.textContent = '';
-    this.charts.clear();
     return this.session;
   }
 
-  // Ends the current session, if any; the run it showed stays in the viewer.
+  // The session's run is now the viewer's (setRun answered `generation`): its charts start empty.
+  showing(session) {
+    this.shown = { job: session.job, generation: session.generation };
+    this.charts.clear();
+  }
+
+  isShown(session) {
+    return !!this.shown && this.shown.job === session.job && this.shown.generation === session.generation;
+  }
+
+  // The panel names `job` (null: none) as the selected one.
+  label(job) {
+    this.selected = job ? { ...job } : null;
+    this.jobList.select(job ? job.id : null);
+    this.root.dataset.job = job ? String(job.id) : '';
+    this.jobLabel.textContent = job ? `#${job.id} ${job.name || ''}`.trim() : 'none';
+    this.updateButtons();
+  }
+
+  // Ends the current session, if any. The run shown stays in the viewer; a session ended before its
+  // run was shown (a replay cancelled or overtaken) hands the panel back to the job shown.
   leaveJob() {
+    const session = this.session;
     if (this.following) this.following.close();
     this.following = null;
-    if (this.session) this.session.end();
     this.session = null;
+    if (!session) return;
+    session.end();
+    if (!this.isShown(session)) this.label(this.shown ? this.shown.job : null);
+  }
+
+  // Files replaced the job's run in the viewer.
+  runReplaced() {
+    this.shown = null;
+    if (this.session) return; // a newer follow or replay has the panel
+    this.charts.clear();
+    this.label(null);
+    this.statusLabel.textContent = '';
   }
 
   follow(job) {
@@ -186,11 +223,11 @@ class LivePanel {
   }
 
   stopFollowing(text) {
-    const wasShowing = !!this.session;
+    const hadSession = !!this.session;
     this.leaveJob();
     this.setLive(false);
     this.updateButtons();
-    if (wasShowing && text) {
+    if (hadSession && text) {
       this.statusLabel.textContent = text;
       this.say(text);
     }
@@ -198,6 +235,7 @@ class LivePanel {
 
   // The selected job's record changed (a poll, a frame, the end of the connection).
   selectedChanged(changes) {
+    if (!this.selected) return;
     const was = this.selected.state;
     this.selected = { ...this.selected, ...changes };
     if (was === this.selected.state) return;
@@ -230,6 +268,7 @@ class LivePanel {
   }
 
   async cancelSelected() {
+    if (!this.selected) return;
     const { id } = this.selected;
     try {
       const job = await server.cancelJob(id);

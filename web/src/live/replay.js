@@ -1,7 +1,8 @@
 // Replaying a finished job: its ANIMATION_3D.dat (or a 2D run's ANIMATION_2D.dat), Wall.dat and
 // ForceChain_3D.dat downloaded and parsed into the viewer, its statistics into the charts, then
 // played. #load-progress shows the downloads and parses, and #load-cancel (or opening files, or
-// another job) ends the session: the downloads are aborted and the parses stopped.
+// another job, or a study) ends the session: the downloads are aborted and the parses stopped, and
+// the run shown before stays with its charts (nothing is replaced until every file is read).
 
 import * as server from './server.js';
 import { counted } from '../words.js';
@@ -33,11 +34,9 @@ export async function replay(panel, session) {
   try {
     const unit = await unitOfJob(job);
     if (session.ended) return;
-    panel.charts.setLengthUnit(unit);
     const artifacts = await server.listArtifacts(id);
     if (session.ended) return;
     const names = new Set(artifacts.map((a) => a.name));
-    readStatistics(session, panel.charts, { job, artifacts });
     const file = names.has('ANIMATION_3D.dat') ? 'ANIMATION_3D.dat' : names.has('ANIMATION_2D.dat') ? 'ANIMATION_2D.dat' : null;
     if (!file) {
       panel.say(`job ${id} has no ANIMATION_3D.dat (or ANIMATION_2D.dat) to replay (${job.state})`, true);
@@ -66,7 +65,10 @@ export async function replay(panel, session) {
     const run = { frames: result.frames, mesh, unit: 'file', source: `job ${id}` };
     if (unit) run.lengthUnit = unit;
     session.generation = panel.viewer.setRun(run);
+    panel.showing(session);
+    panel.charts.setLengthUnit(unit);
     panel.charts.setAnimationFrames(result.frames);
+    readStatistics(session, panel.charts, { job, artifacts });
     let note = `job ${id}: ${counted(result.frames.length, 'frame')} replayed`;
     if (result.problem) note += ` (${result.problem})`;
     if (chains && chains.kind === 'forceChains') {

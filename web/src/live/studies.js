@@ -11,23 +11,60 @@ import { errorText } from './session.js';
 
 const REFRESH_MS = 5000;
 
-// What is overlaid: a column (or two added) of a statistics file (docs/formats.md section 5).
+// What is overlaid: a column (or two added) of a statistics file (docs/formats.md section 5). The
+// counts are sampled at output times: drawn as steps. Every chart has its legend, even of one run.
 const OVERLAID = [
   { id: 'study-plate-displacement', title: 'Loading plate displacement', y: 'displacement', unitKey: 'length', file: 'Force_Displacement.dat', columns: 3, value: (r) => r[1] },
   { id: 'study-plate-force', title: 'Loading plate force', y: 'force (N)', file: 'Force_Displacement.dat', columns: 3, value: (r) => r[2] },
-  { id: 'study-broken-bonds', title: 'Broken bonds', y: 'broken bonds (count)', file: 'Fragments.dat', columns: 6, value: (r) => r[4] + r[5] },
-  { id: 'study-fragments', title: 'Fragments', y: 'fragments (count)', file: 'Fragments.dat', columns: 6, value: (r) => r[1] },
-  { id: 'study-largest-fragment', title: 'Largest fragment', y: 'particles (count)', file: 'Fragments.dat', columns: 6, value: (r) => r[2] },
-];
+  { id: 'study-broken-bonds', title: 'Broken bonds', y: 'broken bonds (count)', file: 'Fragments.dat', columns: 6, value: (r) => r[4] + r[5], steps: true },
+  { id: 'study-fragments', title: 'Fragments', y: 'fragments (count)', file: 'Fragments.dat', columns: 6, value: (r) => r[1], steps: true },
+  { id: 'study-largest-fragment', title: 'Largest fragment', y: 'particles (count)', file: 'Fragments.dat', columns: 6, value: (r) => r[2], steps: true },
+].map((o) => ({ ...o, legend: 'always', series: [] }));
 const FILES = [...new Set(OVERLAID.map((o) => o.file))];
 
-// A run's line name: its parameters' last path segments and values ("tensileStrength = 4e+06").
-export function runName(run) {
-  const parts = Object.entries(run.parameters || {}).map(([path, value]) => {
-    const short = path.split(' = ').map((p) => p.split(/[./]/).filter(Boolean).pop()).join(' = ');
-    return `${short} = ${typeof value === 'object' ? JSON.stringify(value) : value}`;
+// A path's segments: "walls[1].load.cyclic.fMax" -> ["walls[1]", "load", "cyclic", "fMax"] (a JSON
+// pointer's too).
+function segments(path) {
+  return path.split(/[./]/).filter(Boolean);
+}
+
+// The shortest ends of the paths that tell them apart: ["interactions[0].friction",
+// "interactions[1].friction"] stay whole, ["bonds.tensileStrength"] is "tensileStrength".
+export function shortNames(paths) {
+  const parts = paths.map(segments);
+  for (let n = 1; ; n++) {
+    const names = parts.map((p) => p.slice(-n).join('.'));
+    if (new Set(names).size === names.length || parts.every((p) => p.length <= n)) return names;
+  }
+}
+
+// A value as a legend writes it: large and small numbers with an exponent (4e6), objects as JSON.
+function valueText(value) {
+  if (typeof value === 'number') {
+    const a = Math.abs(value);
+    return a !== 0 && (a >= 1e5 || a < 1e-3) ? value.toExponential().replace('e+', 'e') : String(value);
+  }
+  return typeof value === 'object' ? JSON.stringify(value) : String(value);
+}
+
+// Each run's line name, its parameters in the study's order ("fMax = 30"; a list of fields set
+// together, "tensileStrength = shearStrength = 4e6"), and its state when it did not succeed.
+export function runNames(study) {
+  const paths = study.parameters || [];
+  const fields = paths.map((p) => p.split(' = '));
+  const short = shortNames(fields.flat());
+  let k = 0;
+  const names = fields.map((f) => f.map(() => short[k++]).join(' = '));
+  return study.jobs.map((run) => {
+    const values = paths.map((path, i) => `${names[i]} = ${valueText((run.parameters || {})[path])}`);
+    const name = values.length ? values.join(', ') : `run ${run.run}`;
+    return run.state === 'succeeded' || run.state === 'running' || run.state === 'queued' ? name : `${name} (${run.state})`;
   });
-  return parts.length ? parts.join(', ') : `run ${run.run}`;
+}
+
+// A study as #study-select lists it.
+function optionText(study) {
+  return `#${study.id} ${study.name || '(no name)'}: ${counted(study.jobs.length, 'run')}${study.finished ? '' : `, ${study.summary}`}`;
 }
 
 export class Studies {
@@ -36,7 +73,9 @@ export class Studies {
     this.select = document.getElementById('study-select');
     this.status = document.getElementById('study-status');
     this.details = document.getElementById('live-studies');
-    this.charts = new Charts(container, OVERLAID.map((o) => ({ ...o, series: [] })));
+    this.charts = new Charts(container, OVERLAID);
+    this.container = container;
+    this.legend = null; // #study-legend, at the top of #charts while a study is overlaid
     this.onChosen = onChosen;
     this.token = 0; // bumped by every choice: an older choice's late answers are dropped
     this.study = null; // the study overlaid
@@ -59,12 +98,17 @@ export class Studies {
     for (const s of studies.slice().sort((a, b) => b.id - a.id)) {
       const option = document.createElement('option');
       option.value = String(s.id);
-      option.textContent = `#${s.id} ${s.name || '(no name)'}: ${counted(s.jobs.length, 'run')}${s.finished ? '' : `, ${s.summary}`}`;
+      option.textContent = optionText(s);
       options.push(option);
     }
     this.select.replaceChildren(...options);
     this.select.value = options.some((o) => o.value === chosen) ? chosen : '';
     this.details.dataset.studies = String(studies.length);
+    // folded while the server has none; open once it has some, so that they are seen
+    if (studies.length && !this.shownOpen) {
+      this.details.open = true;
+      this.shownOpen = true;
+    }
     if (!studies.length && !this.study) this.status.textContent = 'No studies: submit one with `dem study --submit` or POST /api/v1/studies (docs/api.md).';
   }
 
@@ -81,6 +125,32 @@ export class Studies {
       c.setSeries([]);
       c.update();
     }
+    if (this.legend) this.legend.remove();
+    this.legend = null;
+  }
+
+  // #study-legend, the first thing in #charts: which study, and every run's colour and name (a
+  // chart's own legend lists a few lines of them). Printed with the charts.
+  showLegend(study, runs, names) {
+    if (!this.legend) {
+      this.legend = document.createElement('div');
+      this.legend.id = 'study-legend';
+      this.legend.dataset.order = '-1';
+      this.container.prepend(this.legend);
+    }
+    const title = document.createElement('strong');
+    title.textContent = `Study #${study.id} ${study.name || ''}: ${(study.parameters || []).join(', ')}`;
+    const list = document.createElement('ol');
+    const colours = this.charts.chart(OVERLAID[0].id).series.map((s) => s.colour);
+    runs.forEach((run, k) => {
+      const item = document.createElement('li');
+      const swatch = document.createElement('span');
+      swatch.className = 'swatch';
+      swatch.style.background = colours[k];
+      item.append(swatch, `${names[k]} · job ${run.job}`);
+      list.appendChild(item);
+    });
+    this.legend.replaceChildren(title, list);
   }
 
   async choose(id) {
@@ -102,10 +172,16 @@ export class Studies {
       if (!this.study) await this.setUnit(study);
       if (token !== this.token) return;
       this.study = study;
-      const runs = study.jobs.filter((run) => run.job && run.state !== 'deleted');
+      const option = [...this.select.options].find((o) => o.value === String(id));
+      if (option) option.textContent = optionText(study); // the list's line says what the status says
+      const all = runNames(study);
+      const kept = study.jobs.map((run, k) => [run, all[k]]).filter(([run]) => run.job && run.state !== 'deleted');
+      const runs = kept.map(([run]) => run);
+      const names = kept.map(([, name]) => name);
       for (const c of this.charts.charts.values()) {
-        if (c.series.length !== runs.length) c.setSeries(runs.map(runName));
+        if (c.series.length !== runs.length || c.series.some((line, k) => line.name !== names[k])) c.setSeries(names);
       }
+      this.showLegend(study, runs, names);
       const read = await Promise.all(runs.map((run) => this.readRun(run, token)));
       if (token !== this.token) return;
       runs.forEach((run, k) => {
@@ -116,8 +192,10 @@ export class Studies {
       });
       this.charts.redraw();
       const drawn = read.filter(Boolean).length;
-      this.status.textContent = `${study.name || `study ${id}`}: ${study.summary}; ${drawn} of ${counted(runs.length, 'run')} with time series` +
-        (drawn < runs.length ? ' (a run without Force_Displacement.dat or Fragments.dat, or not started, has none)' : '');
+      const gone = study.jobs.length - runs.length;
+      this.status.textContent = `${study.name || `study ${id}`}: ${study.summary}; ${drawn} of ${counted(study.jobs.length, 'run')} with time series` +
+        (gone ? ` (${gone} deleted)` : '') +
+        (drawn < runs.length ? '; a run without Force_Displacement.dat or Fragments.dat, or not started, has none' : '');
     } catch (e) {
       if (token === this.token) this.status.textContent = `study ${id}: ${errorText(e)}`;
     }

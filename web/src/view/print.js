@@ -13,8 +13,13 @@ export function timeStamp(date = new Date()) {
 // caption(): what is shown, one line (the saved picture's caption).
 export function wirePrint(stage, decorate, caption) {
   const fill = () => {
+    const shown = caption();
+    const sheet = document.getElementById('print-sheet');
+    // nothing shown: no empty frame on the page (a study's charts print alone)
+    sheet.classList.toggle('empty', !shown);
+    if (!shown) return;
     document.getElementById('print-picture').src = composePicture(stage, decorate).toDataURL('image/png');
-    document.getElementById('print-caption').textContent = `${caption() || 'Nothing shown'} · printed ${timeStamp()}`;
+    document.getElementById('print-caption').textContent = `${shown} · printed ${timeStamp()}`;
   };
   window.addEventListener('beforeprint', fill);
   document.getElementById('print').addEventListener('click', () => {
