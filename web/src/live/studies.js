@@ -73,6 +73,7 @@ export class Studies {
     this.select = document.getElementById('study-select');
     this.status = document.getElementById('study-status');
     this.details = document.getElementById('live-studies');
+    this.count = document.getElementById('study-count');
     this.charts = new Charts(container, OVERLAID);
     this.container = container;
     this.legend = null; // #study-legend, at the top of #charts while a study is overlaid
@@ -104,11 +105,8 @@ export class Studies {
     this.select.replaceChildren(...options);
     this.select.value = options.some((o) => o.value === chosen) ? chosen : '';
     this.details.dataset.studies = String(studies.length);
-    // folded while the server has none; open once it has some, so that they are seen
-    if (studies.length && !this.shownOpen) {
-      this.details.open = true;
-      this.shownOpen = true;
-    }
+    // folded (the first screen keeps its room), its title saying how many there are
+    this.count.textContent = studies.length ? ` (${studies.length})` : '';
     if (!studies.length && !this.study) this.status.textContent = 'No studies: submit one with `dem study --submit` or POST /api/v1/studies (docs/api.md).';
   }
 
