@@ -128,10 +128,54 @@ test('files chosen during a replay end it: the replay does not replace them when
   await page.locator(`#jobs li[data-id="${job.id}"]`).click();
   await expect(page.locator('#load-cancel')).toBeVisible();
   await loadFiles(page, [ANIMATION()], frames.length);
+  // before: the status line said "downloading ANIMATION_3D.dat: 7.8%" for good (helper-34)
+  await expect(page.locator('#live-status')).toContainText(`the replay of job ${job.id} stopped: files were opened`);
+  await expect(page.locator('#live-job')).toHaveText('none');
   release();
   await page.waitForTimeout(1500);
   expect((await state(page)).frames, 'the files\' run').toBe(frames.length);
   expect(await page.evaluate(() => window.demViewer.viewer.run.source)).toBe('ANIMATION_3D.dat');
+});
+
+test('a replay that fails hands the panel back to the job shown', async ({ page, request }) => {
+  const shown = await finishedJob(request);
+  const other = await finishedJob(request);
+  await openViewer(page);
+  await page.locator(`#jobs li[data-id="${shown.id}"]`).click();
+  await expect(page.locator('#message')).toContainText(`job ${shown.id}:`);
+  await page.route(`**/jobs/${other.id}/artifacts/ANIMATION_3D.dat`, (route) => route.abort('connectionreset'));
+  await page.locator(`#jobs li[data-id="${other.id}"]`).click();
+  await expect(page.locator('#live-status')).toContainText('replay failed');
+  // before: the panel named the failed job over the run still shown (helper-34)
+  await expect(page.locator('#live-job')).toContainText(`#${shown.id}`);
+  await expect(page.locator('#jobs li.selected')).toHaveAttribute('data-id', String(shown.id));
+  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible();
+});
+
+test('a replay cancelled after a study had the charts brings the shown job\'s charts back', async ({ page, request }) => {
+  const api = (p) => `${process.env.DEM_SERVER_URL}${p}`;
+  const made = await request.post(api('/api/v1/studies'), {
+    data: { name: 'between two jobs', base: fallingSpheres('study base', 0.02), parameters: [{ path: 'gravity.z', values: [-9.81] }] },
+  });
+  const study = await made.json();
+  const shown = await finishedJob(request);
+  const other = await finishedJob(request);
+  await openViewer(page);
+  await page.locator(`#jobs li[data-id="${shown.id}"]`).click();
+  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible();
+  await expect.poll(() => page.locator('#study-select').evaluate((s, id) => [...s.options].some((o) => o.value === String(id)), study.id))
+    .toBe(true);
+  await page.locator('#live-studies').evaluate((d) => { d.open = true; });
+  await page.locator('#study-select').selectOption(String(study.id));
+  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toHaveCount(0);
+  const release = await holdAnimation(page, other);
+  await page.locator(`#jobs li[data-id="${other.id}"]`).click();
+  await expect(page.locator('#load-cancel')).toBeVisible();
+  await page.locator('#load-cancel').click();
+  // before: no chart at all (helper-34)
+  await expect(page.locator('#live-job')).toContainText(`#${shown.id}`);
+  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible();
+  release();
 });
 
 test('a cancelled replay hands the panel back to the job shown, with its charts', async ({ page, request }) => {

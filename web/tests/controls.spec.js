@@ -136,8 +136,11 @@ test('a particle id given twice in a frame is named when the file opens', async 
 });
 
 test('a ?job= that is not a job number is named', async ({ page }) => {
-  await page.goto(`${serverUrl()}/?job=abc`);
-  await expect(page.locator('#message')).toContainText('?job=abc in the address is not a job number');
+  // 0x2 opened job 2 (helper-34): decimal digits only, as the REST paths
+  for (const value of ['abc', '0x2']) {
+    await page.goto(`${serverUrl()}/?job=${value}`);
+    await expect(page.locator('#message')).toContainText(`?job=${value} in the address is not a job number`);
+  }
 });
 
 test('the case form: a staged case has no duration box, and frictions that differ are not shown as one', async ({ page }) => {
@@ -153,5 +156,9 @@ test('the case form: a staged case has no duration box, and frictions that diffe
   await expect(page.locator('#case-friction')).toHaveAttribute('placeholder', 'varies');
   await page.locator('#case-friction').fill('0.7');
   const spec = JSON.parse(await page.locator('#case-spec').inputValue());
-  expect(spec.interactions.map((i) => i.friction)).toEqual(spec.interactions.map(() => 0.7));
+  // every pair, in every stage too: a stage's interactions hold from its start on (helper-34: the
+  // box set the top level only, and the load stage ran with its own)
+  const all = [...spec.interactions, ...spec.stages.flatMap((s) => s.interactions || [])];
+  expect(all.length).toBeGreaterThan(spec.interactions.length);
+  expect(all.map((i) => i.friction)).toEqual(all.map(() => 0.7));
 });

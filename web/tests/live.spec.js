@@ -53,7 +53,7 @@ test('submit the demo case, follow it live, replay it', async ({ page, request }
   expect(points).toBeGreaterThan(1);
   const [csvDownload] = await Promise.all([page.waitForEvent('download'), chart.locator('[data-export="csv"]').click()]);
   expect(csvDownload.suggestedFilename()).toBe('kinetic-energy.csv');
-  const csv = fs.readFileSync(await csvDownload.path(), 'utf8').trim().split('\n');
+  const csv = fs.readFileSync(await csvDownload.path(), 'utf8').trim().split(/\r?\n/);
   expect(csv[0]).toBe('series,time (s),"kinetic energy (J)"');
   expect(csv.length - 1, 'a row a point').toBe(points);
   const [first] = csv.slice(1).map((row) => row.split(','));

@@ -58,6 +58,9 @@ test('a study\'s runs are overlaid in the charts, one line a run, and leave for 
   const series = await page.evaluate(() => window.demLive.studies.charts.chart('study-plate-force').series
     .map((s) => ({ name: s.name, x: s.x, y: s.y })));
   expect(series.map((s) => s.name)).toEqual(PEAKS.map((p) => `fMax = ${p}`));
+  // the chart's own legend: the values alone (helper-34: names cut to one prefix told no run apart)
+  expect(await page.evaluate(() => window.demLive.studies.charts.chart('study-plate-force').series.map((s) => s.label)))
+    .toEqual(PEAKS.map(String));
   // each line is its own run's Force_Displacement.dat: time, and the force column
   for (let k = 0; k < PEAKS.length; k++) {
     const text = await (await request.get(api(`/api/v1/jobs/${study.jobs[k].job}/artifacts/Force_Displacement.dat`))).text();
@@ -85,7 +88,9 @@ test('a study\'s runs are overlaid in the charts, one line a run, and leave for 
     page.waitForEvent('download'),
     page.locator('.chart[data-chart="study-plate-force"] button[data-export="csv"]').click(),
   ]);
-  const csv = fs.readFileSync(await download.path(), 'utf8').trim().split('\n');
+  const text = fs.readFileSync(await download.path(), 'utf8');
+  expect(text.endsWith('\r\n') && !/[^\r]\n/.test(text), 'lines end in CRLF (RFC 4180)').toBe(true);
+  const csv = text.trim().split(/\r?\n/);
   expect(csv[0]).toBe('series,time (s),"force (N)"');
   expect(new Set(csv.slice(1).map((l) => l.split(',')[0]))).toEqual(new Set(PEAKS.map((p) => `"fMax = ${p}"`)));
 
@@ -100,6 +105,9 @@ test('run names tell parameters apart, keep the study\'s order, and say when a r
   expect(shortNames(['interactions[0].friction', 'interactions[1].friction'])).toEqual(['interactions[0].friction', 'interactions[1].friction']);
   expect(shortNames(['bonds.tensileStrength', 'walls[1].load.servo.maxSpeed'])).toEqual(['tensileStrength', 'maxSpeed']);
   expect(shortNames(['/walls/1/load/cyclic/fMax'])).toEqual(['fMax']);
+  // each path as short as it can be: a JSON pointer's index stays with its list
+  expect(shortNames(['/interactions/0/friction', 'walls[0].plate.c1.z', 'walls[0].plate.c2.z'])).toEqual(['friction', 'c1.z', 'c2.z']);
+  expect(shortNames(['/interactions/0/friction', '/interactions/1/friction'])).toEqual(['interactions[0].friction', 'interactions[1].friction']);
   const study = {
     parameters: ['walls[1].load.servo.maxSpeed', 'bonds.tensileStrength = bonds.shearStrength'],
     jobs: [

@@ -6,6 +6,12 @@ import * as server from './server.js';
 import { formatSpec } from './spec_format.js';
 import { errorText } from './session.js';
 
+// Every interaction of the spec: its own, and those its stages set from their start on (a staged
+// case's load stage sets the frictions the loading runs with).
+function interactionsOf(spec) {
+  return [...(spec.interactions || []), ...(spec.stages || []).flatMap((stage) => stage.interactions || [])];
+}
+
 // A case description's markdown links as their text.
 function plain(markdown) {
   return (markdown || '').replace(/\[`?([^\]`]+)`?\]\([^)]*\)/g, '$1');
@@ -95,13 +101,13 @@ export class CaseForm {
     this.duration.value = !staged && Number.isFinite(duration) && duration > 0 ? String(duration) : '';
     this.duration.placeholder = staged ? 'stages' : spec.time && spec.time.steps ? `${spec.time.steps} steps` : '';
     // one value for every pair of materials: shown when they agree, else empty with their range
-    const frictions = (spec.interactions || []).map((i) => Number(i.friction || 0));
+    const frictions = interactionsOf(spec).map((i) => Number(i.friction || 0));
     const distinct = [...new Set(frictions)];
     this.friction.value = distinct.length === 1 ? String(distinct[0]) : '';
     this.friction.placeholder = distinct.length > 1 ? 'varies' : '';
     this.friction.title = distinct.length > 1
-      ? `the pairs of materials have frictions ${frictions.join(', ')}: a value here sets every pair's; or edit each in the spec`
-      : 'the friction of every pair of materials';
+      ? `the pairs of materials (and the stages) have frictions ${distinct.join(', ')}: a value here sets every pair's in every stage; or edit each in the spec`
+      : 'the friction of every pair of materials, in every stage';
   }
 
   // The spec in the textarea, or null (and a message when `report`) when it is not a JSON object.
@@ -135,9 +141,9 @@ export class CaseForm {
       spec.time.duration = value;
       delete spec.time.steps; // give duration or steps, not both
     } else {
-      for (const interaction of spec.interactions || []) interaction.friction = value;
+      for (const interaction of interactionsOf(spec)) interaction.friction = value;
       this.friction.placeholder = '';
-      this.friction.title = 'the friction of every pair of materials';
+      this.friction.title = 'the friction of every pair of materials, in every stage';
     }
     this.specText.value = formatSpec(spec);
   }

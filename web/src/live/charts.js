@@ -70,7 +70,7 @@ function legendLines(g, series, width, maxLines = Infinity) {
   const lines = [];
   let placed = 0;
   for (const s of series) {
-    const text = fitted(g, s.name, width);
+    const text = fitted(g, s.label || s.name, width);
     const w = g.measureText(text).width;
     const line = lines[lines.length - 1];
     if (line && line.width + 12 + w <= width) {
@@ -155,8 +155,9 @@ export class Chart {
   }
 
   // The series by name, each empty (a study's runs).
-  setSeries(names) {
-    this.series = names.map((name, k) => ({ name, colour: seriesColour(k, names.length), x: [], y: [] }));
+  // `labels` (optional): shorter names for the legend drawn in the chart (a study's values alone).
+  setSeries(names, labels = names) {
+    this.series = names.map((name, k) => ({ name, label: labels[k], colour: seriesColour(k, names.length), x: [], y: [] }));
   }
 
   points() {
@@ -170,7 +171,7 @@ export class Chart {
     for (const s of this.series) {
       for (let k = 0; k < s.x.length; k++) rows.push(`${quote(s.name)},${s.x[k]},${s.y[k]}`);
     }
-    return `${rows.join('\n')}\n`;
+    return `${rows.join('\r\n')}\r\n`;
   }
 
   hasData() {
@@ -466,6 +467,10 @@ export class Charts {
 
   chart(id) {
     return this.charts.get(id) || null;
+  }
+
+  hasData() {
+    return [...this.charts.values()].some((c) => c.hasData());
   }
 
   // Forget every series (a new job).

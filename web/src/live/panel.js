@@ -12,7 +12,7 @@ import { Follow } from './follow.js';
 import { replay } from './replay.js';
 import { Studies } from './studies.js';
 import { CaseForm } from './case_form.js';
-import { readStatistics } from './job_files.js';
+import { readStatistics, unitOfJob } from './job_files.js';
 import { ACTIVE, Session, errorText } from './session.js';
 
 const POLL_MS = 1000;
@@ -41,10 +41,9 @@ class LivePanel {
     this.jobList = new JobList($('jobs'), $('live-server-status'), (id) => this.open(id));
     // a study chosen: the charts are its runs', not the job's
     this.studies = new Studies($('charts'), () => {
-      const loading = this.session && !this.isShown(this.session);
-      this.stopFollowing(loading ? `the replay of job ${this.session.job.id} stopped: a study was chosen; the run shown before stays` : '');
+      this.stopFollowing(this.interruption('a study was chosen'));
       this.charts.clear();
-    });
+    }, () => this.restoreCharts());
     this.caseForm = new CaseForm((text, isError) => this.say(text, isError), async (job) => {
       await this.refreshJobs();
       this.follow(job);
@@ -73,9 +72,9 @@ class LivePanel {
       if (this.following) this.following.setForceChains(e.target.checked);
     });
     // Opening files replaces the run: the job's follow or replay ends (its downloads and parses too).
-    $('file-input').addEventListener('change', () => this.stopFollowing());
+    $('file-input').addEventListener('change', () => this.stopFollowing(this.interruption('files were opened')));
     document.addEventListener('drop', (e) => {
-      if (e.dataTransfer && e.dataTransfer.files.length) this.stopFollowing();
+      if (e.dataTransfer && e.dataTransfer.files.length) this.stopFollowing(this.interruption('files were opened'));
     });
   }
 
@@ -96,7 +95,8 @@ class LivePanel {
     const asked = new URLSearchParams(window.location.search).get('job');
     if (asked !== null) {
       const wanted = Number(asked);
-      if (Number.isInteger(wanted) && wanted > 0) this.open(wanted);
+      // decimal digits, as the REST paths take them (not 0x2, 2.0 or 1e0)
+      if (/^[0-9]+$/.test(asked) && Number.isSafeInteger(wanted) && wanted > 0) this.open(wanted);
       else this.say(`?job=${asked} in the address is not a job number (1, 2, ...)`, true);
     }
     return this;
@@ -191,7 +191,32 @@ class LivePanel {
     this.session = null;
     if (!session) return;
     session.end();
-    if (!this.isShown(session)) this.label(this.shown ? this.shown.job : null);
+    if (!this.isShown(session)) {
+      this.label(this.shown ? this.shown.job : null);
+      this.restoreCharts();
+    }
+  }
+
+  // What ending the current session for `why` means, for the status line and the message ('' when
+  // nothing is followed or loading).
+  interruption(why) {
+    const session = this.session;
+    if (!session) return '';
+    if (this.following && this.isShown(session)) return `stopped following job ${session.job.id}: ${why}`;
+    if (!this.isShown(session)) return `the replay of job ${session.job.id} stopped: ${why}; the run shown before stays`;
+    return '';
+  }
+
+  // The charts of the job shown, drawn again when they are empty (a study or a replay that did not
+  // finish had them): its frames' energy from the viewer, its statistics files from the server.
+  restoreCharts() {
+    if (!this.shown || this.charts.hasData()) return;
+    const job = this.jobList.jobs.get(this.shown.job.id) || this.shown.job;
+    const session = new Session(job);
+    session.generation = this.shown.generation;
+    this.charts.setAnimationFrames(this.viewer.run ? this.viewer.run.frames : []);
+    unitOfJob(job).then((unit) => this.charts.setLengthUnit(unit));
+    readStatistics(session, this.charts, { job });
   }
 
   // Files replaced the job's run in the viewer.
@@ -218,7 +243,15 @@ class LivePanel {
     this.updateButtons();
     this.replayButton.disabled = true;
     replay(this, session).finally(() => {
-      if (session === this.session) this.updateButtons();
+      if (session !== this.session) return;
+      // the replay ended without showing its run (no file, a bad file, an error): the panel and the
+      // charts go back to the run shown; the status line keeps what went wrong
+      if (!this.isShown(session)) {
+        const why = this.statusLabel.textContent;
+        this.leaveJob();
+        this.statusLabel.textContent = why;
+      }
+      this.updateButtons();
     });
   }
 

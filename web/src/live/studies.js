@@ -22,20 +22,29 @@ const OVERLAID = [
 ].map((o) => ({ ...o, legend: 'always', series: [] }));
 const FILES = [...new Set(OVERLAID.map((o) => o.file))];
 
-// A path's segments: "walls[1].load.cyclic.fMax" -> ["walls[1]", "load", "cyclic", "fMax"] (a JSON
-// pointer's too).
+// A path's segments: "walls[1].load.cyclic.fMax" -> ["walls[1]", "load", "cyclic", "fMax"]; a JSON
+// pointer's index joins its list: "/interactions/0/friction" -> ["interactions[0]", "friction"].
 function segments(path) {
-  return path.split(/[./]/).filter(Boolean);
+  const parts = [];
+  for (const part of path.split(/[./]/).filter(Boolean)) {
+    if (/^\d+$/.test(part) && parts.length) parts[parts.length - 1] += `[${part}]`;
+    else parts.push(part);
+  }
+  return parts;
 }
 
-// The shortest ends of the paths that tell them apart: ["interactions[0].friction",
-// "interactions[1].friction"] stay whole, ["bonds.tensileStrength"] is "tensileStrength".
+// Each path's shortest end that no other path ends with: ["interactions[0].friction",
+// "interactions[1].friction"] stay whole, "bonds.tensileStrength" beside "walls[1].c1.z" is
+// "tensileStrength".
 export function shortNames(paths) {
   const parts = paths.map(segments);
-  for (let n = 1; ; n++) {
-    const names = parts.map((p) => p.slice(-n).join('.'));
-    if (new Set(names).size === names.length || parts.every((p) => p.length <= n)) return names;
-  }
+  const end = (p, n) => p.slice(-n).join('.');
+  return parts.map((p, i) => {
+    for (let n = 1; n < p.length; n++) {
+      if (parts.every((q, j) => j === i || end(q, n) !== end(p, n))) return end(p, n);
+    }
+    return p.join('.');
+  });
 }
 
 // A value as a legend writes it: large and small numbers with an exponent (4e6), objects as JSON.
@@ -49,14 +58,14 @@ function valueText(value) {
 
 // Each run's line name, its parameters in the study's order ("fMax = 30"; a list of fields set
 // together, "tensileStrength = shearStrength = 4e6"), and its state when it did not succeed.
-export function runNames(study) {
+export function runNames(study, { valuesOnly = false } = {}) {
   const paths = study.parameters || [];
   const fields = paths.map((p) => p.split(' = '));
   const short = shortNames(fields.flat());
   let k = 0;
   const names = fields.map((f) => f.map(() => short[k++]).join(' = '));
   return study.jobs.map((run) => {
-    const values = paths.map((path, i) => `${names[i]} = ${valueText((run.parameters || {})[path])}`);
+    const values = paths.map((path, i) => (valuesOnly ? '' : `${names[i]} = `) + valueText((run.parameters || {})[path]));
     const name = values.length ? values.join(', ') : `run ${run.run}`;
     return run.state === 'succeeded' || run.state === 'running' || run.state === 'queued' ? name : `${name} (${run.state})`;
   });
@@ -68,8 +77,9 @@ function optionText(study) {
 }
 
 export class Studies {
-  // container: #charts; onChosen(): a study was chosen (the panel leaves the job it showed).
-  constructor(container, onChosen) {
+  // container: #charts; onChosen(): a study was chosen (the panel leaves the job it showed);
+  // onLeft(): the overlay was ended by choosing none (the job's charts come back).
+  constructor(container, onChosen, onLeft) {
     this.select = document.getElementById('study-select');
     this.status = document.getElementById('study-status');
     this.details = document.getElementById('live-studies');
@@ -78,6 +88,7 @@ export class Studies {
     this.container = container;
     this.legend = null; // #study-legend, at the top of #charts while a study is overlaid
     this.onChosen = onChosen;
+    this.onLeft = onLeft;
     this.token = 0; // bumped by every choice: an older choice's late answers are dropped
     this.study = null; // the study overlaid
     this.sizes = new Map(); // "job/file" -> size when last read
@@ -137,7 +148,8 @@ export class Studies {
       this.container.prepend(this.legend);
     }
     const title = document.createElement('strong');
-    title.textContent = `Study #${study.id} ${study.name || ''}: ${(study.parameters || []).join(', ')}`;
+    // the charts' legends give the values alone, in this order
+    title.textContent = `Study #${study.id} ${study.name || ''}: ${(study.parameters || []).join(', ')} (the charts' legends: the values, in this order)`;
     const list = document.createElement('ol');
     const colours = this.charts.chart(OVERLAID[0].id).series.map((s) => s.colour);
     runs.forEach((run, k) => {
@@ -153,7 +165,10 @@ export class Studies {
 
   async choose(id) {
     this.clear();
-    if (!id) return;
+    if (!id) {
+      this.onLeft();
+      return;
+    }
     this.select.value = String(id);
     this.onChosen();
     const token = this.token;
@@ -173,11 +188,13 @@ export class Studies {
       const option = [...this.select.options].find((o) => o.value === String(id));
       if (option) option.textContent = optionText(study); // the list's line says what the status says
       const all = runNames(study);
-      const kept = study.jobs.map((run, k) => [run, all[k]]).filter(([run]) => run.job && run.state !== 'deleted');
+      const values = runNames(study, { valuesOnly: true }); // the charts' own legends: the values alone
+      const kept = study.jobs.map((run, k) => [run, all[k], values[k]]).filter(([run]) => run.job && run.state !== 'deleted');
       const runs = kept.map(([run]) => run);
       const names = kept.map(([, name]) => name);
+      const labels = kept.map(([, , label]) => label);
       for (const c of this.charts.charts.values()) {
-        if (c.series.length !== runs.length || c.series.some((line, k) => line.name !== names[k])) c.setSeries(names);
+        if (c.series.length !== runs.length || c.series.some((line, k) => line.name !== names[k])) c.setSeries(names, labels);
       }
       this.showLegend(study, runs, names);
       const read = await Promise.all(runs.map((run) => this.readRun(run, token)));
