@@ -102,47 +102,77 @@ async function holdAnimation(page, job) {
   return release;
 }
 
+
+// Clicks `job` in the job list with its ANIMATION_3D.dat held (holdAnimation), and waits until the
+// replay is under way; returns the release.
+async function startHeldReplay(page, job) {
+  const release = await holdAnimation(page, job);
+  await page.locator(`#jobs li[data-id="${job.id}"]`).click();
+  await expect(page.locator('#load-cancel')).toBeVisible();
+  return release;
+}
+
+// Replays `job` to the end: its run and its charts shown.
+async function showJob(page, job) {
+  await page.locator(`#jobs li[data-id="${job.id}"]`).click();
+  await expect(page.locator('#message')).toContainText(`job ${job.id}:`);
+  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible();
+}
+
+// Lets the held download go and checks that the files' run is still the one shown.
+async function expectFilesRunStays(page, release, frames) {
+  release();
+  await page.waitForTimeout(1500);
+  expect((await state(page)).frames, 'the files\' run').toBe(frames);
+  expect(await page.evaluate(() => window.demViewer.viewer.run.source)).toBe('ANIMATION_3D.dat');
+}
+
+// A study of one short run on the server, chosen in the page's Studies.
+async function studyOfOneRun(request, name) {
+  const made = await request.post(`${process.env.DEM_SERVER_URL}/api/v1/studies`, {
+    data: { name, base: fallingSpheres('study base', 0.02), parameters: [{ path: 'gravity.z', values: [-9.81] }] },
+  });
+  expect(made.status(), await made.text()).toBe(201);
+  return made.json();
+}
+
+async function chooseStudy(page, study) {
+  await expect.poll(() => page.locator('#study-select').evaluate((s, id) => [...s.options].some((o) => o.value === String(id)), study.id))
+    .toBe(true);
+  await page.locator('#live-studies').evaluate((d) => { d.open = true; });
+  await page.locator('#study-select').selectOption(String(study.id));
+}
+
 test('a replay can be cancelled, and the run shown before stays', async ({ page, request }) => {
   const job = await finishedJob(request);
   const frames = readAnimation(ANIMATION());
   await openViewer(page);
   await loadFiles(page, [ANIMATION()], frames.length);
-  const release = await holdAnimation(page, job);
-  await page.locator(`#jobs li[data-id="${job.id}"]`).click();
-  await expect(page.locator('#load-cancel')).toBeVisible();
+  const release = await startHeldReplay(page, job);
   await page.locator('#load-cancel').click();
   await expect(page.locator('#message')).toContainText('replay cancelled');
   await expect(page.locator('#load-cancel')).toBeHidden();
   await expect(page.locator('#load-progress')).toBeHidden();
-  release();
-  await page.waitForTimeout(1500);
-  expect((await state(page)).frames, 'the files\' run').toBe(frames.length);
-  expect(await page.evaluate(() => window.demViewer.viewer.run.source)).toBe('ANIMATION_3D.dat');
+  await expectFilesRunStays(page, release, frames.length);
 });
 
 test('files chosen during a replay end it: the replay does not replace them when its download ends', async ({ page, request }) => {
   const job = await finishedJob(request);
   const frames = readAnimation(ANIMATION());
   await openViewer(page);
-  const release = await holdAnimation(page, job);
-  await page.locator(`#jobs li[data-id="${job.id}"]`).click();
-  await expect(page.locator('#load-cancel')).toBeVisible();
+  const release = await startHeldReplay(page, job);
   await loadFiles(page, [ANIMATION()], frames.length);
   // before: the status line said "downloading ANIMATION_3D.dat: 7.8%" for good (helper-34)
   await expect(page.locator('#live-status')).toContainText(`the replay of job ${job.id} stopped: files were opened`);
   await expect(page.locator('#live-job')).toHaveText('none');
-  release();
-  await page.waitForTimeout(1500);
-  expect((await state(page)).frames, 'the files\' run').toBe(frames.length);
-  expect(await page.evaluate(() => window.demViewer.viewer.run.source)).toBe('ANIMATION_3D.dat');
+  await expectFilesRunStays(page, release, frames.length);
 });
 
 test('a replay that fails hands the panel back to the job shown', async ({ page, request }) => {
   const shown = await finishedJob(request);
   const other = await finishedJob(request);
   await openViewer(page);
-  await page.locator(`#jobs li[data-id="${shown.id}"]`).click();
-  await expect(page.locator('#message')).toContainText(`job ${shown.id}:`);
+  await showJob(page, shown);
   await page.route(`**/jobs/${other.id}/artifacts/ANIMATION_3D.dat`, (route) => route.abort('connectionreset'));
   await page.locator(`#jobs li[data-id="${other.id}"]`).click();
   await expect(page.locator('#live-status')).toContainText('replay failed');
@@ -153,24 +183,14 @@ test('a replay that fails hands the panel back to the job shown', async ({ page,
 });
 
 test('a replay cancelled after a study had the charts brings the shown job\'s charts back', async ({ page, request }) => {
-  const api = (p) => `${process.env.DEM_SERVER_URL}${p}`;
-  const made = await request.post(api('/api/v1/studies'), {
-    data: { name: 'between two jobs', base: fallingSpheres('study base', 0.02), parameters: [{ path: 'gravity.z', values: [-9.81] }] },
-  });
-  const study = await made.json();
+  const study = await studyOfOneRun(request, 'between two jobs');
   const shown = await finishedJob(request);
   const other = await finishedJob(request);
   await openViewer(page);
-  await page.locator(`#jobs li[data-id="${shown.id}"]`).click();
-  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible();
-  await expect.poll(() => page.locator('#study-select').evaluate((s, id) => [...s.options].some((o) => o.value === String(id)), study.id))
-    .toBe(true);
-  await page.locator('#live-studies').evaluate((d) => { d.open = true; });
-  await page.locator('#study-select').selectOption(String(study.id));
+  await showJob(page, shown);
+  await chooseStudy(page, study);
   await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toHaveCount(0);
-  const release = await holdAnimation(page, other);
-  await page.locator(`#jobs li[data-id="${other.id}"]`).click();
-  await expect(page.locator('#load-cancel')).toBeVisible();
+  const release = await startHeldReplay(page, other);
   await page.locator('#load-cancel').click();
   // before: no chart at all (helper-34)
   await expect(page.locator('#live-job')).toContainText(`#${shown.id}`);
@@ -182,13 +202,9 @@ test('a cancelled replay hands the panel back to the job shown, with its charts'
   const shown = await finishedJob(request);
   const other = await finishedJob(request);
   await openViewer(page);
-  await page.locator(`#jobs li[data-id="${shown.id}"]`).click();
-  await expect(page.locator('#message')).toContainText(`job ${shown.id}:`);
-  await expect(page.locator('canvas[data-chart="kinetic-energy"]')).toBeVisible();
+  await showJob(page, shown);
   const frames = (await state(page)).frames;
-  const release = await holdAnimation(page, other);
-  await page.locator(`#jobs li[data-id="${other.id}"]`).click();
-  await expect(page.locator('#load-cancel')).toBeVisible();
+  const release = await startHeldReplay(page, other);
   await expect(page.locator('#live-job')).toContainText(`#${other.id}`);
   await page.locator('#load-cancel').click();
   // before: the panel named the cancelled job, and the charts of the run still shown were gone
@@ -200,21 +216,11 @@ test('a cancelled replay hands the panel back to the job shown, with its charts'
 });
 
 test('a study chosen during a replay stops it and says so', async ({ page, request }) => {
-  const api = (p) => `${process.env.DEM_SERVER_URL}${p}`;
-  const made = await request.post(api('/api/v1/studies'), {
-    data: { name: 'chosen mid-replay', base: fallingSpheres('study base', 0.02), parameters: [{ path: 'gravity.z', values: [-9.81] }] },
-  });
-  expect(made.status(), await made.text()).toBe(201);
-  const study = await made.json();
+  const study = await studyOfOneRun(request, 'chosen mid-replay');
   const job = await finishedJob(request);
   await openViewer(page);
-  const release = await holdAnimation(page, job);
-  await page.locator(`#jobs li[data-id="${job.id}"]`).click();
-  await expect(page.locator('#load-cancel')).toBeVisible();
-  await expect.poll(() => page.locator('#study-select').evaluate((s, id) => [...s.options].some((o) => o.value === String(id)), study.id))
-    .toBe(true);
-  await page.locator('#live-studies').evaluate((d) => { d.open = true; });
-  await page.locator('#study-select').selectOption(String(study.id));
+  const release = await startHeldReplay(page, job);
+  await chooseStudy(page, study);
   // before: the bar vanished and the status said "downloading ... 45%" for good
   await expect(page.locator('#message')).toContainText(`the replay of job ${job.id} stopped: a study was chosen`);
   await expect(page.locator('#live-status')).not.toContainText('downloading');
