@@ -164,7 +164,7 @@ export class Follow {
     const why = reason || (job ? `job ${job.state}` : `connection closed (${code})`);
     panel.statusLabel.textContent = `${why}; ${counted(this.framesReceived, 'live frame')}` + (job && !ACTIVE.has(job.state) ? ': Replay loads every frame' : '');
     const failed = job && (job.state === 'failed' || job.state === 'interrupted');
-    panel.say(`job ${id}: ${why}${failed && job.error ? ` (${job.error})` : ''}`, !!failed);
+    panel.say(`job ${id}: ${why}${failed && job.error ? ` (${job.error})` : ''}`, !!failed || !reachable);
     if (job && !ACTIVE.has(job.state)) readStatistics(session, panel.charts, { job });
   }
 }
