@@ -1,7 +1,7 @@
 // The page in windows of every size: on a phone the view fills the width above the panel, and
 // messages show over the view whatever the panel's scroll.
 import fs from 'node:fs';
-import { test, expect, serverUrl, ANIMATION, MALFORMED, readAnimation, openViewer, loadFiles, canvasShot, keep, keepPage, pngColourCount } from './helpers.js';
+import { test, expect, serverUrl, ANIMATION, MALFORMED, readAnimation, openViewer, loadFiles, canvasShot, keep, keepPage, pngColourCount, fallingSpheres } from './helpers.js';
 
 for (const [name, width, height] of [['phone', 390, 844], ['narrow', 700, 900], ['small laptop', 1024, 640]]) {
   test(`a ${name} window (${width} x ${height}): the view is not cropped to a strip`, async ({ page }, testInfo) => {
@@ -43,7 +43,12 @@ test('a message shows over the view even with the panel scrolled to its end, and
   await expect(box).toBeHidden();
 });
 
-test('the first screen: the bundled cases and the jobs first, a hint in the empty view, sections that fold', async ({ page }, testInfo) => {
+test('the first screen: the bundled cases and the jobs first, a hint in the empty view, sections that fold', async ({ page, request }, testInfo) => {
+  // the panel at its tallest: a job list that scrolls (it had pushed the files off the screen once
+  // the server had run the other tests' jobs) and a study
+  for (let k = 0; k < 8; k++) await request.post(`${serverUrl()}/api/v1/jobs`, { data: fallingSpheres(`first screen ${k}`, 0.01) });
+  await request.post(`${serverUrl()}/api/v1/studies`,
+                     { data: { name: 'first screen', base: fallingSpheres('first screen', 0.01), parameters: [{ path: 'gravity.z', values: [-9.81] }] } });
   await page.setViewportSize({ width: 1280, height: 800 });
   await page.goto(`${serverUrl()}/`);
   await page.waitForFunction(() => window.demViewer && typeof window.demViewer.state === 'function');

@@ -75,6 +75,7 @@ export class CaseForm {
   async loadCase(name) {
     const c = this.cases.find((k) => k.name === name);
     this.description.textContent = c ? plain(c.description) : '';
+    this.description.title = this.description.textContent;
     this.submitButton.disabled = true;
     try {
       const spec = await this.caseSpec(name);
