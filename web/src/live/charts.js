@@ -344,7 +344,6 @@ export class Chart {
     g.textAlign = 'right';
     g.textBaseline = 'middle';
     const yLabels = tickLabels(yAxis.ticks, useLog);
-    this.labels = { x: xLabels, y: yLabels }; // what the last picture wrote (for tests)
     yAxis.ticks.forEach((t, k) => g.fillText(yLabels[k], left - 6, py(t)));
     // Axis labels.
     g.textAlign = 'center';

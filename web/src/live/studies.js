@@ -8,6 +8,7 @@ import * as server from './server.js';
 import { Charts, parseRows } from './charts.js';
 import { counted } from '../words.js';
 import { errorText } from './session.js';
+import { unitOfJob } from './job_files.js';
 
 const REFRESH_MS = 5000;
 
@@ -82,7 +83,6 @@ export class Studies {
   constructor(container, onChosen, onLeft) {
     this.select = document.getElementById('study-select');
     this.status = document.getElementById('study-status');
-    this.details = document.getElementById('live-studies');
     this.count = document.getElementById('study-count');
     this.charts = new Charts(container, OVERLAID);
     this.container = container;
@@ -115,7 +115,6 @@ export class Studies {
     }
     this.select.replaceChildren(...options);
     this.select.value = options.some((o) => o.value === chosen) ? chosen : '';
-    this.details.dataset.studies = String(studies.length);
     // folded (the first screen keeps its room), its title saying how many there are
     this.count.textContent = studies.length ? ` (${studies.length})` : '';
     if (!studies.length && !this.study) this.status.textContent = 'No studies: submit one with `dem study --submit` or POST /api/v1/studies (docs/api.md).';
@@ -217,16 +216,11 @@ export class Studies {
     if (token === this.token && !(study && study.finished)) this.timer = setTimeout(() => this.read(id, token), REFRESH_MS);
   }
 
-  // The length unit of the study's files, from its first job's record.
+  // The length unit of the study's files, from its first job's record ('' when it is deleted: the
+  // axis says "file length unit").
   async setUnit(study) {
     const first = study.jobs.find((run) => run.job);
-    let unit = '';
-    try {
-      if (first) unit = (await server.getJob(first.job)).lengthUnit || 'm';
-    } catch {
-      /* deleted: the axis says "file length unit" */
-    }
-    this.charts.setLengthUnit(unit);
+    this.charts.setLengthUnit(first ? await unitOfJob({ id: first.job }) : '');
   }
 
   // A run's statistics files, those whose size changed; whether it has any rows.
