@@ -42,6 +42,23 @@ class Writer {
     put(n);
     if (n > 0) bytes(values.data(), n * sizeof(T));
   }
+  // A rigid rotation ends in padding (8 bytes, to the quaternion's alignment), which holds whatever
+  // the memory held: each is written as its two values in a zeroed record of its size, so the state
+  // is the same bytes for the same run (the reader reads the record whole, as before).
+  void put(const std::vector<RigidRotation>& values) {
+    const std::uint64_t n = values.size();
+    put(n);
+    auto offset_of = [](const RigidRotation& whole, const void* part) {
+      return static_cast<std::size_t>(static_cast<const char*>(part) - reinterpret_cast<const char*>(&whole));
+    };
+    for (const RigidRotation& value : values) {
+      char record[sizeof(RigidRotation)] = {};
+      std::memcpy(record + offset_of(value, &value.orientation), &value.orientation, sizeof value.orientation);
+      std::memcpy(record + offset_of(value, &value.angular_momentum), &value.angular_momentum,
+                  sizeof value.angular_momentum);
+      bytes(record, sizeof record);
+    }
+  }
   void seal() {
     const std::uint32_t sum = crc_.checksum();
     out_.write(reinterpret_cast<const char*>(&sum), sizeof sum);
