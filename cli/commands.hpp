@@ -21,12 +21,19 @@ int plot_command(const std::vector<std::string>& args);      // cli/plot_command
 int chains_command(const std::vector<std::string>& args);    // cli/chains_command.cpp
 int deposits_command(const std::vector<std::string>& args);  // cli/deposits_command.cpp
 
-// Runs a checked scene into `out` as `dem run` does: the legacy files, restart.dat and results.json
-// (threads < 0: the spec's; restart: a saved state to continue from, "" for none; log: where its
-// lines go, stdout and stderr when null). Returns the exit status (0, or 1 when the run stopped);
-// throws for a state or file that cannot be read or written.
-int run_scene(Scene scene, const std::string& label, const std::string& out, int threads, bool quiet,
-              const std::string& restart, std::FILE* log = nullptr);
+struct RunSceneOptions {
+  int threads = -1;          // OpenMP threads; < 0: the spec's
+  bool quiet = false;        // no progress line
+  std::string restart;       // a saved state to continue from, "" for none
+  std::FILE* log = nullptr;  // where its lines go; stdout and stderr when null
+  bool profile = false;      // print the loop's time phase by phase (PhaseProfile)
+  bool memory = false;       // add the process's peak resident memory to the summary (one run per process)
+};
+
+// Runs a checked scene into `out` as `dem run` does: the legacy files, restart.dat and results.json.
+// Returns the exit status (0, or 1 when the run stopped); throws for a state or file that cannot be
+// read or written.
+int run_scene(Scene scene, const std::string& label, const std::string& out, const RunSceneOptions& options);
 
 // Client verbs of a dem-server (cli/client_commands.cpp)
 int submit_command(const std::vector<std::string>& args);

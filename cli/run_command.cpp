@@ -2,6 +2,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
 #include <memory>
 #include <string>
 
@@ -31,6 +34,20 @@ int thread_count(const std::string& text) {
   }
 }
 
+// The most memory the process has held resident (VmHWM of /proc/self/status, Linux), or nothing
+// where that cannot be read.
+std::optional<std::size_t> peak_resident_bytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) {
+      std::istringstream fields(line.substr(6));
+      std::size_t kib = 0;
+      if (fields >> kib) return kib * 1024;
+    }
+  return std::nullopt;
+}
+
 Scene load(const std::string& path) {
   // mesh files are found next to the spec
   return spec::to_scene(spec::read_json_file(path), std::filesystem::path(path).parent_path().string());
@@ -39,13 +56,16 @@ Scene load(const std::string& path) {
 }  // namespace
 
 const Verb kRunVerb{"run",
-                    "run SPEC.json --out DIR [--threads N] [--quiet] [--restart FILE]",
+                    "run SPEC.json --out DIR [--threads N] [--quiet] [--profile] [--restart FILE]",
                     "run a job spec, writing the legacy files, their CSV twins, ParaView's files, results.json and "
                     "restart.dat to DIR",
                     "the spec file",
                     {{"--out", "DIR", "where the run's files go (made if missing)"},
                      {"--threads", "N", "OpenMP threads (default: the spec's, else all cores)"},
                      {"--quiet", nullptr, "no progress line"},
+                     {"--profile", nullptr,
+                      "at the end, where the loop's time went: seconds per phase of the step (pairs, walls, meshes, "
+                      "bonds, clumps, neighbour rebuild, sort, guard, outputs...)"},
                      {"--restart", "FILE",
                       "continue from a saved state (e.g. DIR/restart.dat), appending to DIR's "
                       "files"}},
@@ -85,15 +105,16 @@ int validate_command(const std::vector<std::string>& arguments) {
   return 1;
 }
 
-int run_scene(Scene scene, const std::string& label, const std::string& out, int threads, bool quiet,
-              const std::string& restart, std::FILE* log) {
-  std::FILE* info = log != nullptr ? log : stdout;
-  std::FILE* problems = log != nullptr ? log : stderr;
-  if (threads >= 0) scene.numerics.threads = threads;
+int run_scene(Scene scene, const std::string& label, const std::string& out, const RunSceneOptions& options) {
+  std::FILE* info = options.log != nullptr ? options.log : stdout;
+  std::FILE* problems = options.log != nullptr ? options.log : stderr;
+  if (options.threads >= 0) scene.numerics.threads = options.threads;
   Simulation sim(std::move(scene));
-  const bool append = !restart.empty();
+  PhaseProfile profile;
+  if (options.profile) sim.set_profile(&profile);
+  const bool append = !options.restart.empty();
   if (append) {
-    StateIO::read_file(sim, restart);
+    StateIO::read_file(sim, options.restart);
     StateIO::require_within_run(sim);
   }
   const std::int64_t first_step = sim.step_count();  // a continued run starts at its saved step
@@ -110,9 +131,9 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, int
   for (auto& w : writers) observers.push_back(w.get());
   observers.push_back(recorder.get());
 
-  RunOptions options;
-  if (!quiet) options.on_progress = make_progress_printer(isatty(STDERR_FILENO));
-  const RunOutcome outcome = run(sim, observers, options);
+  RunOptions run_options;
+  if (!options.quiet) run_options.on_progress = make_progress_printer(isatty(STDERR_FILENO));
+  const RunOutcome outcome = run(sim, observers, run_options);
   writers.clear();  // closes the files
   results::write_results_file(recorder->results(), out);
   for (const std::string& note : recorder->results().notes) std::fprintf(problems, "dem run: note: %s\n", note.c_str());
@@ -125,9 +146,20 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, int
   const std::int64_t steps_run = outcome.steps - first_step;
   const double rate = static_cast<double>(sim.particles().size()) * static_cast<double>(steps_run) /
                       std::max(outcome.loop_seconds, 1e-9);
-  std::fprintf(
-      info, "done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d\n",
-      static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate, sim.neighbor_builds());
+  std::string memory;
+  if (options.memory) {
+    if (const std::optional<std::size_t> peak = peak_resident_bytes()) {
+      char text[120];
+      std::snprintf(text, sizeof text, " peak_memory_mb=%.1f bytes_per_particle=%.0f", static_cast<double>(*peak) / 1e6,
+                    static_cast<double>(*peak) / static_cast<double>(std::max<std::size_t>(1, sim.particles().size())));
+      memory = text;
+    }
+  }
+  std::fprintf(info,
+               "done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d%s\n",
+               static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate,
+               sim.neighbor_builds(), memory.c_str());
+  if (options.profile) std::fputs(profile.table().c_str(), info);
   for (std::size_t k = 0; k < sim.scene().sources.size(); ++k) {
     const SourceProgress& progress = sim.source_progress()[k];
     const ParticleSource& source = sim.scene().sources[k];
@@ -158,7 +190,13 @@ int run_command(const std::vector<std::string>& args) {
   if (a.has("--threads") && (threads = thread_count(a.value("--threads"))) < 0)
     return usage_error(kRunVerb, "--threads must be a whole number >= 0 (got \"" + a.value("--threads") + "\")");
   try {
-    return run_scene(load(spec), spec, a.value("--out"), threads, a.flag("--quiet"), a.value("--restart"));
+    RunSceneOptions options;
+    options.threads = threads;
+    options.quiet = a.flag("--quiet");
+    options.restart = a.value("--restart");
+    options.profile = a.flag("--profile");
+    options.memory = true;
+    return run_scene(load(spec), spec, a.value("--out"), options);
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "%s: invalid spec:\n", spec.c_str());
     for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());

@@ -217,8 +217,12 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
     int status = 1;
     std::string error;
     try {
+      RunSceneOptions options;
+      options.threads = threads;
+      options.quiet = quiet || jobs > 1;
+      options.log = log;
       status = run_scene(spec::to_scene(spec::parse_json(specs[k].dump()), in.base_dir), spec_file.string(),
-                         folder.string(), threads, quiet || jobs > 1, "", log);
+                         folder.string(), options);
     } catch (const std::exception& e) {
       error = e.what();
       if (log != nullptr) std::fprintf(log, "dem study: %s\n", e.what());

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 
 #include "contact/contact_law.hpp"
 #include "core/parallel.hpp"
@@ -24,17 +25,33 @@ class ForceKernelImpl final : public ForceKernel {
 
   void compute_and_kick(SimState& s) override {
     s.deep_overlap.store(false, std::memory_order_relaxed);
-    if (s.record_contacts)
-      evaluate_pairs<true>(s, table_);
-    else
-      evaluate_pairs<false>(s, table_);
+    {
+      const PhaseTimer timer(s.profile, Phase::pairs);
+      if (s.record_contacts)
+        evaluate_pairs<true>(s, table_);
+      else
+        evaluate_pairs<false>(s, table_);
+    }
     const bool bonded = !s.bonds.empty();
     if (bonded) {  // bonds add to f_next and particles.t; the kick adds those to the pairs' sums
+      const PhaseTimer timer(s.profile, Phase::bonds);
       std::fill(s.f_next.begin(), s.f_next.end(), Vec3::Zero());
       std::fill(s.particles.t.begin(), s.particles.t.end(), Vec3::Zero());
       s.bonds.step(s.particles, s.time, s.f_next, s.particles.t);
     }
-    gather_and_kick(s, table_, bonded);
+    if (s.profile == nullptr) {
+      gather_and_kick<false>(s, table_, bonded);
+      return;
+    }
+    // The walls and meshes are timed inside the gather, per particle that has any, by each thread: the
+    // gather's wall-clock time is shared among walls, meshes and kick as the threads' own times are.
+    const auto start = PhaseProfile::Clock::now();
+    const GatherTimes times = gather_and_kick<true>(s, table_, bonded);
+    const double elapsed = std::chrono::duration<double>(PhaseProfile::Clock::now() - start).count();
+    const double share = times.range > 0 ? elapsed / times.range : 0;
+    s.profile->add(Phase::walls, times.walls * share);
+    s.profile->add(Phase::meshes, times.meshes * share);
+    s.profile->add(Phase::kick, std::max(0.0, elapsed - (times.walls + times.meshes) * share));
   }
 
   bool has_rolling_spring() const override { return Law::kRollingSpring; }
@@ -367,16 +384,31 @@ class ForceKernelImpl final : public ForceKernel {
     if (deep) s.deep_overlap.store(true, std::memory_order_relaxed);
   }
 
-  // bonded: bond forces and torques wait in f_next and particles.t.
-  static void gather_and_kick(SimState& s, const PairTable<Pair>& table, bool bonded) {
+  // Seconds the threads spent in their ranges of the gather, and in the walls and meshes in them.
+  struct GatherTimes {
+    double range = 0, walls = 0, meshes = 0;
+  };
+
+  // bonded: bond forces and torques wait in f_next and particles.t. kTimed: time the walls and meshes
+  // (PhaseProfile), whose clock is read only around the particles that touch or near one.
+  template <bool kTimed>
+  static GatherTimes gather_and_kick(SimState& s, const PairTable<Pair>& table, bool bonded) {
+    using Clock = PhaseProfile::Clock;
+    auto seconds_since = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+    struct RangeOut {
+      bool bad = false;  // some particle's end-of-step state is not finite
+      GatherTimes times;
+    };
     Particles& p = s.particles;
     const BlockPlan& plan = s.blocks;
     const int n = static_cast<int>(p.size());
     const double half_dt = 0.5 * s.dt;
     const Vec3 g = s.gravity;
     const double alpha = s.local_damping;
-    // true: some particle's end-of-step state is not finite
     auto kick_range = [&](int begin, int end) {
+      RangeOut out;
+      Clock::time_point range_start;
+      if constexpr (kTimed) range_start = Clock::now();
       // Raw pointers: through the std::vectors the compiler reloaded their data pointers after every
       // store and called Eigen's assignment loops out of line.
       const Vec3* __restrict f_next = s.f_next.data();
@@ -392,7 +424,6 @@ class ForceKernelImpl final : public ForceKernel {
       Vec3* __restrict w = p.w.data();
       const Vec3* __restrict x = p.x.data();
       const int* __restrict body = p.body.empty() ? nullptr : p.body.data();
-      bool bad = false;
       for (int i = begin; i < end; ++i) {
         Vec3 f = as_vec3(sums[i].f), t = as_vec3(sums[i].t);
         sums[i] = BodySums{};  // zero for the next step's pair loop (while the line is in cache)
@@ -406,8 +437,30 @@ class ForceKernelImpl final : public ForceKernel {
           deferred[a] = BodySums{};  // zero for the next step's pair loop
         }
         if constexpr (kWalls) {
-          if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) add_wall_forces(s, table, i, f, t);
-          if (!s.meshes.empty()) add_mesh_forces(s, table, i, f, t);
+          if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) {
+            if constexpr (kTimed) {
+              const Clock::time_point t0 = Clock::now();
+              add_wall_forces(s, table, i, f, t);
+              out.times.walls += seconds_since(t0);
+            } else {
+              add_wall_forces(s, table, i, f, t);
+            }
+          }
+          // a particle with no face within reach and no slot to clear is passed without a call
+          const MeshContacts& mc = s.mesh_contacts;
+          if (!s.meshes.empty() && (mc.row_start[i] != mc.row_start[i + 1] || mc.used[i])) {
+            if constexpr (kTimed) {
+              if (s.mesh_contacts.row_start[i] != s.mesh_contacts.row_start[i + 1]) {
+                const Clock::time_point t0 = Clock::now();
+                add_mesh_forces(s, table, i, f, t);
+                out.times.meshes += seconds_since(t0);
+              } else {
+                add_mesh_forces(s, table, i, f, t);  // clears what it held, if anything: not timed
+              }
+            } else {
+              add_mesh_forces(s, table, i, f, t);
+            }
+          }
         }
         f = f + mass[i] * g;
         if (!p.external.empty()) f = f + p.external[i];
@@ -426,11 +479,21 @@ class ForceKernelImpl final : public ForceKernel {
         v[i] = vi;
         w[i] = wi;
         // the end-of-step state, checked every step so that a blow-up is caught where it starts
-        bad = bad || !state_is_finite(x[i], vi, wi, mass[i]);
+        out.bad = out.bad || !state_is_finite(x[i], vi, wi, mass[i]);
       }
-      return bad;
+      if constexpr (kTimed) out.times.range = seconds_since(range_start);
+      return out;
     };
-    s.non_finite = reduce_ranges(n, kParallelMinParticles, false, kick_range, [](bool a, bool b) { return a || b; });
+    const RangeOut all =
+        reduce_ranges(n, kParallelMinParticles, RangeOut{}, kick_range, [](RangeOut a, const RangeOut& b) {
+          a.bad = a.bad || b.bad;
+          a.times.range += b.times.range;
+          a.times.walls += b.times.walls;
+          a.times.meshes += b.times.meshes;
+          return a;
+        });
+    s.non_finite = all.bad;
+    return all.times;
   }
 
   // One sphere against a boundary (plane, plate or mesh) that moves with `pose`: the law with the

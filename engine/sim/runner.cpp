@@ -20,13 +20,18 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
     guard.check_writable(sim);  // nothing non-finite is ever written
     for (Observer* o : observers) o->frame(sim);
   };
+  PhaseProfile* const profile = sim.profile();
   const auto start = Clock::now();
   auto last_report = start;
   std::int64_t steps_at_report = sim.step_count();
   try {
-    guard.check(sim);
+    {
+      const PhaseTimer timer(profile, Phase::guard);
+      guard.check(sim);
+    }
     const bool staged = !sim.scene().stages.empty();
     if (sim.step_count() == 0) {  // a continued run's first frame is its saved state's last
+      const PhaseTimer timer(profile, Phase::outputs);
       frame();
       if (options.after_step) options.after_step(sim, true);
     }
@@ -45,12 +50,23 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
           (every > 0 && next % every == 0) || next == total || (staged && next == sim.stage_end_step());
       sim.record_contacts(frame_due);
       sim.step();
-      guard.check_finite(sim);
       const std::int64_t s = sim.step_count();
-      if (s % check_every == 0 || s == total || sim.deep_overlap()) guard.check(sim);
-      for (Observer* o : step_observers) o->step(sim);
-      if (frame_due) frame();
-      if (options.after_step) options.after_step(sim, frame_due);
+      {
+        const PhaseTimer timer(profile, Phase::guard);
+        guard.check_finite(sim);
+        if (s % check_every == 0 || s == total || sim.deep_overlap()) guard.check(sim);
+      }
+      if (profile) {
+        ++profile->steps;
+        profile->particle_steps += static_cast<std::int64_t>(sim.particles().size());
+      }
+      {
+        const PhaseTimer timer(step_observers.empty() && !frame_due && !options.after_step ? nullptr : profile,
+                               Phase::outputs);
+        for (Observer* o : step_observers) o->step(sim);
+        if (frame_due) frame();
+        if (options.after_step) options.after_step(sim, frame_due);
+      }
       if (options.on_progress || options.periodically) {
         const auto now = Clock::now();
         const double since = std::chrono::duration<double>(now - last_report).count();
@@ -60,6 +76,7 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
             options.on_progress(
                 {s, total, rate, rate > 0 ? static_cast<double>(total - s) / rate : 0, sim.stage_name()});
           if (options.periodically) {
+            const PhaseTimer timer(profile, Phase::outputs);
             guard.check_writable(sim);  // the server saves a checkpoint here
             options.periodically(sim);
           }
@@ -74,6 +91,7 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
   }
   outcome.steps = sim.step_count();
   outcome.loop_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (profile) profile->close(outcome.loop_seconds);
   for (Observer* o : observers) o->finish(sim, outcome);
   return outcome;
 }

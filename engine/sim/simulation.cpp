@@ -294,6 +294,9 @@ void Simulation::settle_walls(double t_new, double dt) {
         }
   MeshContacts& mc = state_.mesh_contacts;
   for (int i = 0; i < n && !mc.used.empty(); ++i) {
+    // only a particle with a face within reach has slots in use or a parting (add_mesh_forces): the
+    // others (most, and all of them for a mesh far away) cost one comparison here
+    if (mc.row_start[i] == mc.row_start[i + 1]) continue;
     for (int k = 0, used = mc.count(i); k < used; ++k) {
       // a valley weight's pull acts through the centre: at the contact point its torque on a
       // turning mesh was wrong, and so was the mesh's work (a sphere in a spinning pit: 21% of it)
@@ -363,10 +366,15 @@ void Simulation::refuse_motion_off_the_plane() const {
 // The forces at the particles' positions now and the step's second half kick (state_.dt: 0 for the forces alone, at
 // the start and at a stage's start), the plane's reaction in a 2D run, and the clumps' bodies' kick.
 void Simulation::compute_forces_and_kick() {
-  kernel_->compute_and_kick(state_);
-  if (scene_.plane) hold_in_plane();
-  if (!state_.bodies.empty())
+  kernel_->compute_and_kick(state_);  // times its pairs, bonds, walls, meshes and kick itself
+  if (scene_.plane) {
+    const PhaseTimer timer(state_.profile, Phase::kick);
+    hold_in_plane();
+  }
+  if (!state_.bodies.empty()) {
+    const PhaseTimer timer(state_.profile, Phase::clumps);
     kick_bodies(state_.bodies, state_.particles, state_.gravity, state_.dt, state_.local_damping);
+  }
 }
 
 // The plane's reaction (a 2D run): the discs keep y = 0 and turn only about y. The kick has just added dt/2 f/m, so
@@ -428,22 +436,44 @@ void Simulation::step() {
   update_stage();
   const double t_new = static_cast<double>(step_ + 1) * state_.dt;
   const bool walls_move = boundaries_.any_moving();
+  PhaseProfile* const profile = state_.profile;
   std::vector<WallPose> poses_before;
   std::vector<BoundaryLoad> loads_before;
-  if (walls_move) {
-    poses_before = boundaries_.poses();
-    loads_before = boundary_loads_;
+  {
+    const PhaseTimer timer(profile, Phase::wall_motion);
+    if (walls_move) {
+      poses_before = boundaries_.poses();
+      loads_before = boundary_loads_;
+    }
+    move_walls(t_new, state_.dt);
   }
   // growth's work on the contacts at the step's start positions; grow() adds that at its end
-  const double growth_at_start = growth_energy_at_positions_now();
-  move_walls(t_new, state_.dt);
+  double growth_at_start = 0;
+  if (growth_plan_) {
+    const PhaseTimer timer(profile, Phase::growth);
+    growth_at_start = growth_energy_at_positions_now();
+  }
   state_.time = t_new;
-  double moved2 = half_kick_and_drift();
-  if (!state_.bodies.empty())  // the members move with their bodies, not as the drift above moved them
+  double moved2 = 0;
+  {
+    const PhaseTimer timer(profile, Phase::drift);
+    moved2 = half_kick_and_drift();
+  }
+  if (!state_.bodies.empty()) {  // the members move with their bodies, not as the drift above moved them
+    const PhaseTimer timer(profile, Phase::clumps);
     moved2 = std::max(moved2, drift_bodies(state_.bodies, state_.particles, x_at_build_, state_.dt, state_.half_kick,
                                            state_.spin_kick));
-  const double grown = grow(growth_at_start);
-  const bool inserted = !scene_.sources.empty() && feed_sources();
+  }
+  double grown = 0;
+  {
+    const PhaseTimer timer(growth_plan_ ? profile : nullptr, Phase::growth);
+    grown = grow(growth_at_start);
+  }
+  bool inserted = false;
+  if (!scene_.sources.empty()) {
+    const PhaseTimer timer(profile, Phase::sources);
+    inserted = feed_sources();
+  }
   const double half_skin = 0.5 * skin_;
   const int interval = scene_.numerics.search_interval;
   // a pair closes by at most twice (the largest move + the largest growth) since the build
@@ -451,10 +481,13 @@ void Simulation::step() {
       (interval > 0 && step_ + 1 - last_build_step_ >= interval))
     build_neighbors();
   compute_forces_and_kick();
-  settle_walls(t_new, state_.dt);
-  if (walls_move) {
-    add_wall_work(poses_before, loads_before);
-    check_wall_moves(poses_before);
+  {
+    const PhaseTimer timer(profile, Phase::wall_motion);
+    settle_walls(t_new, state_.dt);
+    if (walls_move) {
+      add_wall_work(poses_before, loads_before);
+      check_wall_moves(poses_before);
+    }
   }
   contacts_recorded_ = state_.record_contacts;
   ++step_;
@@ -627,6 +660,7 @@ void Simulation::build_neighbors() {
   std::vector<int> order;
   const int reorder = scene_.numerics.reorder_interval;
   if (reorder > 0 && builds_ % reorder == 0 && p.size() > 0) {
+    const PhaseTimer timer(state_.profile, Phase::sort);
     const double r_max = *std::max_element(p.radius.begin(), p.radius.end());
     order = spatial_order(p, 2 * r_max + skin_);
     bool identity = true;
@@ -640,6 +674,7 @@ void Simulation::build_neighbors() {
       state_.bonds.renumber(order);
     }
   }
+  const PhaseTimer timer(state_.profile, Phase::rebuild);
   ++builds_;
   NeighborList next;
   try {
@@ -1013,6 +1048,9 @@ void Simulation::glue_bonds() {
   std::vector<int> stone;  // breakable stones glue only inside themselves
   for (const ParticleInit& p : scene_.particles) stone.push_back(p.stone);
   state_.bonds = BondSet(*scene_.bonds, state_.particles, state_.neighbors, stone);
+  // Only bonds read the orientations, and no later stage glues any (one stage at most does): a bonds
+  // block that glued nothing no longer turns every sphere every step (a sincos each; bench/unused).
+  if (state_.bonds.empty()) state_.particles.q.clear();
 }
 
 // A mesh gone at a stage's start leaves no contact behind: its slots are emptied, the others kept

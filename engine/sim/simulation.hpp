@@ -88,6 +88,11 @@ class Simulation {
   int neighbor_builds() const { return builds_; }
   double skin() const { return skin_; }
 
+  // Where the steps add each phase's time (`dem run --profile`; the runner adds the guard's and the
+  // outputs'), or nullptr for none, the default. The profile must outlive the steps it times.
+  void set_profile(PhaseProfile* profile) { state_.profile = profile; }
+  PhaseProfile* profile() const { return state_.profile; }
+
   // Per-contact forces (pair_contacts, contact_counts) are kept only for steps that ask for them:
   // on by default; a runner turns it on just before the steps whose frames it writes.
   void record_contacts(bool on) { state_.record_contacts = on; }

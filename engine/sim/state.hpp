@@ -11,6 +11,7 @@
 #include "core/particles.hpp"
 #include "neighbor/neighbor_list.hpp"
 #include "mesh/mesh_wall.hpp"
+#include "sim/phase_profile.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
@@ -134,6 +135,7 @@ struct SimState {
   // stability guard's limit), found in the force loop at the cost of a comparison per contact.
   double overlap_limit = 0.25;
   std::atomic<bool> deep_overlap{false};
+  PhaseProfile* profile = nullptr;  // where the steps' phases add their time (`dem run --profile`), or none
 };
 
 }  // namespace dem

@@ -410,6 +410,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   const bool glued_since_start = bonding_stage > 0 && bonding_stage <= stage;
   if (!glued_since_start && bonds != s.bonds.bonds().size())
     mismatch("bonds", static_cast<double>(bonds), static_cast<double>(s.bonds.bonds().size()));
+  if (glued_since_start && bonds == 0) orientations = 0;  // a stage that glued nothing dropped them (glue_bonds)
 
   Particles& p = s.particles;
   r.get(p.x, "the particles");

@@ -74,6 +74,48 @@ TEST(Restart, ContinuingFromASavedStateGivesTheUninterruptedRun) {
   EXPECT_EQ(whole.fragments(), second.fragments());
 }
 
+// Bonds that glue nothing leave the spheres' orientations untracked (only bonds read them): a run
+// saved after a bonding stage that glued no pair holds none, and its continuation expects none.
+TEST(Restart, AStageThatGluedNoBondIsContinuedFromItsSavedState) {
+  auto scene = [] {
+    Scene s = remembering_scene();
+    s.bonds->region = Box{Vec3(5, 5, 5), Vec3(6, 6, 6)};  // no particle there
+    Stage settle, glue;
+    settle.name = "settle";
+    settle.steps = 500;
+    glue.name = "glue";
+    glue.steps = 1500;
+    glue.glue_bonds = true;
+    s.stages = {settle, glue};
+    return s;
+  };
+  constexpr int kSteps = 2000, kSaved = 1000;
+  Simulation whole(scene());
+  EXPECT_EQ(whole.particles().q.size(), whole.particles().size());  // a later stage may glue
+  for (int k = 0; k < kSteps; ++k) whole.step();
+  EXPECT_TRUE(whole.bonds().bonds().empty());
+  EXPECT_TRUE(whole.particles().q.empty());
+
+  Simulation first(scene());
+  for (int k = 0; k < kSaved; ++k) first.step();
+  std::stringstream saved;
+  StateIO::write(first, saved);
+  Simulation second(scene());
+  StateIO::read(second, saved);
+  for (int k = kSaved; k < kSteps; ++k) second.step();
+  for (std::size_t i = 0; i < whole.particles().size(); ++i) ASSERT_EQ(whole.particles().x[i], second.particles().x[i]);
+}
+
+TEST(Restart, ABondsBlockThatGluesNothingTracksNoOrientation) {
+  Scene s = remembering_scene();
+  s.bonds->region = Box{Vec3(5, 5, 5), Vec3(6, 6, 6)};
+  const Simulation sim(s);
+  EXPECT_TRUE(sim.bonds().bonds().empty());
+  EXPECT_TRUE(sim.particles().q.empty());
+  const Simulation bonded(remembering_scene());
+  EXPECT_EQ(bonded.particles().q.size(), bonded.particles().size());
+}
+
 TEST(Restart, AStateOfAnotherJobIsRefused) {
   Simulation a(remembering_scene());
   std::stringstream saved;

@@ -1,0 +1,66 @@
+#include "sim/phase_profile.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace dem {
+
+const char* phase_name(Phase phase) {
+  switch (phase) {
+    case Phase::drift:
+      return "drift";
+    case Phase::clumps:
+      return "clumps";
+    case Phase::growth:
+      return "growth";
+    case Phase::sources:
+      return "sources";
+    case Phase::sort:
+      return "sort";
+    case Phase::rebuild:
+      return "rebuild";
+    case Phase::pairs:
+      return "pairs";
+    case Phase::bonds:
+      return "bonds";
+    case Phase::walls:
+      return "walls";
+    case Phase::meshes:
+      return "meshes";
+    case Phase::kick:
+      return "kick";
+    case Phase::wall_motion:
+      return "wall motion";
+    case Phase::guard:
+      return "guard";
+    case Phase::outputs:
+      return "outputs";
+    case Phase::other:
+      return "other";
+  }
+  return "?";
+}
+
+void PhaseProfile::close(double loop) {
+  loop_seconds = loop;
+  double timed = 0;
+  for (int k = 0; k < kPhaseCount - 1; ++k) timed += seconds[k];
+  seconds[static_cast<int>(Phase::other)] = std::max(0.0, loop - timed);
+}
+
+std::string PhaseProfile::table() const {
+  std::string out = "profile:  phase         seconds   share   us/step  ns/particle-step\n";
+  char line[160];
+  const double per_step = steps > 0 ? 1e6 / static_cast<double>(steps) : 0;
+  const double per_particle_step = particle_steps > 0 ? 1e9 / static_cast<double>(particle_steps) : 0;
+  auto row = [&](const char* name, double s) {
+    std::snprintf(line, sizeof line, "profile:  %-12s %9.3f  %5.1f%%  %8.3f  %16.2f\n", name, s,
+                  loop_seconds > 0 ? 100 * s / loop_seconds : 0.0, s * per_step, s * per_particle_step);
+    out += line;
+  };
+  for (int k = 0; k < kPhaseCount; ++k) row(phase_name(static_cast<Phase>(k)), seconds[k]);
+  row("total", loop_seconds);
+  return out;
+}
+
+}  // namespace dem
