@@ -48,10 +48,7 @@ class ForceKernelImpl final : public ForceKernel {
     const auto start = PhaseProfile::Clock::now();
     const GatherTimes times = gather_and_kick<true>(s, table_, bonded);
     const double elapsed = std::chrono::duration<double>(PhaseProfile::Clock::now() - start).count();
-    const double share = times.range > 0 ? elapsed / times.range : 0;
-    s.profile->add(Phase::walls, times.walls * share);
-    s.profile->add(Phase::meshes, times.meshes * share);
-    s.profile->add(Phase::kick, std::max(0.0, elapsed - (times.walls + times.meshes) * share));
+    s.profile->add_gather(elapsed, times);
   }
 
   bool has_rolling_spring() const override { return Law::kRollingSpring; }
@@ -384,11 +381,6 @@ class ForceKernelImpl final : public ForceKernel {
     if (deep) s.deep_overlap.store(true, std::memory_order_relaxed);
   }
 
-  // Seconds the threads spent in their ranges of the gather, and in the walls and meshes in them.
-  struct GatherTimes {
-    double range = 0, walls = 0, meshes = 0;
-  };
-
   // bonded: bond forces and torques wait in f_next and particles.t. kTimed: time the walls and meshes
   // (PhaseProfile), whose clock is read only around the particles that touch or near one.
   template <bool kTimed>
@@ -442,6 +434,7 @@ class ForceKernelImpl final : public ForceKernel {
               const Clock::time_point t0 = Clock::now();
               add_wall_forces(s, table, i, f, t);
               out.times.walls += seconds_since(t0);
+              ++out.times.wall_intervals;
             } else {
               add_wall_forces(s, table, i, f, t);
             }
@@ -454,6 +447,7 @@ class ForceKernelImpl final : public ForceKernel {
                 const Clock::time_point t0 = Clock::now();
                 add_mesh_forces(s, table, i, f, t);
                 out.times.meshes += seconds_since(t0);
+                ++out.times.mesh_intervals;
               } else {
                 add_mesh_forces(s, table, i, f, t);  // clears what it held, if anything: not timed
               }
@@ -490,6 +484,8 @@ class ForceKernelImpl final : public ForceKernel {
           a.times.range += b.times.range;
           a.times.walls += b.times.walls;
           a.times.meshes += b.times.meshes;
+          a.times.wall_intervals += b.times.wall_intervals;
+          a.times.mesh_intervals += b.times.mesh_intervals;
           return a;
         });
     s.non_finite = all.bad;

@@ -3,6 +3,7 @@
 // test per phase.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -31,14 +32,31 @@ inline constexpr int kPhaseCount = static_cast<int>(Phase::other) + 1;
 
 const char* phase_name(Phase phase);
 
+// The cost of one read of the profile's clock, s (measured once per process).
+double clock_read_seconds();
+
+// What the threads measured inside one gather (the second half kick, with the walls' and meshes'
+// contacts per particle): their seconds in their ranges, in walls and in meshes, and how many walls'
+// and meshes' intervals they timed (each costs two clock reads, which the profile takes back out).
+struct GatherTimes {
+  double range = 0, walls = 0, meshes = 0;
+  std::int64_t wall_intervals = 0, mesh_intervals = 0;
+};
+
 struct PhaseProfile {
   using Clock = std::chrono::steady_clock;
   std::array<double, kPhaseCount> seconds{};
   double loop_seconds = 0;  // the whole loop (runner), which `other` completes
   std::int64_t steps = 0;
   std::int64_t particle_steps = 0;  // sum over the steps of the particles then
+  // a timed interval holds about one clock read, which is the timer's, not the phase's (the rest of
+  // the reads are left to `other`)
+  double clock_read = clock_read_seconds();
 
   void add(Phase phase, double s) { seconds[static_cast<int>(phase)] += s; }
+  // One gather of `elapsed` wall-clock seconds: shared among walls, meshes and kick as the threads'
+  // own times are, less the clock reads (left to `other`).
+  void add_gather(double elapsed, const GatherTimes& times);
   // `other` = the loop's time that no phase took (set once the loop is over)
   void close(double loop);
   // A table: phase, seconds, share of the loop, microseconds per step, nanoseconds per particle-step
@@ -52,7 +70,10 @@ class PhaseTimer {
     if (profile_) start_ = PhaseProfile::Clock::now();
   }
   ~PhaseTimer() {
-    if (profile_) profile_->add(phase_, std::chrono::duration<double>(PhaseProfile::Clock::now() - start_).count());
+    if (profile_) {
+      const double elapsed = std::chrono::duration<double>(PhaseProfile::Clock::now() - start_).count();
+      profile_->add(phase_, std::max(0.0, elapsed - profile_->clock_read));
+    }
   }
   PhaseTimer(const PhaseTimer&) = delete;
   PhaseTimer& operator=(const PhaseTimer&) = delete;
