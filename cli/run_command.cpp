@@ -137,29 +137,36 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, con
   writers.clear();  // closes the files
   results::write_results_file(recorder->results(), out);
   for (const std::string& note : recorder->results().notes) std::fprintf(problems, "dem run: note: %s\n", note.c_str());
+  // the steps this run took, which loop_seconds timed (outcome.steps is the step it ended at)
+  const std::int64_t steps_run = outcome.steps - first_step;
+  const std::size_t particles = sim.particles().size();
+  const double rate =
+      static_cast<double>(particles) * static_cast<double>(steps_run) / std::max(outcome.loop_seconds, 1e-9);
+  std::string memory;
+  if (options.memory) {
+    if (const std::optional<std::size_t> peak = peak_resident_bytes()) {
+      char text[120];
+      std::snprintf(text, sizeof text, " peak_memory_mb=%.1f", static_cast<double>(*peak) / 1e6);
+      memory = text;
+      if (particles > 0) {  // a run that ended empty (a source's, before its first) has no share
+        std::snprintf(text, sizeof text, " bytes_per_particle=%.0f",
+                      static_cast<double>(*peak) / static_cast<double>(particles));
+        memory += text;
+      }
+    }
+  }
+  // A stopped run says how far it went too, and where its time went: when it is most wanted.
+  std::FILE* summary = outcome.ok ? info : problems;
+  std::fprintf(summary,
+               "%s: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d%s\n",
+               outcome.ok ? "done" : "stopped", static_cast<long long>(steps_run), particles, outcome.loop_seconds,
+               rate, sim.neighbor_builds(), memory.c_str());
+  if (options.profile) std::fputs(profile.table().c_str(), summary);
   if (!outcome.ok) {
     std::fprintf(problems, "dem run: %s\n(the files in %s hold every frame written before the stop)\n",
                  outcome.error.c_str(), out.c_str());
     return 1;
   }
-  // the steps this run took, which loop_seconds timed (outcome.steps is the step it ended at)
-  const std::int64_t steps_run = outcome.steps - first_step;
-  const double rate = static_cast<double>(sim.particles().size()) * static_cast<double>(steps_run) /
-                      std::max(outcome.loop_seconds, 1e-9);
-  std::string memory;
-  if (options.memory) {
-    if (const std::optional<std::size_t> peak = peak_resident_bytes()) {
-      char text[120];
-      std::snprintf(text, sizeof text, " peak_memory_mb=%.1f bytes_per_particle=%.0f", static_cast<double>(*peak) / 1e6,
-                    static_cast<double>(*peak) / static_cast<double>(std::max<std::size_t>(1, sim.particles().size())));
-      memory = text;
-    }
-  }
-  std::fprintf(info,
-               "done: steps=%lld particles=%zu loop_seconds=%.3f particle_steps_per_second=%.4e neighbor_builds=%d%s\n",
-               static_cast<long long>(steps_run), sim.particles().size(), outcome.loop_seconds, rate,
-               sim.neighbor_builds(), memory.c_str());
-  if (options.profile) std::fputs(profile.table().c_str(), info);
   for (std::size_t k = 0; k < sim.scene().sources.size(); ++k) {
     const SourceProgress& progress = sim.source_progress()[k];
     const ParticleSource& source = sim.scene().sources[k];

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <numbers>
 
 #include "clumps/mass_properties.hpp"
@@ -62,8 +63,9 @@ void given_body(const api::GivenMassProperties& in, const std::string& path, Che
 }
 
 // One clump shape: spheres inline or from a template file, scaled; the body by subdivision to the
-// shape's accuracy, or as given.
-ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const std::string& base_dir, Checker& check) {
+// shape's accuracy, or as given. A shape no clump uses is checked but not integrated (`used`).
+ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const std::string& base_dir, bool used,
+                     Checker& check) {
   ClumpBody body;
   if (!in.file().empty() && in.spheres_size() > 0) check.fail(path, "give spheres or a template file, not both");
   std::vector<MemberSphere> spheres;
@@ -101,7 +103,7 @@ ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const s
     body.usable = body.given_mass > 0;
     return body;
   }
-  if (!accuracy_ok) return body;
+  if (!accuracy_ok || !used) return body;
   const MassProperties mp = union_mass_properties(spheres, accuracy);
   body.volume = mp.volume;
   body.centroid = mp.centroid;
@@ -120,6 +122,8 @@ void load_clumps(const api::JobSpec& spec, SpecContext& ctx) {
   Scene& scene = ctx.scene;
   std::map<std::string, int> shape_index;
   std::vector<ClumpBody> bodies;
+  std::set<std::string> used;
+  for (const api::Clump& clump : spec.clumps()) used.insert(clump.shape());
   for (int k = 0; k < spec.clump_shapes_size(); ++k) {
     const api::ClumpShape& in = spec.clump_shapes(k);
     const std::string path = "clumpShapes[" + std::to_string(k) + "]";
@@ -127,7 +131,7 @@ void load_clumps(const api::JobSpec& spec, SpecContext& ctx) {
       check.fail(path + ".name", "a clump shape needs a name");
     else if (!shape_index.emplace(in.name(), k).second)
       check.fail(path + ".name", "\"" + in.name() + "\" is given twice");
-    bodies.push_back(clump_body(in, path, ctx.base_dir, check));
+    bodies.push_back(clump_body(in, path, ctx.base_dir, used.count(in.name()) > 0, check));
   }
   for (int k = 0; k < spec.clumps_size(); ++k) {
     const api::Clump& in = spec.clumps(k);

@@ -1,6 +1,7 @@
 #include "clumps/mass_properties.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -84,8 +85,15 @@ MassProperties from_moments(const Moments& m) {
 
 }  // namespace
 
+namespace {
+std::atomic<std::uint64_t> integrations{0};
+}  // namespace
+
+std::uint64_t union_mass_property_integrations() { return integrations.load(std::memory_order_relaxed); }
+
 MassProperties union_mass_properties(const std::vector<MemberSphere>& spheres, double relative_accuracy) {
   if (spheres.empty()) throw std::invalid_argument("a clump needs at least one sphere");
+  integrations.fetch_add(1, std::memory_order_relaxed);
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   for (const MemberSphere& s : spheres) {
     if (!(s.radius > 0)) throw std::invalid_argument("a clump's sphere needs a positive radius");

@@ -43,12 +43,17 @@ class ForceKernelImpl final : public ForceKernel {
       gather_and_kick<false>(s, table_, bonded);
       return;
     }
-    // The walls and meshes are timed inside the gather, per particle that has any, by each thread: the
-    // gather's wall-clock time is shared among walls, meshes and kick as the threads' own times are.
+    // The walls and meshes are timed inside the gather, per particle that has any, by each thread, in
+    // one gather of PhaseProfile::kGatherSample (their clock reads cost more than a wall contact); the
+    // others' time is shared among walls, meshes and kick as the sampled ones' (PhaseProfile::close).
     const auto start = PhaseProfile::Clock::now();
-    const GatherTimes times = gather_and_kick<true>(s, table_, bonded);
-    const double elapsed = std::chrono::duration<double>(PhaseProfile::Clock::now() - start).count();
-    s.profile->add_gather(elapsed, times);
+    if (s.profile->sample_gather()) {
+      const GatherTimes times = gather_and_kick<true>(s, table_, bonded);
+      s.profile->add_gather(std::chrono::duration<double>(PhaseProfile::Clock::now() - start).count(), times);
+    } else {
+      gather_and_kick<false>(s, table_, bonded);
+      s.profile->add_unsampled_gather(std::chrono::duration<double>(PhaseProfile::Clock::now() - start).count());
+    }
   }
 
   bool has_rolling_spring() const override { return Law::kRollingSpring; }
@@ -160,8 +165,8 @@ class ForceKernelImpl final : public ForceKernel {
 #endif
       pairs_of_block<1, kRecord>(s, table, begin, end);
     };
-    if (blocks == 1) {  // no OpenMP region: even a team of one costs a malloc and futex calls (core/parallel.hpp)
-      block(0);
+    if (blocks <= 1) {  // no OpenMP region: even a team of one costs a malloc and futex calls (core/parallel.hpp)
+      if (blocks == 1) block(0);  // none: a scene with no particle yet (a source's, before its first)
       return;
     }
 #pragma omp parallel for schedule(dynamic, 1)

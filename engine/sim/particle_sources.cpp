@@ -133,11 +133,11 @@ std::optional<bool> total_reached(const Scene& scene, const ParticleSource& sour
 }
 
 std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource& source, SourceProgress& progress,
-                                        double active, const Particles& existing, const FacesNow& faces_now,
-                                        const WallTest& touches_wall) {
+                                        double next_radius, double active, const Particles& existing,
+                                        const FacesNow& faces_now, const WallTest& touches_wall) {
   std::vector<ParticleInit> out;
   const double density = scene.materials[source.material].density;
-  double r = source_radius(source, progress.inserted);
+  double r = next_radius;
   double m = scene.grain().mass(density, r);
   // rate times time to the nearest particle: within half a particle of it
   auto owed = [&] {

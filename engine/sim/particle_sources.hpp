@@ -44,8 +44,9 @@ using WallTest = std::function<bool(const Vec3& x, double r)>;
 // The particles the source owes after `active` seconds of its activity (rate times time, to the
 // nearest particle), placed without overlap among `existing` and clear of the walls; fewer when the
 // region is too crowded for them (ParticleSource: they wait for the next batch). Updates `progress`.
+// next_radius: source_radius(source, progress.inserted), which the caller keeps between calls.
 std::vector<ParticleInit> due_particles(const Scene& scene, const ParticleSource& source, SourceProgress& progress,
-                                        double active, const Particles& existing, const FacesNow& faces_now,
-                                        const WallTest& touches_wall);
+                                        double next_radius, double active, const Particles& existing,
+                                        const FacesNow& faces_now, const WallTest& touches_wall);
 
 }  // namespace dem

@@ -63,13 +63,26 @@ void PhaseProfile::add_gather(double elapsed, const GatherTimes& times) {
   const double meshes = std::max(0.0, times.meshes - read * static_cast<double>(times.mesh_intervals));
   const double reads = 2 * read * static_cast<double>(times.wall_intervals + times.mesh_intervals);
   const double share = times.range > 0 ? elapsed / times.range : 0;
+  const double kick = std::max(0.0, elapsed - (walls + meshes + reads) * share);
+  sampled_walls += walls * share;
+  sampled_meshes += meshes * share;
+  sampled_kick += kick;
   add(Phase::walls, walls * share);
   add(Phase::meshes, meshes * share);
-  add(Phase::kick, std::max(0.0, elapsed - (walls + meshes + reads) * share));
+  add(Phase::kick, kick);
 }
 
 void PhaseProfile::close(double loop) {
   loop_seconds = loop;
+  const double sampled = sampled_walls + sampled_meshes + sampled_kick;
+  if (sampled > 0) {
+    add(Phase::walls, unsampled_gather * sampled_walls / sampled);
+    add(Phase::meshes, unsampled_gather * sampled_meshes / sampled);
+    add(Phase::kick, unsampled_gather * sampled_kick / sampled);
+  } else {
+    add(Phase::kick, unsampled_gather);
+  }
+  unsampled_gather = 0;
   double timed = 0;
   for (int k = 0; k < kPhaseCount - 1; ++k) timed += seconds[k];
   seconds[static_cast<int>(Phase::other)] = std::max(0.0, loop - timed);

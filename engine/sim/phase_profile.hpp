@@ -52,11 +52,20 @@ struct PhaseProfile {
   // a timed interval holds about one clock read, which is the timer's, not the phase's (the rest of
   // the reads are left to `other`)
   double clock_read = clock_read_seconds();
+  std::int64_t gathers = 0;
+  double unsampled_gather = 0;                   // s, of the gathers not timed inside
+  double sampled_walls = 0, sampled_meshes = 0;  // s, in the sampled gathers
+  double sampled_kick = 0;
 
   void add(Phase phase, double s) { seconds[static_cast<int>(phase)] += s; }
-  // One gather of `elapsed` wall-clock seconds: shared among walls, meshes and kick as the threads'
-  // own times are, less the clock reads (left to `other`).
+  // The gathers: one in kGatherSample is timed inside (its walls and meshes per particle), the first
+  // among them; the others' time is shared as theirs was, at close().
+  static constexpr int kGatherSample = 16;
+  bool sample_gather() { return gathers++ % kGatherSample == 0; }
+  // A sampled gather of `elapsed` wall-clock seconds: shared among walls, meshes and kick as the
+  // threads' own times are, less the clock reads (left to `other`).
   void add_gather(double elapsed, const GatherTimes& times);
+  void add_unsampled_gather(double elapsed) { unsampled_gather += elapsed; }
   // `other` = the loop's time that no phase took (set once the loop is over)
   void close(double loop);
   // A table: phase, seconds, share of the loop, microseconds per step, nanoseconds per particle-step

@@ -51,14 +51,14 @@ RunOutcome run(Simulation& sim, const std::vector<Observer*>& observers, const R
       sim.record_contacts(frame_due);
       sim.step();
       const std::int64_t s = sim.step_count();
+      if (profile) {  // counted before the guard, which may stop the run at this step
+        ++profile->steps;
+        profile->particle_steps += static_cast<std::int64_t>(sim.particles().size());
+      }
       {
         const PhaseTimer timer(profile, Phase::guard);
         guard.check_finite(sim);
         if (s % check_every == 0 || s == total || sim.deep_overlap()) guard.check(sim);
-      }
-      if (profile) {
-        ++profile->steps;
-        profile->particle_steps += static_cast<std::int64_t>(sim.particles().size());
       }
       {
         const PhaseTimer timer(step_observers.empty() && !frame_due && !options.after_step ? nullptr : profile,

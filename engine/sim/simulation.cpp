@@ -178,6 +178,7 @@ Simulation::Simulation(Scene scene, KernelSelector select) : scene_(std::move(sc
     }
   scene_.particles.resize(given_particles_);  // the sources' stand-ins are gone
   source_progress_.assign(scene_.sources.size(), SourceProgress{});
+  next_source_radius_.assign(scene_.sources.size(), {-1, 0.0});
   // Step counts are int64 and times step * dt: past 2^53 steps neither is exact any more.
   constexpr double kMaxSteps = 9007199254740992.0;  // 2^53
   if (!scene_.stages.empty()) {
@@ -439,8 +440,10 @@ void Simulation::step() {
   PhaseProfile* const profile = state_.profile;
   std::vector<WallPose> poses_before;
   std::vector<BoundaryLoad> loads_before;
+  // a scene without walls has no wall motion to time (its calls return at once)
+  PhaseProfile* const walls_profile = scene_.walls.empty() ? nullptr : profile;
   {
-    const PhaseTimer timer(profile, Phase::wall_motion);
+    const PhaseTimer timer(walls_profile, Phase::wall_motion);
     if (walls_move) {
       poses_before = boundaries_.poses();
       loads_before = boundary_loads_;
@@ -482,7 +485,7 @@ void Simulation::step() {
     build_neighbors();
   compute_forces_and_kick();
   {
-    const PhaseTimer timer(profile, Phase::wall_motion);
+    const PhaseTimer timer(walls_profile, Phase::wall_motion);
     settle_walls(t_new, state_.dt);
     if (walls_move) {
       add_wall_work(poses_before, loads_before);
@@ -1113,8 +1116,15 @@ bool Simulation::feed_sources() {
     const std::int64_t every = std::max<std::int64_t>(1, source.every_steps);
     if (since <= 0 || (progress.last_attempt >= 0 && step_ + 1 - progress.last_attempt < every)) continue;
     progress.last_attempt = step_ + 1;
+    // the next particle's size, drawn once (a generator seeded anew each time: most of what a step
+    // with nothing due cost, a done source's included)
+    auto& [index, radius] = next_source_radius_[k];
+    if (index != progress.inserted) {
+      index = progress.inserted;
+      radius = source_radius(source, index);
+    }
     const std::vector<ParticleInit> due = due_particles(
-        scene_, source, progress, std::min(since, source.end - source.start), state_.particles,
+        scene_, source, progress, radius, std::min(since, source.end - source.start), state_.particles,
         [&] { return boundaries_.faces(source.face_wall, state_.walls, state_.meshes); },
         [this](const Vec3& x, double r) { return boundaries_.touches(x, r, state_.walls, state_.meshes); });
     double energy = 0;  // what the new particles bring: their kinetic and gravitational energy

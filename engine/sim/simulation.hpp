@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -246,6 +247,8 @@ class Simulation {
   EnergyLedger ledger_;
   std::size_t given_particles_ = 0;
   std::vector<SourceProgress> source_progress_;  // per source
+  // per source: the index and radius of the next particle it would insert (not saved: drawn again)
+  std::vector<std::pair<std::int64_t, double>> next_source_radius_;
 };
 
 }  // namespace dem

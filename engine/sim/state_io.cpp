@@ -630,6 +630,10 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(p.body, "the clumps");
   r.get(p.body_offset, "the clumps");
   r.get(p.q, "the orientations");
+  // A state saved with no bond and no orientation (its spec glued nothing by then, glue_bonds), read
+  // for a spec with a bonding stage still to come: the bonds will measure their turns from their
+  // gluing, so the orientations start there as they would at t = 0.
+  if (p.q.empty() && orientations == n && bonds == 0) p.q.assign(n, Quat::Identity());
   expect_size(p.body, members, "the clump of each particle");
   expect_size(p.body_offset, offsets, "the clump offsets");
   expect_size(p.q, orientations, "the orientations");

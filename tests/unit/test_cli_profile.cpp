@@ -90,6 +90,58 @@ TEST_F(CliProfile, ARunTimesEveryPhaseItsSceneUsesAndNothingForTheOthers) {
   EXPECT_NEAR(std::stod(m[1]), rows.at("total").seconds, 0.0011) << r.output;
 }
 
+// Two spheres and nothing else: no wall, so nothing is timed as wall motion either.
+TEST_F(CliProfile, ASceneWithoutWallsHasNoWallTime) {
+  const fs::path spec = write_spec("two.json", R"({
+  "materials": [{"name": "glass", "density": 2500, "normalStiffness": 1e5}],
+  "interactions": [{"a": "glass", "b": "glass", "restitution": 0.5, "friction": 0.3}],
+  "particles": [{"position": {"x": 0}, "radius": 0.01, "material": "glass", "velocity": {"x": 1}},
+                {"position": {"x": 0.0201}, "radius": 0.01, "material": "glass", "velocity": {"x": -1}}],
+  "time": {"steps": 5000}, "outputs": {"everySteps": 1000}})");
+  const auto r = run_dem("run " + shell_quoted(spec) + " --out " + shell_quoted(dir_ / "out") + " --quiet --profile");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::map<std::string, Row> rows = profile_rows(r.output);
+  for (const char* unused : {"walls", "meshes", "wall motion", "bonds", "clumps", "growth", "sources"}) {
+    ASSERT_TRUE(rows.count(unused)) << unused << "\n" << r.output;
+    EXPECT_EQ(rows.at(unused).seconds, 0) << unused << "\n" << r.output;
+  }
+}
+
+// A run the guard stops says how far it went, its memory and its profile: when they are most wanted.
+TEST_F(CliProfile, AStoppedRunStillGivesItsSummaryAndItsProfile) {
+  const fs::path spec = write_spec("fast.json", R"({
+  "materials": [{"name": "glass", "density": 2500, "normalStiffness": 1e3}],
+  "interactions": [{"a": "glass", "b": "glass", "restitution": 0.5, "friction": 0.3}],
+  "particles": [{"position": {"x": 0}, "radius": 0.01, "material": "glass", "velocity": {"x": 20}},
+                {"position": {"x": 0.0201}, "radius": 0.01, "material": "glass", "velocity": {"x": -20}}],
+  "time": {"steps": 2000}})");
+  const auto r = run_dem("run " + shell_quoted(spec) + " --out " + shell_quoted(dir_ / "out") + " --quiet --profile");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("dem run: unstable"), std::string::npos) << r.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex(R"(stopped: steps=([0-9]+) .* peak_memory_mb=[0-9.]+)")))
+      << r.output;
+  EXPECT_EQ(m[1], "1") << r.output;
+  const std::map<std::string, Row> rows = profile_rows(r.output);
+  ASSERT_TRUE(rows.count("total")) << r.output;
+  EXPECT_GT(rows.at("total").us_per_step, 0) << r.output;  // per the step it took
+}
+
+// A run that ends with no particle (its source's first not due yet) has no memory per particle.
+TEST_F(CliProfile, AnEmptyRunGivesItsMemoryButNoShareOfIt) {
+  const fs::path spec = write_spec("empty.json", R"({
+  "materials": [{"name": "sand", "density": 2650, "normalStiffness": 1e5}],
+  "interactions": [{"a": "sand", "b": "sand", "restitution": 0.5, "friction": 0.5}],
+  "sources": [{"min": {"x": 0, "y": 0, "z": 0}, "max": {"x": 0.1, "y": 0.1, "z": 0.1}, "material": "sand",
+               "sizes": {"kind": "UNIFORM", "dMin": 0.01, "dMax": 0.01}, "countRate": 10, "start": 0.5}],
+  "time": {"dt": 1e-5, "steps": 100}})");
+  const auto r = run_dem("run " + shell_quoted(spec) + " --out " + shell_quoted(dir_ / "out") + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::regex_search(r.output, std::regex(R"(done: steps=100 particles=0 .* peak_memory_mb=[0-9.]+\n)")))
+      << r.output;
+  EXPECT_EQ(r.output.find("bytes_per_particle"), std::string::npos) << r.output;
+}
+
 TEST_F(CliProfile, AProfiledRunWritesTheSameFilesAsOneWithout) {
   const fs::path spec = write_spec("everything.json", kEverything);
   const auto plain = run_dem("run " + shell_quoted(spec) + " --out " + shell_quoted(dir_ / "plain") + " --quiet");

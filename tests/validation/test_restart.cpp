@@ -106,6 +106,35 @@ TEST(Restart, AStageThatGluedNoBondIsContinuedFromItsSavedState) {
   for (std::size_t i = 0; i < whole.particles().size(); ++i) ASSERT_EQ(whole.particles().x[i], second.particles().x[i]);
 }
 
+// A state saved under a spec that glued nothing by then (no bonds block, or its stage not yet
+// reached) has no orientations; a spec whose bonding stage is still to come reads it and starts them.
+TEST(Restart, AStateWithoutOrientationsIsContinuedIntoASpecThatGluesLater) {
+  Stage settle, glue;
+  settle.name = "settle";
+  settle.steps = 500;
+  glue.name = "glue";
+  glue.steps = 500;
+  glue.glue_bonds = true;
+  Scene settle_only = remembering_scene();  // its first stage alone, and no bonds
+  settle_only.bonds.reset();
+  settle_only.stages = {settle};
+  settle_only.time.dt = 5e-6;  // the step of the spec with bonds (a state is continued at its own step)
+  Simulation first(settle_only);
+  for (int k = 0; k < 200; ++k) first.step();
+  ASSERT_TRUE(first.particles().q.empty());
+  std::stringstream saved;
+  StateIO::write(first, saved);
+
+  Scene glue_later = remembering_scene();
+  glue_later.stages = {settle, glue};
+  glue_later.time.dt = 5e-6;
+  Simulation second(glue_later);
+  StateIO::read(second, saved);
+  EXPECT_EQ(second.particles().q.size(), second.particles().size());
+  for (int k = 200; k < 1000; ++k) second.step();
+  EXPECT_GT(second.bonds().bonds().size(), 50u);  // glued at the second stage's start
+}
+
 TEST(Restart, ABondsBlockThatGluesNothingTracksNoOrientation) {
   Scene s = remembering_scene();
   s.bonds->region = Box{Vec3(5, 5, 5), Vec3(6, 6, 6)};
