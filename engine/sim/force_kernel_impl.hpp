@@ -446,7 +446,7 @@ class ForceKernelImpl final : public ForceKernel {
           }
           // a particle with no face within reach and no slot to clear is passed without a call
           const MeshContacts& mc = s.mesh_contacts;
-          if (!s.meshes.empty() && (mc.row_start[i] != mc.row_start[i + 1] || mc.used[i])) {
+          if (!s.meshes.empty() && !mc.none_near && (mc.row_start[i] != mc.row_start[i + 1] || mc.used[i])) {
             if constexpr (kTimed) {
               if (s.mesh_contacts.row_start[i] != s.mesh_contacts.row_start[i + 1]) {
                 const Clock::time_point t0 = Clock::now();

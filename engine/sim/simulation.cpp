@@ -294,7 +294,7 @@ void Simulation::settle_walls(double t_new, double dt) {
           respond(boundaries_.of_plane(wc.wall[e]), wc.kn[e], wc.cn[e]);
         }
   MeshContacts& mc = state_.mesh_contacts;
-  for (int i = 0; i < n && !mc.used.empty(); ++i) {
+  for (int i = 0; i < n && !mc.used.empty() && !mc.none_near; ++i) {
     // only a particle with a face within reach has slots in use or a parting (add_mesh_forces): the
     // others (most, and all of them for a mesh far away) cost one comparison here
     if (mc.row_start[i] == mc.row_start[i + 1]) continue;
@@ -837,6 +837,15 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
       mc.triangle.push_back(t);
     }
   for (int i = 0; i < n; ++i) mc.row_start[i + 1] += mc.row_start[i];
+  // Nothing within reach: the slots still in use are emptied now, as the force loop would empty them
+  // (add_mesh_forces), which then passes every particle by.
+  mc.none_near = mc.mesh.empty();
+  if (mc.none_near)
+    for (int i = 0; i < n; ++i)
+      if (mc.used[i]) {
+        mc.slot(i, 0).mesh = -1;
+        mc.used[i] = 0;
+      }
 }
 
 double Simulation::kinetic_energy() const {

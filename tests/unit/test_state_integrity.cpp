@@ -14,33 +14,14 @@
 
 #include "sim/state_io.hpp"
 #include "spec/spec_loader.hpp"
+#include "support/everything_spec.hpp"
 
 namespace dem::test {
 namespace {
 
 // Everything a state holds, small: loose spheres and a two-sphere clump on a mesh floor, a bonded
 // pair, a loaded plate above them, rolling resistance (rolling springs), 60 steps in.
-const char* kSpec = R"({"name": "everything",
-  "materials": [{"name": "rock", "density": 2600, "youngsModulus": 1e7, "poissonRatio": 0.25}],
-  "interactions": [{"a": "rock", "b": "rock", "restitution": 0.5, "friction": 0.5, "rollingFriction": 0.05}],
-  "contact": {"normal": "HERTZ", "rolling": "EPSD"},
-  "gravity": {"z": -9.81},
-  "particles": [
-    {"material": "rock", "position": {"x": 0.0, "z": 0.0101}, "radius": 0.01},
-    {"material": "rock", "position": {"x": 0.0199, "z": 0.0101}, "radius": 0.01},
-    {"material": "rock", "position": {"x": 0.05, "z": 0.0102}, "radius": 0.01, "velocity": {"x": 0.1}},
-    {"material": "rock", "position": {"x": 0.0, "y": 0.03, "z": 0.012}, "radius": 0.012}],
-  "bonds": {"youngsModulus": 1e7, "tensileStrength": 1e6, "shearStrength": 1e6, "gapTolerance": 0.05},
-  "clumpShapes": [{"name": "pair", "spheres": [{"center": {"x": -0.006}, "radius": 0.01}, {"center": {"x": 0.006}, "radius": 0.01}]}],
-  "clumps": [{"shape": "pair", "material": "rock", "position": {"x": 0.05, "y": 0.04, "z": 0.0105}}],
-  "walls": [
-    {"name": "floor", "material": "rock", "mesh": {
-      "vertices": [{"x": -0.1, "y": -0.1}, {"x": 0.2, "y": -0.1}, {"x": 0.2, "y": 0.2}, {"x": -0.1, "y": 0.2}],
-      "triangles": [{"i": 1, "j": 2, "k": 3}, {"i": 1, "j": 3, "k": 4}]}},
-    {"name": "lid", "material": "rock", "plate": {"c1": {"x": -0.1, "y": -0.1, "z": 0.05}, "c2": {"x": 0.2, "y": -0.1, "z": 0.05}, "c3": {"x": 0.2, "y": 0.2, "z": 0.05}, "c4": {"x": -0.1, "y": 0.2, "z": 0.05}},
-     "load": {"mass": 0.1, "cyclic": {"fMin": 0.1, "fMax": 1, "frequency": 10, "cycles": 1}}}],
-  "time": {"duration": 0.02}
-})";
+const std::string kSpec = everything_spec(0.05, 0.02);
 
 // Loaded once: the clump's mass properties take a while to integrate, and thousands of reads follow.
 Simulation fresh() {

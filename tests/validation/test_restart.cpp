@@ -74,19 +74,24 @@ TEST(Restart, ContinuingFromASavedStateGivesTheUninterruptedRun) {
   EXPECT_EQ(whole.fragments(), second.fragments());
 }
 
+// A stage of `settle` steps, then one of `glue` steps that glues the scene's bonds at its start.
+std::vector<Stage> settle_then_glue(std::int64_t settle, std::int64_t glue) {
+  std::vector<Stage> stages(2);
+  stages[0].name = "settle";
+  stages[0].steps = settle;
+  stages[1].name = "glue";
+  stages[1].steps = glue;
+  stages[1].glue_bonds = true;
+  return stages;
+}
+
 // Bonds that glue nothing leave the spheres' orientations untracked (only bonds read them): a run
 // saved after a bonding stage that glued no pair holds none, and its continuation expects none.
 TEST(Restart, AStageThatGluedNoBondIsContinuedFromItsSavedState) {
   auto scene = [] {
     Scene s = remembering_scene();
     s.bonds->region = Box{Vec3(5, 5, 5), Vec3(6, 6, 6)};  // no particle there
-    Stage settle, glue;
-    settle.name = "settle";
-    settle.steps = 500;
-    glue.name = "glue";
-    glue.steps = 1500;
-    glue.glue_bonds = true;
-    s.stages = {settle, glue};
+    s.stages = settle_then_glue(500, 1500);
     return s;
   };
   constexpr int kSteps = 2000, kSaved = 1000;
@@ -109,15 +114,10 @@ TEST(Restart, AStageThatGluedNoBondIsContinuedFromItsSavedState) {
 // A state saved under a spec that glued nothing by then (no bonds block, or its stage not yet
 // reached) has no orientations; a spec whose bonding stage is still to come reads it and starts them.
 TEST(Restart, AStateWithoutOrientationsIsContinuedIntoASpecThatGluesLater) {
-  Stage settle, glue;
-  settle.name = "settle";
-  settle.steps = 500;
-  glue.name = "glue";
-  glue.steps = 500;
-  glue.glue_bonds = true;
+  const std::vector<Stage> stages = settle_then_glue(500, 500);
   Scene settle_only = remembering_scene();  // its first stage alone, and no bonds
   settle_only.bonds.reset();
-  settle_only.stages = {settle};
+  settle_only.stages = {stages[0]};
   settle_only.time.dt = 5e-6;  // the step of the spec with bonds (a state is continued at its own step)
   Simulation first(settle_only);
   for (int k = 0; k < 200; ++k) first.step();
@@ -126,7 +126,7 @@ TEST(Restart, AStateWithoutOrientationsIsContinuedIntoASpecThatGluesLater) {
   StateIO::write(first, saved);
 
   Scene glue_later = remembering_scene();
-  glue_later.stages = {settle, glue};
+  glue_later.stages = stages;
   glue_later.time.dt = 5e-6;
   Simulation second(glue_later);
   StateIO::read(second, saved);
