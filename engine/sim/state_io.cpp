@@ -53,9 +53,11 @@ class Writer {
     };
     for (const RigidRotation& value : values) {
       char record[sizeof(RigidRotation)] = {};
-      std::memcpy(record + offset_of(value, &value.orientation), &value.orientation, sizeof value.orientation);
-      std::memcpy(record + offset_of(value, &value.angular_momentum), &value.angular_momentum,
-                  sizeof value.angular_momentum);
+      // their doubles (the Eigen types themselves are not trivially copyable)
+      const double* orientation = value.orientation.coeffs().data();
+      const double* angular_momentum = value.angular_momentum.data();
+      std::memcpy(record + offset_of(value, orientation), orientation, 4 * sizeof(double));
+      std::memcpy(record + offset_of(value, angular_momentum), angular_momentum, 3 * sizeof(double));
       bytes(record, sizeof record);
     }
   }
