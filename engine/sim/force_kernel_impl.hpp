@@ -435,29 +435,25 @@ class ForceKernelImpl final : public ForceKernel {
         }
         if constexpr (kWalls) {
           if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) {
+            Clock::time_point t0;
+            if constexpr (kTimed) t0 = Clock::now();
+            add_wall_forces(s, table, i, f, t);
             if constexpr (kTimed) {
-              const Clock::time_point t0 = Clock::now();
-              add_wall_forces(s, table, i, f, t);
               out.times.walls += seconds_since(t0);
               ++out.times.wall_intervals;
-            } else {
-              add_wall_forces(s, table, i, f, t);
             }
           }
-          // a particle with no face within reach and no slot to clear is passed without a call
+          // a particle with no face within reach and no slot to clear is passed without a call; one
+          // with only a slot to clear is not timed
           const MeshContacts& mc = s.mesh_contacts;
-          if (!s.meshes.empty() && !mc.none_near && (mc.row_start[i] != mc.row_start[i + 1] || mc.used[i])) {
-            if constexpr (kTimed) {
-              if (s.mesh_contacts.row_start[i] != s.mesh_contacts.row_start[i + 1]) {
-                const Clock::time_point t0 = Clock::now();
-                add_mesh_forces(s, table, i, f, t);
-                out.times.meshes += seconds_since(t0);
-                ++out.times.mesh_intervals;
-              } else {
-                add_mesh_forces(s, table, i, f, t);  // clears what it held, if anything: not timed
-              }
-            } else {
-              add_mesh_forces(s, table, i, f, t);
+          if (!s.meshes.empty() && !mc.none_near() && (mc.row_start[i] != mc.row_start[i + 1] || mc.used[i])) {
+            const bool timed = kTimed && mc.row_start[i] != mc.row_start[i + 1];
+            Clock::time_point t0;
+            if (timed) t0 = Clock::now();
+            add_mesh_forces(s, table, i, f, t);
+            if (timed) {
+              out.times.meshes += seconds_since(t0);
+              ++out.times.mesh_intervals;
             }
           }
         }

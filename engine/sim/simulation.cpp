@@ -294,7 +294,7 @@ void Simulation::settle_walls(double t_new, double dt) {
           respond(boundaries_.of_plane(wc.wall[e]), wc.kn[e], wc.cn[e]);
         }
   MeshContacts& mc = state_.mesh_contacts;
-  for (int i = 0; i < n && !mc.used.empty() && !mc.none_near; ++i) {
+  for (int i = 0; i < n && !mc.used.empty() && !mc.none_near(); ++i) {
     // only a particle with a face within reach has slots in use or a parting (add_mesh_forces): the
     // others (most, and all of them for a mesh far away) cost one comparison here
     if (mc.row_start[i] == mc.row_start[i + 1]) continue;
@@ -451,9 +451,10 @@ void Simulation::step() {
     move_walls(t_new, state_.dt);
   }
   // growth's work on the contacts at the step's start positions; grow() adds that at its end
+  PhaseProfile* const growth_profile = growth_plan_ ? profile : nullptr;  // likewise without growth
   double growth_at_start = 0;
-  if (growth_plan_) {
-    const PhaseTimer timer(profile, Phase::growth);
+  {
+    const PhaseTimer timer(growth_profile, Phase::growth);
     growth_at_start = growth_energy_at_positions_now();
   }
   state_.time = t_new;
@@ -469,7 +470,7 @@ void Simulation::step() {
   }
   double grown = 0;
   {
-    const PhaseTimer timer(growth_plan_ ? profile : nullptr, Phase::growth);
+    const PhaseTimer timer(growth_profile, Phase::growth);
     grown = grow(growth_at_start);
   }
   bool inserted = false;
@@ -839,8 +840,7 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
   for (int i = 0; i < n; ++i) mc.row_start[i + 1] += mc.row_start[i];
   // Nothing within reach: the slots still in use are emptied now, as the force loop would empty them
   // (add_mesh_forces), which then passes every particle by.
-  mc.none_near = mc.mesh.empty();
-  if (mc.none_near)
+  if (mc.none_near())
     for (int i = 0; i < n; ++i)
       if (mc.used[i]) {
         mc.slot(i, 0).mesh = -1;

@@ -70,9 +70,10 @@ struct MeshContacts {
   // per particle: written by the force loop, read and cleared by the walls' loads of the same step
   // (so never saved: a saved state holds the loads themselves)
   std::vector<MeshParting> parted;
-  // No particle has a face within reach (set at each build): the steps skip the meshes' per-particle
-  // work (a mesh far from every particle costs nothing).
-  bool none_near = false;
+
+  // No particle has a face within reach: the steps skip the meshes' per-particle work (a mesh far
+  // from every particle costs nothing; the build empties the slots still in use).
+  bool none_near() const { return mesh.empty(); }
 
   // The slots of particle i in use.
   int count(int i) const {

@@ -541,7 +541,6 @@ void StateIO::read(Simulation& sim, std::istream& in) {
     expect_size(mc.used, n, "the mesh contacts' flags");
     expect_size(mc.constants, n, "the mesh contacts' constants");
     mc.parted.assign(n, MeshParting{});  // the loads saved already hold the last step's
-    mc.none_near = mc.mesh.empty();
   } else {
     for (const auto* v : {&mc.mesh, &mc.triangle}) expect_size(*v, 0, "the mesh contacts of a job without meshes");
     expect_size(mc.slots, 0, "the mesh contacts of a job without meshes");
