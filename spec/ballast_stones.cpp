@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "clumps/mass_properties.hpp"
+#include "core/parallel.hpp"
 #include "spec/stone_fill.hpp"
 
 namespace dem::spec {
@@ -30,7 +31,7 @@ Vec3 random_direction(std::mt19937_64& rng) {
 
 // Spheres grown one at a time, each overlapping a random earlier one (so the stone is one piece),
 // radii 0.5..1 of the first: irregular, elongated or flat at random.
-StoneShape random_shape(int spheres, std::mt19937_64& rng) {
+std::vector<MemberSphere> random_spheres(int spheres, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<MemberSphere> s{{Vec3::Zero(), 1.0}};
   while (static_cast<int>(s.size()) < spheres) {
@@ -39,6 +40,11 @@ StoneShape random_shape(int spheres, std::mt19937_64& rng) {
     const double distance = (base.radius + r) * (0.3 + 0.4 * u(rng));  // always overlapping
     s.push_back({base.centre + distance * random_direction(rng), r});
   }
+  return s;
+}
+
+// The stone of those spheres: its mass properties (the set-up's costliest work) and its frame.
+StoneShape shape_of(const std::vector<MemberSphere>& s) {
   const MassProperties mp = union_mass_properties(s, 1e-3);
   StoneShape shape;
   shape.volume = mp.volume;
@@ -105,8 +111,12 @@ void add_ballast_stones(const StoneRequest& r, Scene& scene) {
   std::mt19937_64 rng(r.seed);
   std::uniform_int_distribution<int> size(r.min_spheres, r.max_spheres);
   std::vector<StoneShape> shapes;
-  shapes.reserve(static_cast<std::size_t>(std::max(0, r.shapes)));
-  for (int k = 0; k < r.shapes; ++k) shapes.push_back(random_shape(size(rng), rng));
+  std::vector<std::vector<MemberSphere>> spheres;  // drawn in order: the random stream stays the same
+  for (int k = 0; k < r.shapes; ++k) spheres.push_back(random_spheres(size(rng), rng));
+  shapes.resize(spheres.size());
+  for_ranges(r.shapes, 2, [&](int begin, int end) {  // independent shapes: on every thread
+    for (int k = begin; k < end; ++k) shapes[k] = shape_of(spheres[k]);
+  });
   const std::vector<double> masses = sample_stone_masses(r, rng);
   std::uniform_int_distribution<int> pick(0, r.shapes - 1);
   std::uniform_real_distribution<double> u(0, 1);

@@ -7,32 +7,19 @@
 namespace dem {
 namespace {
 
-// Below this many bodies (or members) a loop runs on one thread: the threads' start costs more.
+// Below this many bodies a loop runs on one thread: the threads' start costs more.
 constexpr int kParallelMinBodies = 256;
 
-// Each body's angular velocity, found once for all its members.
-std::vector<Vec3> spins(const ClumpBodies& bodies) {
-  const int nb = static_cast<int>(bodies.size());
-  std::vector<Vec3> w(bodies.size());
-  for_ranges(nb, kParallelMinBodies, [&](int begin, int end) {
-    for (int b = begin; b < end; ++b) w[b] = angular_velocity(bodies.rotation[b], bodies.moments[b]);
-  });
-  return w;
-}
-
-// Velocity and spin of every member from its body; with `place`, its position first.
-void move_members(const ClumpBodies& bodies, Particles& p, bool place) {
-  const std::vector<Vec3> w = spins(bodies);
-  const int n = static_cast<int>(p.size());
-  for_ranges(n, kParallelMinBodies, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      const int b = p.body[i];
-      if (b < 0) continue;
-      if (place) p.x[i] = bodies.x[b] + bodies.rotation[b].orientation * p.body_offset[i];
-      p.v[i] = bodies.v[b] + w[b].cross(p.x[i] - bodies.x[b]);
-      p.w[i] = w[b];
-    }
-  });
+// Velocity and spin of body b's members from its body (orientation R, spin w); with `place`, their
+// positions first.
+void move_members_of(const ClumpBodies& bodies, int b, const Eigen::Matrix3d& R, const Vec3& w, Particles& p,
+                     bool place) {
+  for (int k = bodies.member_start[b]; k < bodies.member_start[b + 1]; ++k) {
+    const int i = bodies.members[k];
+    if (place) p.x[i] = bodies.x[b] + R * p.body_offset[i];
+    p.v[i] = bodies.v[b] + w.cross(p.x[i] - bodies.x[b]);
+    p.w[i] = w;
+  }
 }
 
 }  // namespace
@@ -49,13 +36,14 @@ ClumpBodies make_bodies(const Scene& scene) {
     b.rotation.push_back(r);
     b.mass.push_back(c.mass);
     b.moments.push_back(c.moments);
+    b.inverse_moments.push_back(c.moments.cwiseInverse());
     b.force.push_back(Vec3::Zero());
     b.torque.push_back(Vec3::Zero());
   }
   return b;
 }
 
-void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p) {
+void mark_members(const Scene& scene, ClumpBodies& bodies, Particles& p) {
   if (bodies.empty()) return;
   p.body.assign(p.size(), -1);
   p.body_offset.assign(p.size(), Vec3::Zero());
@@ -68,60 +56,63 @@ void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p) {
       p.inv_mass[i] = 1 / clump.mass;
     }
   }
-  move_members(bodies, p, true);
+  index_members(bodies, p);
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
+    move_members_of(bodies, b, R, angular_velocity(R, bodies.rotation[b].angular_momentum, bodies.inverse_moments[b]),
+                    p, true);
+  }
+}
+
+void index_members(ClumpBodies& bodies, const Particles& p) {
+  const int n = static_cast<int>(p.body.size()), nb = static_cast<int>(bodies.size());  // no bodies: no p.body
+  std::vector<int>& start = bodies.member_start;
+  start.assign(bodies.size() + 1, 0);
+  for (int i = 0; i < n; ++i)
+    if (p.body[i] >= 0) ++start[p.body[i] + 1];
+  for (int b = 0; b < nb; ++b) start[b + 1] += start[b];
+  bodies.members.resize(start[nb]);
+  std::vector<int> next(start.begin(), start.end() - 1);
+  for (int i = 0; i < n; ++i)
+    if (p.body[i] >= 0) bodies.members[next[p.body[i]]++] = i;
 }
 
 double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt,
                     std::vector<Vec3>& half_kick, std::vector<Vec3>& spin_kick) {
   const int nb = static_cast<int>(bodies.size());
-  std::vector<Vec3> kick(bodies.size()), spin(bodies.size());
-  for_ranges(nb, kParallelMinBodies, [&](int begin, int end) {
-    for (int b = begin; b < end; ++b) {
-      kick[b] = (0.5 * dt / bodies.mass[b]) * bodies.force[b];
-      bodies.v[b] += kick[b];
-      bodies.x[b] += dt * bodies.v[b];
-      bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
-      rotate_free(bodies.rotation[b], bodies.moments[b], dt);
-      // the spin the half kick's angular momentum adds, at the orientation the contacts see
-      spin[b] = angular_velocity(RigidRotation{bodies.rotation[b].orientation, 0.5 * dt * bodies.torque[b]},
-                                 bodies.moments[b]);
-    }
-  });
-  move_members(bodies, p, true);
-  const int n = static_cast<int>(p.size());
-  for_ranges(n, kParallelMinBodies, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      const int b = p.body[i];
-      if (b < 0) continue;
-      half_kick[i] = kick[b] + spin[b].cross(p.x[i] - bodies.x[b]);
-      spin_kick[i] = spin[b];
-    }
-  });
+  // one pass over the bodies, each placing its members (whose largest move is exact in any order)
   return reduce_ranges(
-      n, kParallelMinBodies, 0.0,
+      nb, kParallelMinBodies, 0.0,
       [&](int begin, int end) {
         double moved2 = 0;
-        for (int i = begin; i < end; ++i)
-          if (p.body[i] >= 0) moved2 = std::max(moved2, (p.x[i] - x_at_build[i]).squaredNorm());
+        for (int b = begin; b < end; ++b) {
+          const Vec3 kick = (0.5 * dt / bodies.mass[b]) * bodies.force[b];
+          bodies.v[b] += kick;
+          bodies.x[b] += dt * bodies.v[b];
+          bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
+          rotate_free(bodies.rotation[b], bodies.moments[b], dt);
+          const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
+          // the spin the half kick's angular momentum adds, at the orientation the contacts see
+          const Vec3 spin = angular_velocity(R, 0.5 * dt * bodies.torque[b], bodies.inverse_moments[b]);
+          move_members_of(bodies, b, R,
+                          angular_velocity(R, bodies.rotation[b].angular_momentum, bodies.inverse_moments[b]), p, true);
+          for (int k = bodies.member_start[b]; k < bodies.member_start[b + 1]; ++k) {
+            const int i = bodies.members[k];
+            half_kick[i] = kick + spin.cross(p.x[i] - bodies.x[b]);
+            spin_kick[i] = spin;
+            moved2 = std::max(moved2, (p.x[i] - x_at_build[i]).squaredNorm());
+          }
+        }
         return moved2;
       },
       [](double a, double b) { return std::max(a, b); });
 }
 
 void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt, double local_damping) {
-  // Each body's members in particle order (a counting sort: the order changes with every re-sort),
-  // so that each body sums its members in that order: the same sums on any number of threads.
-  const int n = static_cast<int>(p.size()), nb = static_cast<int>(bodies.size());
-  std::vector<int> start(bodies.size() + 1, 0), members;
-  for (int i = 0; i < n; ++i)
-    if (p.body[i] >= 0) ++start[p.body[i] + 1];
-  for (int b = 0; b < nb; ++b) start[b + 1] += start[b];
-  members.resize(start[nb]);
-  {
-    std::vector<int> next(start.begin(), start.end() - 1);
-    for (int i = 0; i < n; ++i)
-      if (p.body[i] >= 0) members[next[p.body[i]]++] = i;
-  }
+  // each body sums its members in particle order: the same sums on any number of threads
+  const int nb = static_cast<int>(bodies.size());
+  const std::vector<int>& start = bodies.member_start;
+  const std::vector<int>& members = bodies.members;
   for_ranges(nb, kParallelMinBodies, [&](int begin, int end) {
     for (int b = begin; b < end; ++b) {
       Vec3 force = bodies.mass[b] * gravity, torque = Vec3::Zero();
@@ -131,8 +122,9 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
         force += contact;
         torque += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
       }
+      const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
       if (local_damping > 0 && dt != 0) {
-        const Vec3 w = angular_velocity(bodies.rotation[b], bodies.moments[b]);
+        const Vec3 w = angular_velocity(R, bodies.rotation[b].angular_momentum, bodies.inverse_moments[b]);
         for (int d = 0; d < 3; ++d) {
           if (bodies.v[b][d] != 0) force[d] -= local_damping * std::abs(force[d]) * (bodies.v[b][d] > 0 ? 1 : -1);
           if (w[d] != 0) torque[d] -= local_damping * std::abs(torque[d]) * (w[d] > 0 ? 1 : -1);
@@ -143,10 +135,11 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
       if (dt == 0) continue;
       bodies.v[b] += (0.5 * dt / bodies.mass[b]) * force;
       bodies.rotation[b].angular_momentum += 0.5 * dt * torque;
+      // the velocities and spins the kick changed
+      move_members_of(bodies, b, R, angular_velocity(R, bodies.rotation[b].angular_momentum, bodies.inverse_moments[b]),
+                      p, false);
     }
   });
-  if (dt == 0) return;
-  move_members(bodies, p, false);  // the velocities and spins the kick changed
 }
 
 double bodies_kinetic_energy(const ClumpBodies& bodies) {

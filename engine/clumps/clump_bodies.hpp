@@ -16,8 +16,13 @@ struct ClumpBodies {
   std::vector<Vec3> x, v;  // centroid and its velocity
   std::vector<RigidRotation> rotation;
   std::vector<double> mass;
-  std::vector<Vec3> moments;        // principal, body frame
-  std::vector<Vec3> force, torque;  // of the last force evaluation (space frame)
+  std::vector<Vec3> moments;          // principal, body frame
+  std::vector<Vec3> inverse_moments;  // their inverses
+  std::vector<Vec3> force, torque;    // of the last force evaluation (space frame)
+  // Each body's members in particle order: members[member_start[b]] .. members[member_start[b + 1] - 1]
+  // (index_members). Kept between steps, so a step does not sort the members again; a re-sort of the
+  // particles rebuilds it.
+  std::vector<int> member_start, members;
 
   bool empty() const { return x.empty(); }
   std::size_t size() const { return x.size(); }
@@ -28,7 +33,12 @@ ClumpBodies make_bodies(const Scene& scene);
 // Member particles (whose indices follow the scene's until the first re-sort): body index, offset
 // in the body frame, and the body's mass (the contact laws' damping and the time step see a member
 // as the whole body).
-void mark_members(const Scene& scene, const ClumpBodies& bodies, Particles& p);
+void mark_members(const Scene& scene, ClumpBodies& bodies, Particles& p);
+
+// Lists each body's members in particle order (a counting sort over p.body). Call it whenever the
+// particles' order changes (mark_members, a re-sort, a state read); inserting free spheres at the end
+// leaves it valid.
+void index_members(ClumpBodies& bodies, const Particles& p);
 
 // The first half kick and the drift of every body, then its members placed; returns the largest
 // squared move of a member since `x_at_build` (for the neighbour-list rebuild). A member's kicks

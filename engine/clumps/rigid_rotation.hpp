@@ -29,6 +29,11 @@ void rotate_with_torque(RigidRotation& body, const Vec3& moments, const Vec3& to
 // The angular velocity in the space frame.
 Vec3 angular_velocity(const RigidRotation& body, const Vec3& moments);
 
+// The same from the orientation's rotation matrix (to_space: body frame -> space frame) and the
+// inverse principal moments, for a loop that turns several vectors with one orientation (a matrix
+// turns a vector in half the work of a quaternion, and a product costs less than a division).
+Vec3 angular_velocity(const Eigen::Matrix3d& to_space, const Vec3& angular_momentum, const Vec3& inverse_moments);
+
 // Kinetic energy of the rotation, L . omega / 2.
 double rotational_energy(const RigidRotation& body, const Vec3& moments);
 

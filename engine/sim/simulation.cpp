@@ -676,6 +676,7 @@ void Simulation::build_neighbors() {
       permute_array(state_.half_kick, order);  // this step's kicks, already taken, feed the prediction
       permute_array(state_.spin_kick, order);
       state_.bonds.renumber(order);
+      if (!state_.bodies.empty()) index_members(state_.bodies, p);
     }
   }
   const PhaseTimer timer(state_.profile, Phase::rebuild);

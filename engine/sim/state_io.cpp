@@ -651,6 +651,7 @@ void StateIO::read(Simulation& sim, std::istream& in) {
   r.get(cb.torque, "the clumps");
   for (const auto* v : {&cb.x, &cb.v, &cb.force, &cb.torque}) expect_size(*v, bodies, "the clumps");
   expect_size(cb.rotation, bodies, "the clumps' rotations");
+  index_members(cb, p);  // the saved order of the members
   if (!r.at_end()) inconsistent("bytes follow its last value");
   // A free particle weighs what the spec makes of its radius: a state saved with another dimension, disc thickness
   // or density would go on with masses (and a plane) the spec does not describe.
