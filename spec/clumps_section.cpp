@@ -2,6 +2,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <numbers>
@@ -93,6 +94,17 @@ ClumpBody clump_body(const api::ClumpShape& in, const std::string& path, const s
     m.centre *= scale;
     m.radius *= scale;
   }
+  if (scale > 0 && std::isfinite(scale))  // the radii a spec may give, after the scale too (the first one off)
+    for (std::size_t s = 0; s < spheres.size(); ++s) {
+      const double r = spheres[s].radius;
+      if (!(r > 0) || (r <= kRadius.max && r >= kRadius.min)) continue;
+      char radius[32];
+      std::snprintf(radius, sizeof radius, "%.3g", r);
+      check.fail(path + ".scale",
+                 "makes the radius of sphere " + std::to_string(s + 1) + " " + radius + " m: must be " +
+                     (r > kRadius.max ? "at most " + num(kRadius.max) : "at least " + num(kRadius.min)) + " m");
+      break;
+    }
   body.spheres = spheres;
   body.usable = !spheres.empty() && scale > 0 && std::all_of(spheres.begin(), spheres.end(), [](const MemberSphere& m) {
     return m.radius > 0 && std::isfinite(m.radius) && m.centre.allFinite();
@@ -195,7 +207,12 @@ void add_stones(const api::BallastStones& in, const std::string& path, bool has_
   if (!std::isfinite(r.log_mean)) check.fail(path + ".massLogMean", "must be a finite number");
   check.non_negative(path + ".massLogSigma", r.log_sigma);
   check.positive(path + ".massMin", r.mass_min);
-  if (!(r.mass_max > r.mass_min)) check.fail(path + ".massMax", "must be above massMin (got " + num(r.mass_max) + ")");
+  check.vector(path + ".min", in.min(), kLength);
+  check.vector(path + ".max", in.max(), kLength);
+  if (!std::isfinite(r.mass_max))
+    check.fail(path + ".massMax", "must be a finite number (got " + num(r.mass_max) + ")");
+  else if (!(r.mass_max > r.mass_min))
+    check.fail(path + ".massMax", "must be above massMin (got " + num(r.mass_max) + ")");
   check.in_range(path + ".minSpheres", r.min_spheres, 1, 20, false, false);
   check.in_range(path + ".maxSpheres", r.max_spheres, r.min_spheres, 20, false, false);
   check.in_range(path + ".shapes", r.shapes, 1, 1000, false, false);

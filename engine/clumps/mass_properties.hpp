@@ -28,7 +28,8 @@ struct MassProperties {
 };
 
 // Refines until the volume and the principal moments change by less than `relative_accuracy`
-// between two levels (at most 2^11 cells a side along the longest extent).
+// between two levels (at most 2^11 cells a side of a root cell: the root cells are cubes about the
+// largest sphere's diameter, so a long or sparse shape is resolved as finely as a compact one).
 MassProperties union_mass_properties(const std::vector<MemberSphere>& spheres, double relative_accuracy = 1e-5);
 
 // How many integrations union_mass_properties has made in this process: the set-up's costliest work

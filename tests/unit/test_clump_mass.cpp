@@ -2,6 +2,7 @@
 // forms: the two-sphere clump, a single sphere, disjoint spheres, a sphere inside another.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -52,6 +53,43 @@ TEST(ClumpMass, TheAxesAreARightHandedRotationOrderedByMoment) {
   const Eigen::Matrix3d diagonal = p.principal_axes.transpose() * p.inertia * p.principal_axes;
   EXPECT_NEAR(diagonal(0, 1), 0, 1e-9 * p.principal_moments[2]);
   EXPECT_NEAR(diagonal(1, 2), 0, 1e-9 * p.principal_moments[2]);
+}
+
+// Long and sparse shapes meet the accuracy asked as compact ones do (the subdivision's depth counts
+// from cells about a sphere's size, not from the whole shape's box): a rod of 150 spheres whose
+// neighbours overlap (the union's volume in closed form: the spheres less a lens per neighbour pair),
+// and two spheres 1,000 radii apart.
+TEST(ClumpMass, LongAndSparseShapesMeetTheAccuracyAsked) {
+  const double r = 0.01, d = 0.012, accuracy = 1e-4;
+  std::vector<MemberSphere> rod;
+  for (int k = 0; k < 150; ++k) rod.push_back({Vec3(d * k, 0, 0), r});
+  const double sphere = 4 * kPi / 3 * r * r * r, lens = kPi * (4 * r + d) * (2 * r - d) * (2 * r - d) / 12;
+  const double rod_volume = 150 * sphere - 149 * lens;
+  const MassProperties long_one = union_mass_properties(rod, accuracy);
+  std::printf("rod of 150: volume error %.2e\n", long_one.volume / rod_volume - 1);
+  EXPECT_NEAR(long_one.volume, rod_volume, accuracy * rod_volume);
+  const double apart = 1000 * r;
+  const MassProperties sparse = union_mass_properties({{Vec3::Zero(), r}, {Vec3(apart, 0, 0), r}}, accuracy);
+  const double across = 2 * (0.4 * sphere * r * r + sphere * apart * apart / 4);
+  std::printf("two spheres 1,000 radii apart: volume error %.2e, moment error %.2e\n", sparse.volume / (2 * sphere) - 1,
+              sparse.principal_moments[2] / across - 1);
+  EXPECT_NEAR(sparse.volume, 2 * sphere, accuracy * 2 * sphere);
+  EXPECT_NEAR(sparse.principal_moments[2], across, accuracy * across);
+}
+
+// A shape of many spheres is integrated in about the time of its spheres, not of their number
+// squared (each cell is tested against the spheres near it only): 2,000 spheres at 1e-4.
+TEST(ClumpMass, ManySpheresAreIntegratedInSeconds) {
+  std::vector<MemberSphere> cloud;
+  for (int k = 0; k < 2000; ++k)  // a lumpy blob, deterministic
+    cloud.push_back(
+        {Vec3(std::sin(1.3 * k), std::cos(0.7 * k), std::sin(0.31 * k + 1)) * 0.9, 0.08 + 0.04 * std::cos(k)});
+  const auto start = std::chrono::steady_clock::now();
+  const MassProperties p = union_mass_properties(cloud, 1e-4);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("2,000 spheres at 1e-4: %.2f s, volume %.6f, last change %.1e\n", seconds, p.volume, p.relative_accuracy);
+  EXPECT_LT(p.relative_accuracy, 1e-4);
+  EXPECT_LT(seconds, 20.0);  // a sanity bound for the sanitized and busy machines, not a benchmark
 }
 
 TEST(ClumpMass, BadSpheresAreRefused) {

@@ -124,6 +124,21 @@ TEST(ClumpShapeUse, OnlyTheShapesClumpsUseAreIntegrated) {
   EXPECT_NE(problems.find("clumpShapes[0].spheres[0].radius"), std::string::npos) << problems;
 }
 
+// A scale that takes the shape's spheres past the radii a spec may give is refused at the scale,
+// with the radius it would give (the spheres' own radii were within the limits).
+TEST(ClumpShapeScale, AScaleBeyondTheRadiusLimitsIsRefusedAtTheScale) {
+  const std::string spheres = R"("spheres": [{"radius": 0.01}, {"center": {"x": 0.01}, "radius": 0.01}], "scale": )";
+  std::string problems = spec_problems(spec_with_shape(spheres + "1e12"));
+  EXPECT_NE(problems.find("clumpShapes[0].scale: makes the radius of sphere 1 1e+10 m: must be at most 1e+06 m"),
+            std::string::npos)
+      << problems;
+  problems = spec_problems(spec_with_shape(spheres + "1e-9"));
+  EXPECT_NE(problems.find("clumpShapes[0].scale: makes the radius of sphere 1 1e-11 m: must be at least 1e-09 m"),
+            std::string::npos)
+      << problems;
+  EXPECT_EQ(spec_problems(spec_with_shape(spheres + "1000")), "");  // 10 m spheres: fine
+}
+
 TEST(ClumpShapeAccuracy, TheSubdivisionMeetsTheAccuracyAsked) {
   const double exact = 1000 * 9 * std::numbers::pi / 4;
   double previous = 1;

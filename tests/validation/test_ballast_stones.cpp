@@ -135,6 +135,13 @@ TEST(BallastStones, AnEmptyOrUndefinedMassDistributionIsRefused) {
       << all;
   all = problems(R"("massLogMean": -3.0)", R"("massLogMean": "NaN")");
   EXPECT_NE(all.find("ballastStones[0].massLogMean: must be a finite number"), std::string::npos) << all;
+  // infinite bounds and boxes are named, not passed on to the generator
+  all = problems(R"("massMax": 0.3)", R"("massMax": "Infinity")");
+  EXPECT_NE(all.find("ballastStones[0].massMax: must be a finite number"), std::string::npos) << all;
+  all = problems(R"("min": {"x": 0)", R"("min": {"x": "-Infinity")");
+  EXPECT_NE(all.find("ballastStones[0].min: must be finite"), std::string::npos) << all;
+  all = problems(R"("max": {"x": 1.000000)", R"("max": {"x": "Infinity")");
+  EXPECT_NE(all.find("ballastStones[0].max: must be finite"), std::string::npos) << all;
 }
 
 }  // namespace
