@@ -23,12 +23,7 @@ inline Vec3 rotation_vector(const Quat& q) {
   const Vec3 v = sign * q.vec();
   const double s = v.norm(), c = sign * q.w();
   if (s == 0) return Vec3::Zero();
-  if (s > c * (1.0 / 64)) return (2 * std::atan2(s, c) / s) * v;
-  // A small turn (a bond's, over its life; c >= 0.9998): atan(x) / x for x = s / c by its series in
-  // x^2, exact to round-off (the first term left out, x^12 / 13, is below 1e-22), with no atan2 call.
-  const double inv_c = 1 / c, x = s * inv_c, x2 = x * x;
-  const double atan_over_x = 1 + x2 * (-1.0 / 3 + x2 * (1.0 / 5 + x2 * (-1.0 / 7 + x2 * (1.0 / 9 + x2 * (-1.0 / 11)))));
-  return (2 * inv_c * atan_over_x) * v;
+  return (2 * std::atan2(s, c) / s) * v;
 }
 
 }  // namespace dem

@@ -1,5 +1,5 @@
-// The rotation helpers' small-angle series (a bond's turn, a clump's free rotation) against closed
-// forms on both sides of the angle where they hand over to libm.
+// The rotation helpers against closed forms: a bond's turn (the rotation vector) at every angle, and
+// a clump's free rotation on both sides of the angle where its small-angle series hands over to libm.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,7 +24,7 @@ Vec3 reference_rotation_vector(const Quat& q) {
 TEST(RotationVector, IsTheAtan2FormToRoundOffAtEveryAngle) {
   std::mt19937_64 rng(7);
   std::normal_distribution<double> n(0, 1);
-  // 2 atan(1/64) is where the series hands over to atan2: angles on both sides of it, and far off
+  // tiny to nearly pi, and about 2 atan(1/64), where a small-angle series would hand over
   const double handover = 2 * std::atan(1.0 / 64);
   double worst = 0;
   for (const double angle : {1e-300, 1e-12, 1e-6, 1e-3, 0.99 * handover, 0.999999 * handover, handover,
