@@ -125,17 +125,19 @@ TEST(CaseTrends, TheBallastBoxSettlesEveryCycleAndLessInItsLastCyclesThanItsFirs
 
 // cases/ballast-box's breakable.json, smaller: its first batch of bonded stones (33 stones, their
 // bonds at the case's strengths) under one load cycle, against the same stones with bonds that never
-// break. The stones fall into the box with no bond broken (this draw of the stones, seed 2; seed 1
-// broke 4 bonds in the fall, and its two beds parted there), so both runs start the load from the
-// same bed. Under the load the breakable stones crush and the sleeper goes further down: measured
-// 12.14 mm after the cycle, 63 bonds broken in tension and 7 in shear, 33 pieces becoming 61 (0.57 kg
-// broken off), against -0.67 mm for the unbreakable ones (the README's 165 stones: 35.9 against
-// 19.9 mm over 15 cycles). One cycle of a single layer: 70 s a run on one core.
+// break. The stones fall into the box with no bond broken (this draw of the stones, seed 8), so both
+// runs start the load from the same bed. Under the load the breakable stones crush and the sleeper
+// goes further down: measured 40.21 mm after the cycle, 71 bonds broken, 33 pieces becoming 67 (0.77
+// kg broken off). The draw decides much (2026-12-06, after the stones' mass properties were made
+// exact): seed 1 broke bonds in the fall, seed 2 broke none under the load (the sleeper sat on stones
+// that carried it whole; before that change seed 2 broke 70), seeds 3, 4 and 6 broke 18, 12 and 30,
+// seeds 5 and 9 stand taller than the sleeper's start and 7 does not fit the box. One cycle of a
+// single layer: about 85 s a run on one core.
 TEST(CaseTrends, BreakableBallastStonesCrushAndTheSleeperSettlesFurther) {
   api::JobSpec base = spec::read_json_file((case_dir("ballast-box") / "breakable.json").string());
   ASSERT_EQ(base.ballast_stones_size(), 5);
   while (base.ballast_stones_size() > 1) base.mutable_ballast_stones()->RemoveLast();
-  base.mutable_ballast_stones(0)->set_seed(2);
+  base.mutable_ballast_stones(0)->set_seed(8);
   ASSERT_EQ(base.stages_size(), 3);
   base.mutable_stages(0)->set_min_duration(0.2);  // a single layer settles sooner than the case's 0.9 s
   api::Plate* sleeper_plate = base.mutable_stages(1)->mutable_add_walls(0)->mutable_plate();
