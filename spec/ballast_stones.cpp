@@ -112,6 +112,7 @@ void add_ballast_stones(const StoneRequest& r, Scene& scene) {
   std::uniform_int_distribution<int> size(r.min_spheres, r.max_spheres);
   std::vector<StoneShape> shapes;
   std::vector<std::vector<MemberSphere>> spheres;  // drawn in order: the random stream stays the same
+  spheres.reserve(static_cast<std::size_t>(r.shapes));
   for (int k = 0; k < r.shapes; ++k) spheres.push_back(random_spheres(size(rng), rng));
   shapes.resize(spheres.size());
   for_ranges(r.shapes, 2, [&](int begin, int end) {  // independent shapes: on every thread
