@@ -22,6 +22,11 @@ void move_members_of(const ClumpBodies& bodies, int b, const Eigen::Matrix3d& R,
   }
 }
 
+// Body b's spin, from its angular momentum, at orientation R.
+Vec3 spin_of(const ClumpBodies& bodies, int b, const Eigen::Matrix3d& R) {
+  return angular_velocity(R, bodies.rotation[b].angular_momentum, bodies.moments[b].cwiseInverse());
+}
+
 }  // namespace
 
 ClumpBodies make_bodies(const Scene& scene) {
@@ -36,7 +41,6 @@ ClumpBodies make_bodies(const Scene& scene) {
     b.rotation.push_back(r);
     b.mass.push_back(c.mass);
     b.moments.push_back(c.moments);
-    b.inverse_moments.push_back(c.moments.cwiseInverse());
     b.force.push_back(Vec3::Zero());
     b.torque.push_back(Vec3::Zero());
   }
@@ -59,8 +63,7 @@ void mark_members(const Scene& scene, ClumpBodies& bodies, Particles& p) {
   index_members(bodies, p);
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
     const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
-    move_members_of(bodies, b, R, angular_velocity(R, bodies.rotation[b].angular_momentum, bodies.inverse_moments[b]),
-                    p, true);
+    move_members_of(bodies, b, R, spin_of(bodies, b, R), p, true);
   }
 }
 
@@ -92,13 +95,18 @@ double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& 
           bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
           rotate_free(bodies.rotation[b], bodies.moments[b], dt);
           const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
+          const Vec3 inverse_moments = bodies.moments[b].cwiseInverse();
+          const Vec3 w = angular_velocity(R, bodies.rotation[b].angular_momentum, inverse_moments);
           // the spin the half kick's angular momentum adds, at the orientation the contacts see
-          const Vec3 spin = angular_velocity(R, 0.5 * dt * bodies.torque[b], bodies.inverse_moments[b]);
-          move_members_of(bodies, b, R,
-                          angular_velocity(R, bodies.rotation[b].angular_momentum, bodies.inverse_moments[b]), p, true);
+          const Vec3 spin = angular_velocity(R, 0.5 * dt * bodies.torque[b], inverse_moments);
+          // the members placed and moved as move_members_of does, in the same pass as their kicks
           for (int k = bodies.member_start[b]; k < bodies.member_start[b + 1]; ++k) {
             const int i = bodies.members[k];
-            half_kick[i] = kick + spin.cross(p.x[i] - bodies.x[b]);
+            p.x[i] = bodies.x[b] + R * p.body_offset[i];
+            const Vec3 arm = p.x[i] - bodies.x[b];
+            p.v[i] = bodies.v[b] + w.cross(arm);
+            p.w[i] = w;
+            half_kick[i] = kick + spin.cross(arm);
             spin_kick[i] = spin;
             moved2 = std::max(moved2, (p.x[i] - x_at_build[i]).squaredNorm());
           }
@@ -122,9 +130,8 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
         force += contact;
         torque += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
       }
-      const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
       if (local_damping > 0 && dt != 0) {
-        const Vec3 w = angular_velocity(R, bodies.rotation[b].angular_momentum, bodies.inverse_moments[b]);
+        const Vec3 w = spin_of(bodies, b, bodies.rotation[b].orientation.toRotationMatrix());
         for (int d = 0; d < 3; ++d) {
           if (bodies.v[b][d] != 0) force[d] -= local_damping * std::abs(force[d]) * (bodies.v[b][d] > 0 ? 1 : -1);
           if (w[d] != 0) torque[d] -= local_damping * std::abs(torque[d]) * (w[d] > 0 ? 1 : -1);
@@ -136,8 +143,8 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
       bodies.v[b] += (0.5 * dt / bodies.mass[b]) * force;
       bodies.rotation[b].angular_momentum += 0.5 * dt * torque;
       // the velocities and spins the kick changed
-      move_members_of(bodies, b, R, angular_velocity(R, bodies.rotation[b].angular_momentum, bodies.inverse_moments[b]),
-                      p, false);
+      const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
+      move_members_of(bodies, b, R, spin_of(bodies, b, R), p, false);
     }
   });
 }

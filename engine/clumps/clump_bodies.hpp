@@ -16,9 +16,8 @@ struct ClumpBodies {
   std::vector<Vec3> x, v;  // centroid and its velocity
   std::vector<RigidRotation> rotation;
   std::vector<double> mass;
-  std::vector<Vec3> moments;          // principal, body frame
-  std::vector<Vec3> inverse_moments;  // their inverses
-  std::vector<Vec3> force, torque;    // of the last force evaluation (space frame)
+  std::vector<Vec3> moments;        // principal, body frame
+  std::vector<Vec3> force, torque;  // of the last force evaluation (space frame)
   // Each body's members in particle order: members[member_start[b]] .. members[member_start[b + 1] - 1]
   // (index_members). Kept between steps, so a step does not sort the members again; a re-sort of the
   // particles rebuilds it.
