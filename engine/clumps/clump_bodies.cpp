@@ -130,8 +130,10 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
         force += contact;
         torque += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
       }
+      // built once for both the damping and the members (a stage's first evaluation, dt = 0, uses neither)
+      const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
       if (local_damping > 0 && dt != 0) {
-        const Vec3 w = spin_of(bodies, b, bodies.rotation[b].orientation.toRotationMatrix());
+        const Vec3 w = spin_of(bodies, b, R);
         for (int d = 0; d < 3; ++d) {
           if (bodies.v[b][d] != 0) force[d] -= local_damping * std::abs(force[d]) * (bodies.v[b][d] > 0 ? 1 : -1);
           if (w[d] != 0) torque[d] -= local_damping * std::abs(torque[d]) * (w[d] > 0 ? 1 : -1);
@@ -143,7 +145,6 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
       bodies.v[b] += (0.5 * dt / bodies.mass[b]) * force;
       bodies.rotation[b].angular_momentum += 0.5 * dt * torque;
       // the velocities and spins the kick changed
-      const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
       move_members_of(bodies, b, R, spin_of(bodies, b, R), p, false);
     }
   });
