@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/local_damping.hpp"
 #include "core/parallel.hpp"
 
 namespace dem {
@@ -83,33 +84,60 @@ void index_members(ClumpBodies& bodies, const Particles& p) {
 double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& x_at_build, double dt,
                     std::vector<Vec3>& half_kick, std::vector<Vec3>& spin_kick) {
   const int nb = static_cast<int>(bodies.size());
+  // Body b's members placed and moved as move_members_of does, in the same pass as their kicks, after
+  // the body's drift; returns their largest squared move since the list was built. Raw pointers: through
+  // the std::vectors the compiler reloaded their data pointers after every store.
+  const int* __restrict member_start = bodies.member_start.data();
+  const int* __restrict members = bodies.members.data();
+  const Vec3* __restrict body_offset = p.body_offset.data();
+  const Vec3* __restrict x_built = x_at_build.data();
+  Vec3* __restrict x = p.x.data();
+  Vec3* __restrict v = p.v.data();
+  Vec3* __restrict w = p.w.data();
+  Vec3* __restrict member_kick = half_kick.data();
+  Vec3* __restrict member_spin_kick = spin_kick.data();
+  auto place_members = [&](int b) {
+    const Vec3 kick = (0.5 * dt / bodies.mass[b]) * bodies.force[b];
+    const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
+    const Vec3 inverse_moments = bodies.moments[b].cwiseInverse();
+    const Vec3 spin_now = angular_velocity(R, bodies.rotation[b].angular_momentum, inverse_moments);
+    // the spin the half kick's angular momentum adds, at the orientation the contacts see
+    const Vec3 spin = angular_velocity(R, 0.5 * dt * bodies.torque[b], inverse_moments);
+    const Vec3 centre = bodies.x[b], velocity = bodies.v[b];
+    double moved2 = 0;
+    for (int k = member_start[b]; k < member_start[b + 1]; ++k) {
+      const int i = members[k];
+      const Vec3 xi = centre + R * body_offset[i];
+      const Vec3 arm = xi - centre;
+      x[i] = xi;
+      v[i] = velocity + spin_now.cross(arm);
+      w[i] = spin_now;
+      member_kick[i] = kick + spin.cross(arm);
+      member_spin_kick[i] = spin;
+      moved2 = std::max(moved2, (xi - x_built[i]).squaredNorm());
+    }
+    return moved2;
+  };
   // one pass over the bodies, each placing its members (whose largest move is exact in any order)
   return reduce_ranges(
       nb, kParallelMinBodies, 0.0,
       [&](int begin, int end) {
         double moved2 = 0;
-        for (int b = begin; b < end; ++b) {
-          const Vec3 kick = (0.5 * dt / bodies.mass[b]) * bodies.force[b];
-          bodies.v[b] += kick;
-          bodies.x[b] += dt * bodies.v[b];
-          bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
-          rotate_free(bodies.rotation[b], bodies.moments[b], dt);
-          const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
-          const Vec3 inverse_moments = bodies.moments[b].cwiseInverse();
-          const Vec3 w = angular_velocity(R, bodies.rotation[b].angular_momentum, inverse_moments);
-          // the spin the half kick's angular momentum adds, at the orientation the contacts see
-          const Vec3 spin = angular_velocity(R, 0.5 * dt * bodies.torque[b], inverse_moments);
-          // the members placed and moved as move_members_of does, in the same pass as their kicks
-          for (int k = bodies.member_start[b]; k < bodies.member_start[b + 1]; ++k) {
-            const int i = bodies.members[k];
-            p.x[i] = bodies.x[b] + R * p.body_offset[i];
-            const Vec3 arm = p.x[i] - bodies.x[b];
-            p.v[i] = bodies.v[b] + w.cross(arm);
-            p.w[i] = w;
-            half_kick[i] = kick + spin.cross(arm);
-            spin_kick[i] = spin;
-            moved2 = std::max(moved2, (p.x[i] - x_at_build[i]).squaredNorm());
+        // the free rotations kRotationLanes bodies at a time (rigid_rotation.hpp): the same bits, overlapped
+        RigidRotation* group[kRotationLanes];
+        const Vec3* group_moments[kRotationLanes];
+        for (int first = begin; first < end; first += kRotationLanes) {
+          const int count = std::min(kRotationLanes, end - first);
+          for (int j = 0; j < count; ++j) {
+            const int b = first + j;
+            bodies.v[b] += (0.5 * dt / bodies.mass[b]) * bodies.force[b];
+            bodies.x[b] += dt * bodies.v[b];
+            bodies.rotation[b].angular_momentum += 0.5 * dt * bodies.torque[b];
+            group[j] = &bodies.rotation[b];
+            group_moments[j] = &bodies.moments[b];
           }
+          rotate_free(group, group_moments, count, dt);
+          for (int b = first; b < first + count; ++b) moved2 = std::max(moved2, place_members(b));
         }
         return moved2;
       },
@@ -119,33 +147,45 @@ double drift_bodies(ClumpBodies& bodies, Particles& p, const std::vector<Vec3>& 
 void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double dt, double local_damping) {
   // each body sums its members in particle order: the same sums on any number of threads
   const int nb = static_cast<int>(bodies.size());
-  const std::vector<int>& start = bodies.member_start;
-  const std::vector<int>& members = bodies.members;
+  // raw pointers, as in drift_bodies
+  const int* __restrict start = bodies.member_start.data();
+  const int* __restrict members = bodies.members.data();
+  const Vec3* __restrict f = p.f.data();
+  const Vec3* __restrict t = p.t.data();
+  const double* __restrict mass = p.mass.data();
+  const Vec3* __restrict x = p.x.data();
+  Vec3* __restrict v = p.v.data();
+  Vec3* __restrict w = p.w.data();
   for_ranges(nb, kParallelMinBodies, [&](int begin, int end) {
     for (int b = begin; b < end; ++b) {
+      const Vec3 centre = bodies.x[b];
       Vec3 force = bodies.mass[b] * gravity, torque = Vec3::Zero();
       for (int k = start[b]; k < start[b + 1]; ++k) {
         const int i = members[k];
-        const Vec3 contact = p.f[i] - p.mass[i] * gravity;
+        const Vec3 contact = f[i] - mass[i] * gravity;
         force += contact;
-        torque += (p.x[i] - bodies.x[b]).cross(contact) + p.t[i];
+        torque += (x[i] - centre).cross(contact) + t[i];
       }
       // built once for both the damping and the members (a stage's first evaluation, dt = 0, uses neither)
       const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
       if (local_damping > 0 && dt != 0) {
-        const Vec3 w = spin_of(bodies, b, R);
-        for (int d = 0; d < 3; ++d) {
-          if (bodies.v[b][d] != 0) force[d] -= local_damping * std::abs(force[d]) * (bodies.v[b][d] > 0 ? 1 : -1);
-          if (w[d] != 0) torque[d] -= local_damping * std::abs(torque[d]) * (w[d] > 0 ? 1 : -1);
-        }
+        const Vec3 spin = spin_of(bodies, b, R);
+        damp_locally(force, bodies.v[b], local_damping);
+        damp_locally(torque, spin, local_damping);
       }
       bodies.force[b] = force;
       bodies.torque[b] = torque;
       if (dt == 0) continue;
-      bodies.v[b] += (0.5 * dt / bodies.mass[b]) * force;
+      const Vec3 velocity = bodies.v[b] + (0.5 * dt / bodies.mass[b]) * force;
+      bodies.v[b] = velocity;
       bodies.rotation[b].angular_momentum += 0.5 * dt * torque;
-      // the velocities and spins the kick changed
-      move_members_of(bodies, b, R, spin_of(bodies, b, R), p, false);
+      // the velocities and spins the kick changed (as move_members_of)
+      const Vec3 spin = spin_of(bodies, b, R);
+      for (int k = start[b]; k < start[b + 1]; ++k) {
+        const int i = members[k];
+        v[i] = velocity + spin.cross(x[i] - centre);
+        w[i] = spin;
+      }
     }
   });
 }

@@ -22,6 +22,11 @@ struct RigidRotation {
 // frame whose axes are the principal axes.
 void rotate_free(RigidRotation& body, const Vec3& moments, double dt);
 
+// The same for `count` bodies (bodies[j] with moments[j]), kRotationLanes at a time: the same bits as
+// rotate_free on each, in a quarter of the time (a body's turns are a chain the processor waits on).
+inline constexpr int kRotationLanes = 4;
+void rotate_free(RigidRotation* const bodies[], const Vec3* const moments[], int count, double dt);
+
 // One step with a torque constant over the step (space frame): half a kick of the angular momentum,
 // the free rotation, the other half kick (velocity Verlet for rotation).
 void rotate_with_torque(RigidRotation& body, const Vec3& moments, const Vec3& torque, double dt);

@@ -9,6 +9,7 @@
 #include <chrono>
 
 #include "contact/contact_law.hpp"
+#include "core/local_damping.hpp"
 #include "core/parallel.hpp"
 #include "contact/pair_table.hpp"
 #include "sim/force_kernel.hpp"
@@ -463,10 +464,8 @@ class ForceKernelImpl final : public ForceKernel {
         // its body's, on the body's force and torque (kick_bodies): here it would take alpha of the
         // body's weight once per member (a stone of four spheres at alpha 0.3 floated).
         if (alpha > 0 && (body == nullptr || body[i] < 0)) {
-          for (int d = 0; d < 3; ++d) {
-            if (v[i][d] != 0) f[d] -= alpha * std::abs(f[d]) * (v[i][d] > 0 ? 1 : -1);
-            if (w[i][d] != 0) t[d] -= alpha * std::abs(t[d]) * (w[i][d] > 0 ? 1 : -1);
-          }
+          damp_locally(f, v[i], alpha);
+          damp_locally(t, w[i], alpha);
         }
         force[i] = f;
         torque[i] = t;

@@ -1,10 +1,12 @@
 // The rotation helpers against closed forms: a bond's turn (the rotation vector) at every angle, and
-// a clump's free rotation on both sides of the angle where its small-angle series hands over to libm.
+// a clump's free rotation on both sides of the angle where its small-angle series hands over to libm,
+// and four bodies' rotations at once against one at a time.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "clumps/rigid_rotation.hpp"
 #include "core/rotation.hpp"
@@ -59,6 +61,37 @@ TEST(RigidRotation, ASpinAboutAPrincipalAxisTurnsAtLOverIOnBothSidesOfTheSeries)
     const double got = turned.angle() * (turned.axis().z() < 0 ? -1 : 1);
     EXPECT_NEAR(got, want, 1e-13 * std::max(1.0, std::abs(want))) << "per step " << per_step;
     EXPECT_NEAR(std::abs(turned.axis().z()), 1, 1e-12) << "per step " << per_step;
+  }
+}
+
+// The bodies' rotations four at a time (drift_bodies) are the bits of rotate_free on each: seven
+// bodies (a group of four and three alone), tumbling at random with a few turning past the small-angle
+// series' handover in a step, over 50 steps.
+TEST(RigidRotation, FourBodiesAtOnceTurnToTheBitsOfOneAtATime) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> n(0, 1);
+  std::uniform_real_distribution<double> u(0.5, 3);
+  const int count = 7;
+  std::vector<RigidRotation> alone(count);
+  std::vector<Vec3> moments(count);
+  for (int j = 0; j < count; ++j) {
+    moments[j] = Vec3(u(rng), u(rng), u(rng));
+    alone[j].orientation = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+    // bodies 1 and 5 turn by more than 2/64 rad a step about some axis: libm's sin and cos
+    alone[j].angular_momentum = Vec3(n(rng), n(rng), n(rng)) * ((j == 1 || j == 5) ? 100.0 : 1.0);
+  }
+  std::vector<RigidRotation> grouped = alone;
+  std::vector<RigidRotation*> bodies;
+  std::vector<const Vec3*> body_moments;
+  for (int j = 0; j < count; ++j) bodies.push_back(&grouped[j]), body_moments.push_back(&moments[j]);
+  const double dt = 1e-3;
+  for (int step = 0; step < 50; ++step) {
+    for (int j = 0; j < count; ++j) rotate_free(alone[j], moments[j], dt);
+    rotate_free(bodies.data(), body_moments.data(), count, dt);
+  }
+  for (int j = 0; j < count; ++j) {
+    EXPECT_EQ(alone[j].orientation.coeffs(), grouped[j].orientation.coeffs()) << "body " << j;
+    EXPECT_EQ(alone[j].angular_momentum, grouped[j].angular_momentum) << "body " << j;
   }
 }
 
