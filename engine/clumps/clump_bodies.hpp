@@ -22,6 +22,14 @@ struct ClumpBodies {
   // (index_members). Kept between steps, so a step does not sort the members again; a re-sort of the
   // particles rebuilds it.
   std::vector<int> member_start, members;
+  // What each body's members take from it in a drift or a kick (written for every body, then read by
+  // the members in particle order: drift_bodies, kick_bodies). Scratch of one pass, never saved.
+  struct Motion {
+    Eigen::Matrix3d to_space;  // the orientation's matrix (drift only)
+    Vec3 centre, velocity, spin;
+    Vec3 kick, spin_kick;  // of the first half kick (drift only)
+  };
+  std::vector<Motion> motion;
 
   bool empty() const { return x.empty(); }
   std::size_t size() const { return x.size(); }

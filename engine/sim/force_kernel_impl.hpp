@@ -170,8 +170,12 @@ class ForceKernelImpl final : public ForceKernel {
       if (blocks == 1) block(0);  // none: a scene with no particle yet (a source's, before its first)
       return;
     }
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int b = 0; b < blocks; ++b) block(b);
+    // each thread its static share of whole blocks, as every particle loop (core/parallel.hpp, kParticleBlock)
+#pragma omp parallel
+    {
+      const auto [first, last] = static_range(blocks, omp_get_num_threads(), omp_get_thread_num());
+      for (int b = first; b < last; ++b) block(b);
+    }
   }
 
 #if DEM_HAS_AVX2_LANES
@@ -478,8 +482,9 @@ class ForceKernelImpl final : public ForceKernel {
       if constexpr (kTimed) out.times.range = seconds_since(range_start);
       return out;
     };
-    const RangeOut all =
-        reduce_ranges(n, kParallelMinParticles, RangeOut{}, kick_range, [](RangeOut a, const RangeOut& b) {
+    const RangeOut all = reduce_ranges(
+        n, kParallelMinParticles, RangeOut{}, kick_range,
+        [](RangeOut a, const RangeOut& b) {
           a.bad = a.bad || b.bad;
           a.times.range += b.times.range;
           a.times.walls += b.times.walls;
@@ -487,7 +492,8 @@ class ForceKernelImpl final : public ForceKernel {
           a.times.wall_intervals += b.times.wall_intervals;
           a.times.mesh_intervals += b.times.mesh_intervals;
           return a;
-        });
+        },
+        kParticleBlock);
     s.non_finite = all.bad;
     return all.times;
   }

@@ -653,7 +653,8 @@ double Simulation::half_kick_and_drift() {
       },
       [](const Drift& a, const Drift& b) {
         return Drift{std::max(a.moved2, b.moved2), a.external_work + b.external_work, a.too_fast || b.too_fast};
-      });
+      },
+      kParticleBlock);
   moved_too_far_ = d.too_fast;
   if (!p.external.empty()) add_work(ledger_.external, d.external_work);
   return d.moved2;

@@ -8,6 +8,7 @@
 #include "clumps/clump_bodies.hpp"
 #include "bonds/bond_set.hpp"
 #include "core/lanes.hpp"
+#include "core/parallel.hpp"
 #include "core/particles.hpp"
 #include "neighbor/neighbor_list.hpp"
 #include "mesh/mesh_wall.hpp"
@@ -105,7 +106,7 @@ struct alignas(64) BodySums {
 // later block leaves j's share here, to be added by j's block after all blocks are done. The blocks
 // do not depend on the number of threads, so neither does any sum: results are bit-identical.
 struct BlockPlan {
-  int block_size = 4096;
+  int block_size = kParticleBlock;  // core/parallel.hpp
   std::vector<int> deferred_start;  // per particle p: its slots as j of crossing pairs (size n + 1)
   std::vector<int> owner;           // per pair: its i (the row it belongs to)
   std::vector<int> target;          // per pair: where j's share goes in sums, j or n + its slot
