@@ -23,12 +23,12 @@
 namespace dem::cli {
 namespace {
 
-// The whole text of --threads as a count >= 0, or -1.
+// The whole text of --threads as a count in [0, the most a spec may ask for], or -1.
 int thread_count(const std::string& text) {
   try {
     std::size_t used = 0;
     const int n = std::stoi(text, &used);
-    return used == text.size() && n >= 0 ? n : -1;
+    return used == text.size() && n >= 0 && n <= spec::SpecLimits{}.max_threads ? n : -1;
   } catch (const std::exception&) {
     return -1;
   }
@@ -195,7 +195,9 @@ int run_command(const std::vector<std::string>& args) {
   if (!a.has("--out")) return usage_error(kRunVerb, "missing --out DIR: where the run's files go");
   int threads = -1;
   if (a.has("--threads") && (threads = thread_count(a.value("--threads"))) < 0)
-    return usage_error(kRunVerb, "--threads must be a whole number >= 0 (got \"" + a.value("--threads") + "\")");
+    return usage_error(kRunVerb, "--threads must be a whole number in [0, " +
+                                     std::to_string(spec::SpecLimits{}.max_threads) + "] (got \"" +
+                                     a.value("--threads") + "\")");
   try {
     RunSceneOptions options;
     options.threads = threads;

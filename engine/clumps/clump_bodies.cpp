@@ -175,9 +175,11 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
         force += contact;
         torque += (x[i] - centre).cross(contact) + t[i];
       }
-      // built once for both the damping and the members (a stage's first evaluation, dt = 0, uses neither)
+      // built once for both the damping and the members
       const Eigen::Matrix3d R = bodies.rotation[b].orientation.toRotationMatrix();
-      if (local_damping > 0 && dt != 0) {
+      // damped at the start's and a stage's first evaluation (dt = 0) too, as a sphere's force is: the
+      // first half kick takes that force (undamped, a clump thrown down fell alpha g dt / 2 too fast)
+      if (local_damping > 0) {
         const Vec3 spin = spin_of(bodies, b, R);
         damp_locally(force, bodies.v[b], local_damping);
         damp_locally(torque, spin, local_damping);
