@@ -78,6 +78,13 @@ struct BondLoad {
 // bond past its strength breaks at `time` and carries nothing from then on.
 BondLoad bond_load(Bond& bond, const BondEnd& i, const BondEnd& j, double time);
 
+// The same for `count` intact bonds (bonds[k] between ends_i[k] and ends_j[k], its loads to out[k]),
+// kBondLanes at a time: the same bits as bond_load on each in turn, in less time (a bond's load is a
+// chain of dependent square roots and divisions that the lanes overlap).
+inline constexpr int kBondLanes = 4;
+void bond_loads(Bond* const bonds[], const BondEnd ends_i[], const BondEnd ends_j[], int count, double time,
+                BondLoad out[]);
+
 // The same bond with the roles of its particles exchanged (after a re-sort made j < i).
 void swap_ends(Bond& bond);
 
