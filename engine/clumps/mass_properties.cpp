@@ -6,7 +6,12 @@
 #include <cstdint>
 #include <map>
 #include <cmath>
+#include <cstring>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
+#include <string>
+#include <unordered_map>
 
 #include <Eigen/Eigenvalues>
 
@@ -147,16 +152,49 @@ MassProperties from_moments(const Moments& m) {
 
 namespace {
 std::atomic<std::uint64_t> integrations{0};
-}  // namespace
 
-std::uint64_t union_mass_property_integrations() { return integrations.load(std::memory_order_relaxed); }
+// The integrations already made, by the bytes of what they were asked: the runs of a study (and the
+// server's checks of them) build the same ballast stones again, each run's from the same seeds, and
+// an integration is the set-up's costliest work. The result depends on its input alone, so a shape
+// asked again gets the bits it got the first time. Emptied when its keys pass 16 MB.
+class Integrated {
+ public:
+  static std::string key(const std::vector<MemberSphere>& spheres, double relative_accuracy) {
+    std::string k(sizeof(double) * (1 + 4 * spheres.size()), '\0');
+    char* at = k.data();
+    auto put = [&at](double v) {
+      std::memcpy(at, &v, sizeof v);
+      at += sizeof v;
+    };
+    put(relative_accuracy);
+    for (const MemberSphere& s : spheres) put(s.centre.x()), put(s.centre.y()), put(s.centre.z()), put(s.radius);
+    return k;
+  }
+  std::optional<MassProperties> find(const std::string& key) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = done_.find(key);
+    if (it == done_.end()) return std::nullopt;
+    return it->second;
+  }
+  void keep(std::string key, const MassProperties& p) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (key_bytes_ + key.size() > kMostKeyBytes) done_.clear(), key_bytes_ = 0;
+    key_bytes_ += key.size();
+    done_.emplace(std::move(key), p);
+  }
 
-MassProperties union_mass_properties(const std::vector<MemberSphere>& spheres, double relative_accuracy) {
-  if (spheres.empty()) throw std::invalid_argument("a clump needs at least one sphere");
+ private:
+  static constexpr std::size_t kMostKeyBytes = std::size_t{16} << 20;
+  std::mutex mutex_;
+  std::unordered_map<std::string, MassProperties> done_;
+  std::size_t key_bytes_ = 0;
+};
+Integrated integrated;
+
+MassProperties integrate_union(const std::vector<MemberSphere>& spheres, double relative_accuracy) {
   integrations.fetch_add(1, std::memory_order_relaxed);
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   for (const MemberSphere& s : spheres) {
-    if (!(s.radius > 0)) throw std::invalid_argument("a clump's sphere needs a positive radius");
     lo = lo.cwiseMin(s.centre - Vec3::Constant(s.radius));
     hi = hi.cwiseMax(s.centre + Vec3::Constant(s.radius));
   }
@@ -177,6 +215,20 @@ MassProperties union_mass_properties(const std::vector<MemberSphere>& spheres, d
     }
     previous = now;
   }
+}
+}  // namespace
+
+std::uint64_t union_mass_property_integrations() { return integrations.load(std::memory_order_relaxed); }
+
+MassProperties union_mass_properties(const std::vector<MemberSphere>& spheres, double relative_accuracy) {
+  if (spheres.empty()) throw std::invalid_argument("a clump needs at least one sphere");
+  for (const MemberSphere& s : spheres)
+    if (!(s.radius > 0)) throw std::invalid_argument("a clump's sphere needs a positive radius");
+  std::string key = Integrated::key(spheres, relative_accuracy);
+  if (std::optional<MassProperties> done = integrated.find(key)) return *done;
+  MassProperties p = integrate_union(spheres, relative_accuracy);
+  integrated.keep(std::move(key), p);
+  return p;
 }
 
 }  // namespace dem

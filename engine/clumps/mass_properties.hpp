@@ -30,11 +30,12 @@ struct MassProperties {
 // Refines until the volume and the principal moments change by less than `relative_accuracy`
 // between two levels (at most 2^11 cells a side of a root cell: the root cells are cubes about the
 // largest sphere's diameter, so a long or sparse shape is resolved as finely as a compact one).
+// A shape asked again (the same spheres, to the bit, and accuracy) gets the first answer, kept.
 MassProperties union_mass_properties(const std::vector<MemberSphere>& spheres, double relative_accuracy = 1e-5);
 
-// How many integrations union_mass_properties has made in this process: the set-up's costliest work
-// (seconds for a shape of many spheres at a fine accuracy), which a shape that no clump uses must
-// not pay (tests count it).
+// How many integrations union_mass_properties has made in this process (a shape asked again is not
+// integrated again): the set-up's costliest work (seconds for a shape of many spheres at a fine
+// accuracy), which a shape that no clump uses must not pay (tests count it).
 std::uint64_t union_mass_property_integrations();
 
 }  // namespace dem

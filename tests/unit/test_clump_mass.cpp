@@ -92,6 +92,28 @@ TEST(ClumpMass, ManySpheresAreIntegratedInSeconds) {
   EXPECT_LT(seconds, 20.0);  // a sanity bound for the sanitized and busy machines, not a benchmark
 }
 
+// A shape asked again (a study's runs build the same stones) is not integrated again and gets the
+// same bits; a shape one bit apart, or the same at another accuracy, is integrated.
+TEST(ClumpMass, AShapeAskedAgainIsNotIntegratedAgain) {
+  const std::vector<MemberSphere> stone{{Vec3::Zero(), 1.0}, {Vec3(0.9, 0.3, -0.2), 0.7}, {Vec3(-0.4, 0.8, 0.5), 0.6}};
+  const std::uint64_t before = union_mass_property_integrations();
+  const MassProperties first = union_mass_properties(stone, 1e-3);
+  const MassProperties again = union_mass_properties(stone, 1e-3);
+  EXPECT_EQ(union_mass_property_integrations() - before, 1u);
+  EXPECT_EQ(first.volume, again.volume);
+  EXPECT_EQ(first.centroid, again.centroid);
+  EXPECT_EQ(first.inertia, again.inertia);
+  EXPECT_EQ(first.principal_moments, again.principal_moments);
+  EXPECT_EQ(first.principal_axes, again.principal_axes);
+  EXPECT_EQ(first.relative_accuracy, again.relative_accuracy);
+  std::vector<MemberSphere> apart = stone;
+  apart[2].radius = std::nextafter(apart[2].radius, 1.0);
+  const MassProperties other = union_mass_properties(apart, 1e-3);
+  union_mass_properties(stone, 1e-4);
+  EXPECT_EQ(union_mass_property_integrations() - before, 3u);
+  EXPECT_GT(other.volume, 0.0);
+}
+
 TEST(ClumpMass, BadSpheresAreRefused) {
   EXPECT_THROW(union_mass_properties({}), std::invalid_argument);
   EXPECT_THROW(union_mass_properties({{Vec3::Zero(), -1}}), std::invalid_argument);
