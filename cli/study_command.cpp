@@ -4,14 +4,21 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <mutex>
+#include <random>
 #include <sstream>
 #include <thread>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include "cli/commands.hpp"
 #include "cli/verb_args.hpp"
@@ -42,12 +49,15 @@ const Verb kStudyVerb{
     {{"--out", "DIR", "where the runs, the table and the figure go"},
      {"--jobs", "N", "N runs at once (1-64), each with cores/N threads and its lines in its run.log"},
      {"--threads", "N", "OpenMP threads of each run (default: the cores, shared by --jobs)"},
-     {"--quiet", nullptr, "no progress lines"},
+     {"--quiet", nullptr, "no progress bars (still a line as each run starts and ends)"},
      {"--plan", nullptr, "list the runs and check every spec, run nothing"},
      {"--submit", nullptr,
       "run the study on a dem-server (its jobs run there); wait for them and download the table "
       "and the figure into DIR"},
      {"--detach", nullptr, "with --submit: do not wait"},
+     {"--idempotency-key", "K",
+      "with --submit: the same key again gives the study first made, not a second one (default: a new key, "
+      "printed if the server does not answer)"},
      {"--id", "ID", "follow a study already on the server to its end, then download its table and figure"}},
     0,
     1,
@@ -66,13 +76,16 @@ json read_json(const fs::path& path, const std::string& what) {
   if (!in) throw std::runtime_error(path.string() + ": cannot open the " + what);
   std::stringstream text;
   text << in.rdbuf();
-  json j = json::parse(text.str(), nullptr, false);
-  if (j.is_discarded()) throw std::runtime_error(path.string() + ": the " + what + " is not JSON");
-  return j;
+  try {
+    return json::parse(text.str());
+  } catch (const json::exception& e) {  // where: "parse error at line 3, column 5: ..."; a number past a double
+    throw std::runtime_error(path.string() + ": the " + what + " is not JSON: " + e.what());
+  }
 }
 
 void write_text(const fs::path& path, const std::string& text) {
   // into a file beside it, renamed over it once whole: the table written before stays until then
+  // (one dem study at a time writes into a folder: FolderLock)
   const fs::path part = path.string() + ".part";
   bool written = false;
   {
@@ -95,19 +108,59 @@ struct StudyInput {
   json study;
   json base;
   std::string base_dir;
+  std::vector<fs::path> files;  // the study file and its base spec's file, if it has one
 };
 
 StudyInput read_study(const std::string& path) {
   StudyInput in;
   in.study = read_json(path, "study file");
+  in.files.emplace_back(path);
   in.base_dir = fs::path(path).parent_path().string();
   if (in.study.is_object() && in.study.contains("base") && in.study["base"].is_string()) {
     const fs::path base = spec::resolve_file(in.study["base"].get<std::string>(), in.base_dir);
     in.base = read_json(base, "base spec");
+    in.files.push_back(base);
     in.base_dir = base.parent_path().string();
   }
   return in;
 }
+
+// The table's files in DIR that would be written over one of the study's own files (--out the
+// folder of a study file named study.json, as the bundled cases name theirs): "" when none.
+std::string overwritten_input(const fs::path& out, const StudyInput& in) {
+  for (const char* name : {"study.json", "study.csv", "study.svg"})
+    for (const fs::path& file : in.files) {
+      std::error_code error;
+      if (fs::equivalent(out / name, file, error))
+        return (out / name).string() + " is " + (file == in.files.front() ? "the study file" : "its base spec") +
+               " itself: the study's table would be written over it; give --out another folder";
+    }
+  return "";
+}
+
+// One dem study at a time writes into a folder: two would run the same runs into the same run-NNN
+// folders and write each other's tables. An flock of DIR/.dem-study.lock, held to the end (the
+// kernel lets it go when the process ends, however it ends).
+class FolderLock {
+ public:
+  explicit FolderLock(const fs::path& out) {
+    fs::create_directories(out);
+    const fs::path file = out / ".dem-study.lock";
+    fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw std::runtime_error("cannot open " + file.string() + ": " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      throw std::runtime_error("another dem study is writing into " + out.string() + " (it holds " + file.string() +
+                               "): wait for it to end, or give another --out");
+    }
+  }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  ~FolderLock() { ::close(fd_); }
+
+ private:
+  int fd_ = -1;
+};
 
 void write_table(const fs::path& out, const study::StudyPlan& plan, const std::vector<study::StudyRow>& rows) {
   write_text(out / "study.json", study::table_json(plan, rows).dump(2) + "\n");
@@ -178,7 +231,7 @@ json done_before(const fs::path& folder, const json& spec) {
 int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path& out, int threads, bool quiet,
              int jobs) {
   const std::vector<json> specs = check_runs(plan, in.base_dir);
-  fs::create_directories(out);
+  const FolderLock lock(out);
   std::vector<study::StudyRow> rows;
   for (const study::StudyRun& run : plan.runs) rows.push_back(study::row_of(run));
   write_table(out, plan, rows);
@@ -294,7 +347,7 @@ int follow(const ServerApi& api, std::int64_t id, const fs::path& out, bool as_j
     if (study.value("finished", false)) break;
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
-  fs::create_directories(out);
+  const FolderLock lock(out);
   write_text(out / "study.json", api.send("GET", target + "/results.json").body);
   write_text(out / "study.csv", api.send("GET", target + "/results.csv").body);
   write_text(out / "study.svg", api.send("GET", target + "/figure.svg").body);
@@ -304,6 +357,14 @@ int follow(const ServerApi& api, std::int64_t id, const fs::path& out, bool as_j
                (out / "study.svg").c_str());
   if (as_json) print_json_line(study);
   return failed == 0 ? 0 : 1;
+}
+
+// A key no other submission has: 128 random bits.
+std::string new_idempotency_key() {
+  std::random_device random;
+  char key[48];
+  std::snprintf(key, sizeof key, "dem-study-%08x%08x%08x%08x", random(), random(), random(), random());
+  return key;
 }
 
 // The study as the server takes it: its base inline, and the base's files (meshes) inline in it.
@@ -331,7 +392,9 @@ int study_command(const std::vector<std::string>& args) {
     return "";
   };
   if (a.has("--id")) {
-    if (const std::string o = given({"--jobs", "--threads", "--plan", "--quiet", "--detach", "--submit"}); !o.empty())
+    if (const std::string o =
+            given({"--jobs", "--threads", "--plan", "--quiet", "--detach", "--submit", "--idempotency-key"});
+        !o.empty())
       return usage_error(kVerb, o + " does not go with --id (which follows a study on the server)");
     const std::optional<std::int64_t> id = job_id(a.value("--id"));
     if (!id) return usage_error(kVerb, "a study id is a whole number (got \"" + a.value("--id") + "\")");
@@ -343,7 +406,7 @@ int study_command(const std::vector<std::string>& args) {
   if (!a.flag("--submit")) {
     if (a.flag("--detach")) return usage_error(kVerb, "--detach goes with --submit (a study on the server)");
     if (a.json) return usage_error(kVerb, "--json goes with --submit or --id (a study on the server)");
-    if (const std::string o = given({"--server", "--token", "--timeout"}); !o.empty())
+    if (const std::string o = given({"--server", "--token", "--timeout", "--idempotency-key"}); !o.empty())
       return usage_error(kVerb, o + " goes with --submit or --id (this study runs here: add --submit to run it on "
                                     "the server)");
   }
@@ -375,6 +438,8 @@ int study_command(const std::vector<std::string>& args) {
   const std::string& path = a.positional[0];
   try {
     const StudyInput in = read_study(path);
+    if (!out.empty())
+      if (const std::string why = overwritten_input(out, in); !why.empty()) return usage_error(kVerb, "--out " + why);
     const study::StudyPlan plan = study::plan_study(in.study, in.base);
     if (plan_only) {
       check_runs(plan, in.base_dir);
@@ -386,12 +451,26 @@ int study_command(const std::vector<std::string>& args) {
     }
     if (!a.flag("--submit")) return run_here(plan, in, out, threads, a.flag("--quiet"), jobs);
     const json study = for_server(in);
+    // A study of many runs takes the server a while to check (each run's scene is built): a client
+    // that stops waiting must be able to ask again for the study the server goes on to make, not
+    // make a second one. So every submission has a key, the user's or a new one.
+    const std::string key = a.has("--idempotency-key") ? a.value("--idempotency-key") : new_idempotency_key();
     return with_server(kVerb, a, [&](const ServerApi& api) {
-      const client::Response response = api.send("POST", "/api/v1/studies", study.dump(), "application/json");
+      client::Response response;
+      try {
+        response = api.send("POST", "/api/v1/studies", study.dump(), "application/json", {{"Idempotency-Key", key}});
+      } catch (const client::ClientError& e) {
+        throw std::runtime_error(std::string(e.what()) +
+                                 "; the server may still make the study: the same command with --idempotency-key " +
+                                 key + " gives that study, not a second one");
+      }
       const json created = api.json_of(response, "/api/v1/studies");
       const std::int64_t id = created.value("id", std::int64_t{-1});
-      std::fprintf(a.json ? stderr : stdout, "submitted study %lld: %zu jobs\n", static_cast<long long>(id),
-                   created.value("jobs", json::array()).size());
+      std::fprintf(a.json ? stderr : stdout, "%s study %lld: %zu jobs\n",
+                   response.header("idempotent-replayed") == "true"
+                       ? ("already submitted with idempotency key " + key + ":").c_str()
+                       : "submitted",
+                   static_cast<long long>(id), created.value("jobs", json::array()).size());
       std::fflush(stdout);
       if (a.flag("--detach")) {
         if (a.json) print_json_line(created);

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -152,6 +153,33 @@ TEST_F(ClientAgainstHostileServer, ASilentServerIsGivenUpOnAtTheTimeout) {
   EXPECT_NE(r.output.find("did not answer in time"), std::string::npos) << r.output;
   EXPECT_LT(waited, 10) << r.output;
   EXPECT_EQ(dem("status 1 --timeout nope", silent.url()).exit_code, 2);
+}
+
+// A study the server takes long to check (each run's scene is built): the client gives up at its
+// timeout, and says the key with which the same command gets the study the server may go on to
+// make, instead of making a second one (it sent no key, and the study it gave up on was made anyway:
+// an independent tester).
+TEST_F(ClientAgainstHostileServer, AStudyGivenUpOnNamesTheKeyThatGetsIt) {
+  ScriptedServer silent([](tcp::socket&, const std::string&, const std::atomic<bool>& stopping) {
+    while (!stopping) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  });
+  const std::string base = R"({"materials": [{"name": "glass", "density": 2500, "normalStiffness": 1e5}],
+    "interactions": [{"a": "glass", "b": "glass", "restitution": 0.5, "friction": 0.3}],
+    "particles": [{"radius": 0.01, "material": "glass"}], "time": {"steps": 10}})";
+  std::ofstream(dir_ / "base.json") << base;
+  std::ofstream(dir_ / "study.json")
+      << R"({"base": "base.json", "parameters": [{"path": "particles[0].radius", "values": [0.01, 0.02]}]})";
+  const std::string submit =
+      "study " + shell_quoted(dir_ / "study.json") + " --submit --timeout 1 --out " + shell_quoted(dir_ / "out");
+  CommandResult r = dem(submit, silent.url());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("did not answer in time; the server may still make the study: the same command with "
+                          "--idempotency-key dem-study-"),
+            std::string::npos)
+      << r.output;
+  r = dem(submit + " --idempotency-key bed-1", silent.url());
+  EXPECT_NE(r.output.find("the same command with --idempotency-key bed-1 gives that study"), std::string::npos)
+      << r.output;
 }
 
 TEST_F(ClientAgainstHostileServer, AnEndlessAnswerIsCutOff) {

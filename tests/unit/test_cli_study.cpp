@@ -186,6 +186,38 @@ TEST_F(CliStudy, ARunsFolderStandsAloneAndAChangedMeshOrADamagedResultIsRunAgain
   EXPECT_EQ(csv.find("not run"), std::string::npos) << csv;
 }
 
+// --out the study file's own folder: the table (study.json) would be written over the study (the
+// bundled cases name theirs study.json): refused, the file kept (an independent tester lost one).
+// And a second dem study writing into a folder another one writes into is refused: both ran the
+// same runs into the same folders, and one died renaming the other's table.
+TEST_F(CliStudy, AStudyWritesOverNoInputAndNoOtherStudysFolder) {
+  write_spec("base.json", kBase);
+  const fs::path study = write_spec("study.json", kStudy);
+  CommandResult r = run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(dir_) + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--out " + (dir_ / "study.json").string() +
+                          " is the study file itself: the study's table would be written over it"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(read(study), kStudy);
+  fs::create_directories(dir_ / "tables");
+  const fs::path base_named_as_table = write_spec("tables/study.csv", kBase);
+  write_spec("tables/s.json", R"({"base": "study.csv", "parameters": [{"path": "time.steps", "values": [10]}]})");
+  r = run_dem("study " + shell_quoted(dir_ / "tables" / "s.json") + " --out " + shell_quoted(dir_ / "tables"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("is its base spec itself"), std::string::npos) << r.output;
+  EXPECT_EQ(read(base_named_as_table), kBase);
+
+  const fs::path out = dir_ / "out";
+  fs::create_directories(out);
+  r = run_command("flock " + shell_quoted(out / ".dem-study.lock") + " " + shell_quoted(kDem) + " study " +
+                  shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("another dem study is writing into " + out.string()), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / "run-001")) << "ran beside the other";
+  EXPECT_EQ(run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet").exit_code, 0);
+}
+
 TEST_F(CliStudy, PlanListsTheRunsWithoutRunningThem) {
   write_spec("base.json", kBase);
   const fs::path study = write_spec("study.json", kStudy);
@@ -221,6 +253,12 @@ TEST_F(CliStudy, ABadStudyOrABadValueIsRefusedByNameBeforeAnythingRuns) {
   r = run_dem("study " + shell_quoted(not_json) + " --out " + shell_quoted(out));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("not_json.json: the study file is not JSON"), std::string::npos) << r.output;
+  // where it is not (a trailing comma on line 2 was only "not JSON")
+  const fs::path comma = write_spec("comma.json", "{\"base\": \"base.json\",\n \"parameters\": [],\n}");
+  r = run_dem("study " + shell_quoted(comma) + " --out " + shell_quoted(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("comma.json: the study file is not JSON: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("line 3, column 1"), std::string::npos) << r.output;
   EXPECT_EQ(run_dem("study").exit_code, 2);
   EXPECT_EQ(run_dem("study " + shell_quoted(bad_path)).exit_code, 2);  // no --out
 }
