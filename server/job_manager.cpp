@@ -86,7 +86,11 @@ void JobManager::recover() {
     if (job.checkpoint_step >= 0 && !fs::exists(folder(job.id).checkpoint())) job.checkpoint_step = -1;
     if (job.state == JobState::Running) {
       job.state = JobState::Interrupted;
-      job.error = "the server stopped while the job ran (at step " + std::to_string(job.step) + "); " +
+      // the table holds the step it last saved (at a checkpoint), not the one the job had reached: a
+      // job killed at 84% read "at step 0" (an independent tester)
+      job.error = "the server stopped while the job ran" +
+                  (job.step > 0 ? " (past step " + std::to_string(job.step) + ", the last it saved)" : std::string()) +
+                  "; " +
                   (job.checkpoint_step >= 0
                        ? "resume it to continue from its checkpoint at step " + std::to_string(job.checkpoint_step)
                        : std::string("it had no checkpoint yet: resuming starts it again"));
@@ -246,6 +250,14 @@ JobRecord JobManager::check(const api::JobSpec& spec) const {
   job.time_step = sim.dt();
   refuse_outputs_past_limit(sim);
   return job;
+}
+
+std::vector<std::string> JobManager::keys_beginning(const std::string& prefix) const {
+  std::lock_guard lock(mutex_);
+  std::vector<std::string> keys;
+  for (auto it = by_key_.lower_bound(prefix); it != by_key_.end() && it->first.starts_with(prefix); ++it)
+    keys.push_back(it->first);
+  return keys;
 }
 
 JobManager::Submitted JobManager::submit(const api::JobSpec& spec, const std::string& idempotency_key) {

@@ -70,6 +70,9 @@ class JobManager {
   // record the job would have.
   JobRecord check(const api::JobSpec& spec) const;
 
+  // The idempotency keys of the jobs kept that begin with `prefix` (a study's run keys).
+  std::vector<std::string> keys_beginning(const std::string& prefix) const;
+
   std::optional<JobRecord> get(std::int64_t id) const;
   std::vector<JobRecord> list() const;
   ActionResult cancel(std::int64_t id);

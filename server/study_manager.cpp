@@ -1,8 +1,10 @@
 #include "server/study_manager.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <spdlog/spdlog.h>
@@ -27,6 +29,14 @@ json record_json(const StudyRecord& s) {
           {"complete", s.complete}};
 }
 
+// The whole number at the start of `text` ("12" of "12 run 3" or of "12"), if it has one.
+std::optional<std::int64_t> leading_number(const std::string& text) {
+  std::int64_t n = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (error != std::errc() || end == text.data() || n < 0) return std::nullopt;
+  return n;
+}
+
 std::string run_key(std::int64_t study, int run) {
   return StudyManager::kRunKeyPrefix + std::to_string(study) + " run " + std::to_string(run);
 }
@@ -35,8 +45,17 @@ std::string run_key(std::int64_t study, int run) {
 
 StudyManager::StudyManager(const fs::path& data, JobManager& jobs) : folder_(data / "studies"), jobs_(jobs) {
   fs::create_directories(folder_);
+  // A new study's id is past every id used before: those of the records, readable or not (a
+  // damaged record keeps its file and its id), and those in the keys of the jobs of studies whose
+  // record is gone. Reused, an id's run keys were the old study's jobs' keys, of other specs: the
+  // new study's runs were none of them queued.
+  for (const std::string& key : jobs_.keys_beginning(kRunKeyPrefix))
+    if (const std::optional<std::int64_t> id = leading_number(key.substr(std::string(kRunKeyPrefix).size())))
+      next_id_ = std::max(next_id_, *id + 1);
   for (const fs::directory_entry& e : fs::directory_iterator(folder_)) {
     if (e.path().extension() != ".json") continue;  // a .part of a write cut short
+    if (const std::optional<std::int64_t> id = leading_number(e.path().stem().string()))
+      next_id_ = std::max(next_id_, *id + 1);
     if (!e.is_regular_file()) {
       spdlog::warn("{} is not a file: left out of the studies", e.path().string());
       continue;

@@ -53,6 +53,11 @@ TEST_F(ServerRecovery, AJobKilledMidRunResumesFromItsCheckpointToTheSameFiles) {
   EXPECT_NE(interrupted["error"].get<std::string>().find("resume it to continue from its checkpoint"),
             std::string::npos);
   EXPECT_GE(interrupted["step"].get<long>(), interrupted["checkpointStep"].get<long>());
+  // the step the table last saved, said as that (it read "at step 0" for a job killed at 84%)
+  EXPECT_NE(interrupted["error"].get<std::string>().find(
+                "(past step " + std::to_string(interrupted["step"].get<long>()) + ", the last it saved)"),
+            std::string::npos)
+      << interrupted["error"];
   EXPECT_EQ(wait_for(waiting, "succeeded")["state"], "succeeded");  // the queue went on
 
   const client::Response resumed = client_->request("POST", "/api/jobs/" + std::to_string(id) + "/resume");

@@ -206,6 +206,39 @@ TEST_F(ServerStudies, AStudyCutShortByACrashIsQueuedWhole) {
   EXPECT_EQ(get("/api/studies")["studies"].size(), 2u);
 }
 
+// A study record the server cannot read keeps its file and its id, and a record deleted by hand
+// leaves its id used by its jobs' keys: a new study takes the next id and its runs are queued (a
+// damaged 6.json was written over by a new study 6, whose runs' keys were the old study's jobs':
+// none of its runs was queued, and nothing said so: an independent tester).
+TEST_F(ServerStudies, ANewStudyTakesNoIdOfADamagedOrDeletedRecord) {
+  start_server();
+  const std::string base = pouring_spec(0.015, 200, 100);
+  ASSERT_EQ(post(study_of(base, "lattices[0].radius", {0.015})).status, 201);
+  ASSERT_EQ(post(study_of(base, "lattices[0].radius", {0.02})).status, 201);
+  wait_finished(1);
+  wait_finished(2);
+  server_.reset();
+  const fs::path studies = dir_ / "data" / "studies";
+  const std::string damaged = read_bytes(studies / "2.json").substr(0, 200);  // a write cut short
+  write_text(studies / "2.json", damaged);
+  start_server();
+  const client::Response third = post(study_of(base, "lattices[0].radius", {0.012}));
+  ASSERT_EQ(third.status, 201) << third.body;
+  ASSERT_EQ(nlohmann::json::parse(third.body)["id"], 3);
+  EXPECT_EQ(read_bytes(studies / "2.json"), damaged) << "the damaged record was written over";
+  nlohmann::json study = wait_finished(3);
+  EXPECT_EQ(study["counts"]["succeeded"], 1) << study.dump();
+  // the record of study 3 deleted by hand: its job's key still names it
+  server_.reset();
+  fs::remove(studies / "3.json");
+  start_server();
+  const client::Response fourth = post(study_of(base, "lattices[0].radius", {0.018}));
+  ASSERT_EQ(fourth.status, 201) << fourth.body;
+  ASSERT_EQ(nlohmann::json::parse(fourth.body)["id"], 4);
+  study = wait_finished(4);
+  EXPECT_EQ(study["counts"]["succeeded"], 1) << study.dump();
+}
+
 // A job cannot be planted under the key of a future study's run (it became that run: an
 // independent tester); and no field that names a file is read, for jobs and studies alike.
 TEST_F(ServerStudies, AStudysRunKeysAreTheServersOwnAndNoNamedFileIsRead) {
@@ -249,6 +282,16 @@ TEST_F(ServerStudies, DemStudySubmitRunsTheStudyOnTheServerAndDownloadsItsTable)
   EXPECT_EQ(table["rows"].size(), 2u);
   EXPECT_EQ(table["rows"][1]["state"], "succeeded");
   EXPECT_TRUE(fs::exists(dir_ / "out" / "study.svg"));
+  // with a key: the same command again gives the study first made (a client that gave up waiting
+  // for a large study's checks asks again with the key it printed), not a second one
+  const std::string keyed = shell_quoted(kDem) + " study " + shell_quoted(dir_ / "study.json") + " --submit --server " +
+                            server_->url() + " --out " + shell_quoted(dir_ / "keyed") + " --idempotency-key bed-1";
+  ASSERT_EQ(run_command(keyed).exit_code, 0);
+  const CommandResult again = run_command(keyed);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("already submitted with idempotency key bed-1: study 2: 2 jobs"), std::string::npos)
+      << again.output;
+  EXPECT_EQ(get("/api/studies")["studies"].size(), 2u);
 }
 
 }  // namespace
