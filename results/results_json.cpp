@@ -106,6 +106,15 @@ nlohmann::json loaded_wall_json(const LoadedWallResults& w) {
   return j;
 }
 
+// -0 is 0: a force that was never pushed (a stone's press before it touches) is written 0, not -0.0
+void without_negative_zeros(nlohmann::json& j) {
+  if (j.is_number_float() && j.get<double>() == 0.0) {
+    j = 0.0;
+  } else if (j.is_structured()) {
+    for (nlohmann::json& child : j) without_negative_zeros(child);
+  }
+}
+
 }  // namespace
 
 nlohmann::json to_json(const RunResults& r) {
@@ -135,6 +144,7 @@ nlohmann::json to_json(const RunResults& r) {
     j["sources"] = nlohmann::json::array();
     for (const SourceResults& s : r.sources) j["sources"].push_back(source_json(s));
   }
+  without_negative_zeros(j);
   return j;
 }
 

@@ -53,6 +53,45 @@ void check_tags(const api::JobSpec& spec, Checker& check) {
   }
 }
 
+// What a field takes, found by its parent's path ("materials[0]") and its name ("density"): "a
+// number", "a string", ...; "a single value" where the path leads to no field.
+std::string scalar_kind(const std::string& parent, const std::string& name) {
+  using google::protobuf::FieldDescriptor;
+  auto field_of = [](const google::protobuf::Descriptor* d, std::string n) -> const FieldDescriptor* {
+    n = n.substr(0, n.find('['));
+    const FieldDescriptor* f = d->FindFieldByName(n);
+    return f != nullptr ? f : d->FindFieldByCamelcaseName(n);
+  };
+  const google::protobuf::Descriptor* d = api::JobSpec::descriptor();
+  std::stringstream parts(parent);
+  for (std::string part; !parent.empty() && std::getline(parts, part, '.');) {
+    const FieldDescriptor* f = field_of(d, part);
+    if (f == nullptr || f->message_type() == nullptr) return "a single value";
+    d = f->message_type();
+  }
+  const FieldDescriptor* f = field_of(d, name);
+  if (f == nullptr) return "a single value";
+  switch (f->cpp_type()) {
+    case FieldDescriptor::CPPTYPE_DOUBLE:
+    case FieldDescriptor::CPPTYPE_FLOAT:
+      return "a number";
+    case FieldDescriptor::CPPTYPE_INT32:
+    case FieldDescriptor::CPPTYPE_INT64:
+    case FieldDescriptor::CPPTYPE_UINT32:
+    case FieldDescriptor::CPPTYPE_UINT64:
+      return "a whole number";
+    case FieldDescriptor::CPPTYPE_BOOL:
+      return "true or false";
+    case FieldDescriptor::CPPTYPE_STRING:
+      return "a string";
+    case FieldDescriptor::CPPTYPE_ENUM:
+      return "a name";
+    case FieldDescriptor::CPPTYPE_MESSAGE:
+      return "an object";
+  }
+  return "a single value";
+}
+
 }  // namespace
 
 SpecError::SpecError(std::vector<std::string> problems)
@@ -61,12 +100,24 @@ SpecError::SpecError(std::vector<std::string> problems)
 // Protobuf's JSON errors name the field as "(parent) name: ..." or "(path): ..."; say them the way
 // the checks do: "path: what is wrong".
 std::string reword_protobuf_error(const std::string& message) {
-  static const std::regex unknown(R"(^\(([^)]*)\) ?([A-Za-z0-9_]+): Cannot find field\.?$)");
-  static const std::regex unknown_top(R"(^([A-Za-z0-9_]+): Cannot find field\.?$)");
+  static const std::regex unknown(R"(^\(([^)]*)\) ?(.+?): Cannot find field\.?$)");
+  static const std::regex unknown_top(R"(^(.+?): Cannot find field\.?$)");
+  static const std::regex object_for_value(
+      R"(^\(([^)]*)\): invalid value Starting an object on a scalar field for type (.+)$)");
+  static const std::regex list_for_value(R"(^\(([^)]*)\) ?(.+?): Proto field is not repeating, cannot start list\.?$)");
   static const std::regex bad_value(R"(^\(([^)]*)\): invalid value (.*) for type TYPE_([A-Z0-9]+)$)");
   static const std::regex bad_enum(R"(^\(([^)]*)\): invalid value (.*) for type type\.googleapis\.com/(.+)$)");
   std::smatch m;
+  auto field = [](const std::string& parent, const std::string& name) {
+    return parent.empty() ? name : parent + "." + name;
+  };
+  if (std::regex_match(message, m, object_for_value))
+    return field(m[1].str(), m[2].str()) + ": expected " + scalar_kind(m[1].str(), m[2].str()) + ", got an object";
+  if (std::regex_match(message, m, list_for_value))
+    return field(m[1].str(), m[2].str()) + ": expected " + scalar_kind(m[1].str(), m[2].str()) + ", got a list";
   if (std::regex_match(message, m, bad_enum)) {
+    if (google::protobuf::DescriptorPool::generated_pool()->FindMessageTypeByName(m[3].str()) != nullptr)
+      return m[1].str() + ": expected an object, got " + m[2].str();
     std::string names;
     if (const auto* e = google::protobuf::DescriptorPool::generated_pool()->FindEnumTypeByName(m[3].str())) {
       for (int k = 0; k < e->value_count(); ++k) {

@@ -1,6 +1,7 @@
 #include "study/study_plan.hpp"
 
 #include <algorithm>
+#include <cctype>
 
 #include <cstdio>
 #include <set>
@@ -49,6 +50,36 @@ const json* parent_of(const json& base, const json::json_pointer& pointer, std::
   }
   why = "\"" + parent.to_string() + "\" is a value, not an object or a list";
   return nullptr;
+}
+
+// A field's other spelling in a spec: protobuf's JSON takes its name (normal_stiffness) and its
+// JSON name (normalStiffness) alike.
+std::string other_spelling(const std::string& name) {
+  std::string other;
+  if (name.find('_') != std::string::npos) {
+    for (std::size_t k = 0; k < name.size(); ++k)
+      if (name[k] == '_' && k + 1 < name.size())
+        other += static_cast<char>(std::toupper(static_cast<unsigned char>(name[++k])));
+      else
+        other += name[k];
+  } else {
+    for (const char c : name)
+      if (std::isupper(static_cast<unsigned char>(c)))
+        (other += '_') += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      else
+        other += c;
+  }
+  return other;
+}
+
+// The pointer to the field as the base's object `parent` spells it: a study's path in one spelling
+// and the base's field in the other set both, and the run's spec held the field twice (refused).
+std::string as_the_base_spells_it(const json& parent, const json::json_pointer& pointer) {
+  const std::string& last = pointer.back();
+  if (!parent.contains(last))
+    if (const std::string other = other_spelling(last); other != last && parent.contains(other))
+      return (pointer.parent_pointer() / other).to_string();
+  return pointer.to_string();
 }
 
 std::string cut_name(std::string name) {
@@ -202,12 +233,14 @@ StudyPlan plan_study(const json& study, const json& base_from_file) {
       if (f > 0) parameter.path += " = ";
       parameter.path += path;
       try {
-        const std::string pointer_text = to_pointer(path);
+        std::string pointer_text = to_pointer(path);
         std::string why;
         const json::json_pointer pointer(pointer_text);
+        const json* parent = base && !pointer.empty() ? parent_of(*base, pointer, why) : nullptr;
+        if (parent != nullptr && parent->is_object()) pointer_text = as_the_base_spells_it(*parent, pointer);
         if (pointer.empty())
           problems.push_back(field + ": \"" + path + "\" is the whole spec, not a field of it");
-        else if (base && !parent_of(*base, pointer, why))
+        else if (base && parent == nullptr)
           problems.push_back(field + ": \"" + path + "\": " + why);
         else if (!pointers.insert(pointer_text).second)
           problems.push_back(field + ": \"" + path + "\" is varied twice");

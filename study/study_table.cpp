@@ -170,7 +170,7 @@ std::string figure_svg(const StudyPlan& plan, const std::vector<StudyRow>& rows)
     Series runs{{}, false, true, ""}, means{{}, true, false, ""};
     std::map<double, std::pair<double, int>> sums;  // the mean at each x, joined
     for (const StudyRow& row : rows)
-      if (const auto y = number_at(row, key)) {
+      if (const auto y = number_at(row, key); y && row.state == "succeeded") {
         runs.points.emplace_back(x_of(row), *y);
         sums[x_of(row)].first += *y;
         ++sums[x_of(row)].second;
@@ -179,7 +179,15 @@ std::string figure_svg(const StudyPlan& plan, const std::vector<StudyRow>& rows)
     panel.series = {means, runs};
     panels.push_back(std::move(panel));
   }
-  return chart_svg(plan.name + ": " + std::to_string(rows.size()) + " runs", panels);
+  // a run that failed or was cancelled is not a point: its numbers (a stopped run's results) are not
+  // an outcome of its values, and would pull the mean
+  const auto drawn = std::count_if(rows.begin(), rows.end(), [](const StudyRow& r) { return r.state == "succeeded"; });
+  const std::string runs = std::to_string(rows.size()) + " runs";
+  return chart_svg(plan.name + ": " +
+                       (drawn == static_cast<std::ptrdiff_t>(rows.size())
+                            ? runs
+                            : std::to_string(drawn) + " of " + runs + " (those that succeeded)"),
+                   panels);
 }
 
 }  // namespace dem::study

@@ -288,6 +288,23 @@ TEST(SpecLoader, UnknownEnumValueIsAnError) {
   EXPECT_NE(problems[0].find("LINEAER"), std::string::npos) << problems[0];
 }
 
+// A value of the wrong shape, or a field whose name has a character a name does not, is said as the
+// checks say what is wrong (protobuf's own words came through: "invalid value Starting an object on
+// a scalar field for type density": an independent tester).
+TEST(SpecLoader, AValueOfTheWrongShapeIsNamedInPlainWords) {
+  const std::pair<std::pair<const char*, const char*>, const char*> cases[] = {
+      {{R"("density": 2500)", R"("density": {"x": 1})"}, "materials[0].density: expected a number, got an object"},
+      {{R"("density": 2500)", R"("density": [1, 2])"}, "materials[0].density: expected a number, got a list"},
+      {{R"("density": 2500)", R"("de/nsity": 2500)"}, "materials[0].de/nsity: unknown field"},
+      {{R"("time": {"steps": 100})", R"("time": 5)"}, "time: expected an object, got 5"},
+  };
+  for (const auto& [edit, said] : cases) {
+    const auto problems = problems_of(good_with(edit.first, edit.second));
+    ASSERT_EQ(problems.size(), 1u) << edit.second;
+    EXPECT_NE(problems[0].find(said), std::string::npos) << problems[0];
+  }
+}
+
 TEST(SpecLoader, MalformedJsonIsAnError) {
   const auto problems = problems_of(std::string(kGoodSpec).substr(0, 200));
   ASSERT_EQ(problems.size(), 1u);

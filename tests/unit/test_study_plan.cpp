@@ -103,6 +103,22 @@ TEST(StudyPlan, AFieldTheBaseDoesNotHaveIsAddedWhenItsParentIsThere) {
   EXPECT_EQ(plan.runs[0].spec["bonds"]["shearStrength"], 5);
 }
 
+// A field's name in the other spelling than the base's (tensile_strength, tensileStrength; a spec
+// takes both) sets the base's field: set as a second key, the run's spec held it twice, refused as
+// "is given twice in its object" (an independent tester). A field the base lacks keeps the spelling asked.
+TEST(StudyPlan, AFieldNamedInTheOtherSpellingSetsTheBasesField) {
+  const StudyPlan plan =
+      plan_study(study_with({{{"path", {"bonds.tensile_strength", "/packings/1/seed"}}, {"values", {5}}},
+                             {{"path", "bonds.shear_strength"}, {"values", {6}}}}),
+                 json());
+  ASSERT_EQ(plan.runs.size(), 1u);
+  const json& bonds = plan.runs[0].spec["bonds"];
+  EXPECT_EQ(bonds["tensileStrength"], 5);
+  EXPECT_FALSE(bonds.contains("tensile_strength")) << bonds.dump();
+  EXPECT_EQ(bonds["shear_strength"], 6);
+  EXPECT_EQ(plan.runs[0].spec["packings"][1]["seed"], 5);
+}
+
 TEST(StudyPlan, EveryProblemIsNamedByItsField) {
   EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.x.y"}, {"values", {1}}}}), "parameters[0].path"));
   EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.x.y"}, {"values", {1}}}}), "has no \"/bonds/x\""));
@@ -193,8 +209,12 @@ TEST(StudyTable, TheFigureHasAPanelPerResultAndAPointPerRun) {
   for (const StudyRun& run : plan.runs) {
     rows.push_back(row_of(run));
     rows.back().results = results(10 - run.values[0].get<double>(), run.index);
+    rows.back().state = "succeeded";
   }
   rows[5].results = nullptr;  // not done yet
+  rows[5].state = "running";
+  // a run stopped by the guard has a results.json too, which is not its values' outcome: not a point
+  rows[4].state = "failed";
   const std::string svg = figure_svg(plan, rows);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   // three panels (runout, fragments, settlement), five runs with results in each
@@ -203,8 +223,9 @@ TEST(StudyTable, TheFigureHasAPanelPerResultAndAPointPerRun) {
     for (std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
     return n;
   };
-  EXPECT_EQ(count("<circle"), 15u);
+  EXPECT_EQ(count("<circle"), 12u);
   EXPECT_EQ(count("<polyline"), 3u);
+  EXPECT_NE(svg.find("4 of 6 runs (those that succeeded)"), std::string::npos);
   EXPECT_NE(svg.find(">motion.runout.length<"), std::string::npos);
   EXPECT_NE(svg.find(">bonds.tensileStrength<"), std::string::npos);
 }
@@ -218,6 +239,7 @@ TEST(StudyTable, TickLabelsAreShortAndDoNotOverlap) {
   for (const StudyRun& run : plan.runs) {
     rows.push_back(row_of(run));
     rows.back().results = results(run.values[0].get<double>() / 1e6, run.index);
+    rows.back().state = "succeeded";
   }
   const std::string svg = figure_svg(plan, rows);
   EXPECT_EQ(svg.find("e+0"), std::string::npos);

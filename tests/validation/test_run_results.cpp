@@ -428,6 +428,22 @@ TEST(RunResults, ASourceSaysWhatItInsertedAndHowHighItsParticlesEnd) {
   EXPECT_EQ(j["sources"][0]["heights"][20]["fraction"], 1.0);
 }
 
+// A zero is written 0, never -0.0 (a press's force before it touches the stone: an independent
+// tester found "forceMin": -0.0 in the stone-crush case's results).
+TEST(RunResults, NoNumberIsWrittenAsMinusZero) {
+  RunResults r;
+  r.energy_input = -0.0;
+  LoadedWallResults w;
+  w.wall = "press";
+  w.force_min = -0.0;
+  w.force_max = 1573.0;
+  r.loaded_walls.push_back(w);
+  const std::string text = results::to_json(r).dump();
+  EXPECT_EQ(text.find("-0.0"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"forceMin\":0.0"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"forceMax\":1573.0"), std::string::npos) << text;
+}
+
 // A run continued without its track file says its results count from the continuation (they were
 // silently from there: a settlement of the wrong sign, an independent tester).
 TEST(RunResults, AContinuationWithoutItsTrackFileSaysSo) {
