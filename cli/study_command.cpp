@@ -12,6 +12,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -24,6 +25,7 @@
 #include "cli/verb_args.hpp"
 #include "core/errors.hpp"
 #include "results/results_json.hpp"
+#include "spec/json_keys.hpp"
 #include "spec/referenced_files.hpp"
 #include "spec/spec_loader.hpp"
 #include "study/study_table.hpp"
@@ -76,11 +78,17 @@ json read_json(const fs::path& path, const std::string& what) {
   if (!in) throw std::runtime_error(path.string() + ": cannot open the " + what);
   std::stringstream text;
   text << in.rdbuf();
+  json j;
   try {
-    return json::parse(text.str());
+    j = json::parse(text.str());
   } catch (const json::exception& e) {  // where: "parse error at line 3, column 5: ..."; a number past a double
     throw std::runtime_error(path.string() + ": the " + what + " is not JSON: " + e.what());
   }
+  // a key given twice would be taken last, silently, where dem validate refuses it
+  if (const std::vector<std::string> twice = spec::repeated_keys(text.str()); !twice.empty())
+    throw std::runtime_error(path.string() + ": " + twice.front() + ": is given twice in its object (the " + what +
+                             "'s reader would keep the last one)");
+  return j;
 }
 
 void write_text(const fs::path& path, const std::string& text) {
@@ -125,16 +133,46 @@ StudyInput read_study(const std::string& path) {
   return in;
 }
 
-// The table's files in DIR that would be written over one of the study's own files (--out the
-// folder of a study file named study.json, as the bundled cases name theirs): "" when none.
-std::string overwritten_input(const fs::path& out, const StudyInput& in) {
-  for (const char* name : {"study.json", "study.csv", "study.svg"})
-    for (const fs::path& file : in.files) {
-      std::error_code error;
+// Whether `file`, present, is what a study writes there: a table (study.json with its rows, study.csv
+// with its header) or a figure.
+bool is_a_table(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(16, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const std::string name = file.filename().string();
+  if (name == "study.csv") return head.rfind("run,", 0) == 0;
+  if (name == "study.svg") return head.rfind("<svg", 0) == 0;
+  in.close();
+  const json j = json::parse(std::ifstream(file, std::ios::binary), nullptr, false);
+  return j.is_object() && j.contains("rows");
+}
+
+// Why DIR may not take the study's files, or "": a table's file would be written over one of the
+// study's own files (--out the folder of a study file named study.json, as the bundled cases name
+// theirs) or over a file that is not a study's (the user's study.json beside `dem study --id`), or
+// an input lies in a run's folder, which the study writes.
+std::string overwritten_input(const fs::path& out, const std::vector<fs::path>& inputs) {
+  for (const char* name : {"study.json", "study.csv", "study.svg"}) {
+    std::error_code error;
+    for (const fs::path& file : inputs)
       if (fs::equivalent(out / name, file, error))
-        return (out / name).string() + " is " + (file == in.files.front() ? "the study file" : "its base spec") +
+        return (out / name).string() + " is " + (file == inputs.front() ? "the study file" : "its base spec") +
                " itself: the study's table would be written over it; give --out another folder";
-    }
+    if (fs::exists(out / name, error) && !is_a_table(out / name))
+      return (out / name).string() + " is there and is not a study's table or figure (a study file?): the study's " +
+             "would be written over it; give --out another folder";
+  }
+  std::error_code error;
+  const fs::path folder = fs::weakly_canonical(out, error);
+  for (const fs::path& file : inputs) {
+    const fs::path at = fs::weakly_canonical(file, error).parent_path();
+    const std::string run = at.filename().string();
+    if (at.parent_path() == folder && run.size() > 4 && run.rfind("run-", 0) == 0 &&
+        std::all_of(run.begin() + 4, run.end(), [](unsigned char c) { return std::isdigit(c) != 0; }))
+      return file.string() + " is in " + at.string() + ", a run's folder, which the study writes: give --out " +
+             "another folder, or move the file";
+  }
   return "";
 }
 
@@ -231,7 +269,7 @@ json done_before(const fs::path& folder, const json& spec) {
 int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path& out, int threads, bool quiet,
              int jobs) {
   const std::vector<json> specs = check_runs(plan, in.base_dir);
-  const FolderLock lock(out);
+  const FolderLock lock(out);  // here, after the checks: a bad study makes no folder
   std::vector<study::StudyRow> rows;
   for (const study::StudyRun& run : plan.runs) rows.push_back(study::row_of(run));
   write_table(out, plan, rows);
@@ -330,7 +368,8 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
   return failed == 0 ? 0 : 1;
 }
 
-// Follows a server's study until every job has ended, then downloads its table and figure.
+// Follows a server's study until every job has ended, then downloads its table and figure (the
+// caller holds DIR's FolderLock from before the study is made or followed).
 int follow(const ServerApi& api, std::int64_t id, const fs::path& out, bool as_json) {
   std::FILE* lines = as_json ? stderr : stdout;  // --json: stdout has the study's JSON only
   const std::string target = "/api/v1/studies/" + std::to_string(id);
@@ -347,7 +386,7 @@ int follow(const ServerApi& api, std::int64_t id, const fs::path& out, bool as_j
     if (study.value("finished", false)) break;
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
-  const FolderLock lock(out);
+  fs::create_directories(out);
   write_text(out / "study.json", api.send("GET", target + "/results.json").body);
   write_text(out / "study.csv", api.send("GET", target + "/results.csv").body);
   write_text(out / "study.svg", api.send("GET", target + "/figure.svg").body);
@@ -400,7 +439,11 @@ int study_command(const std::vector<std::string>& args) {
     if (!id) return usage_error(kVerb, "a study id is a whole number (got \"" + a.value("--id") + "\")");
     if (!a.positional.empty()) return usage_error(kVerb, "--id follows a study on the server: give no study file");
     if (out.empty()) return usage_error(kVerb, "--out DIR: where the table and the figure go");
-    return with_server(kVerb, a, [&](const ServerApi& api) { return follow(api, *id, out, a.json); });
+    if (const std::string why = overwritten_input(out, {}); !why.empty()) return usage_error(kVerb, "--out " + why);
+    return with_server(kVerb, a, [&](const ServerApi& api) {
+      const FolderLock lock(out);
+      return follow(api, *id, out, a.json);
+    });
   }
   if (a.positional.empty()) return usage_error(kVerb, "missing the study file");
   if (!a.flag("--submit")) {
@@ -439,7 +482,8 @@ int study_command(const std::vector<std::string>& args) {
   try {
     const StudyInput in = read_study(path);
     if (!out.empty())
-      if (const std::string why = overwritten_input(out, in); !why.empty()) return usage_error(kVerb, "--out " + why);
+      if (const std::string why = overwritten_input(out, in.files); !why.empty())
+        return usage_error(kVerb, "--out " + why);
     const study::StudyPlan plan = study::plan_study(in.study, in.base);
     if (plan_only) {
       check_runs(plan, in.base_dir);
@@ -456,12 +500,19 @@ int study_command(const std::vector<std::string>& args) {
     // make a second one. So every submission has a key, the user's or a new one.
     const std::string key = a.has("--idempotency-key") ? a.value("--idempotency-key") : new_idempotency_key();
     return with_server(kVerb, a, [&](const ServerApi& api) {
+      // DIR is this command's from before the study is made: another dem study writing into it
+      // while this one waits would mix its runs with this study's table
+      std::optional<FolderLock> lock;
+      if (!a.flag("--detach")) lock.emplace(out);
       client::Response response;
       try {
         response = api.send("POST", "/api/v1/studies", study.dump(), "application/json", {{"Idempotency-Key", key}});
       } catch (const client::ClientError& e) {
-        throw std::runtime_error(std::string(e.what()) +
-                                 "; the server may still make the study: the same command with --idempotency-key " +
+        const std::string what = e.what();
+        if (what.find("did not answer in time") == std::string::npos) throw;  // not sent: nothing to get back
+        throw std::runtime_error(what +
+                                 "; the server may still make the study: the same command with "
+                                 "--idempotency-key " +
                                  key + " gives that study, not a second one");
       }
       const json created = api.json_of(response, "/api/v1/studies");

@@ -12,6 +12,7 @@
 #include "server/own_files.hpp"
 #include "server/preferences.hpp"
 #include "server/request_policy.hpp"
+#include "spec/json_keys.hpp"
 #include "spec/spec_loader.hpp"
 
 namespace dem::server {
@@ -131,12 +132,21 @@ Response create_study(const Request& req, ApiContext& ctx) {
   const nlohmann::json study = nlohmann::json::parse(req.body(), nullptr, false);
   if (study.is_discarded())
     return error_response(req, http::status::bad_request, "the study is not JSON (docs/api.md, \"Studies\")");
+  // a key given twice would be taken last, silently, where a job's spec is refused for it
+  if (std::vector<std::string> twice = spec::repeated_keys(req.body()); !twice.empty()) {
+    for (std::string& path : twice) path += ": is given twice in its object (the reader would keep the last one)";
+    return error_response(req, http::status::bad_request, "invalid study", twice);
+  }
   const std::string key(req["Idempotency-Key"]);
   if (key.size() > 200 || !std::all_of(key.begin(), key.end(), [](unsigned char c) { return c >= 0x20 && c < 0x7f; }))
     return error_response(req, http::status::bad_request,
                           "Idempotency-Key must be printable ASCII of at most 200 characters");
   try {
     const StudyManager::Created made = ctx.studies.create(study, key);
+    if (made.being_made)
+      return error_response(req, http::status::conflict,
+                            "a study with Idempotency-Key \"" + key +
+                                "\" is still being made (its runs checked and queued): ask again in a moment");
     if (made.conflict)
       return error_response(req, http::status::unprocessable_entity,
                             "Idempotency-Key \"" + key + "\" was used for study " + std::to_string(made.study.id) +

@@ -118,11 +118,24 @@ void StudyManager::queue_runs(StudyRecord& study) const {
 }
 
 StudyManager::Created StudyManager::create(const json& posted, const std::string& idempotency_key) {
+  // A key is the study's from the request's start: a retry while the first request still checks
+  // its runs (seconds for hundreds) made a second study (an independent tester), and a client that
+  // gave up waiting retries with its key exactly then.
   if (!idempotency_key.empty()) {
     std::lock_guard lock(mutex_);
     for (const StudyRecord& s : studies_)
       if (s.idempotency_key == idempotency_key) return {s, false, s.study != posted};
+    if (!keys_being_made_.insert(idempotency_key).second) return {StudyRecord{}, false, false, true};
   }
+  struct KeyRelease {  // however the request ends
+    StudyManager& m;
+    const std::string& key;
+    ~KeyRelease() {
+      if (key.empty()) return;
+      std::lock_guard lock(m.mutex_);
+      m.keys_being_made_.erase(key);
+    }
+  } release{*this, idempotency_key};
   if (posted.is_object() && posted.contains("base") && !posted["base"].is_object())
     throw study::StudyError(
         {"base: the server takes the base spec inline, with its files (meshes) in it "

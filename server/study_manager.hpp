@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,7 @@ class StudyManager {
     StudyRecord study;
     bool created = true;
     bool conflict = false;
+    bool being_made = false;  // another request with its key is still checking and queueing its runs
   };
   Created create(const nlohmann::json& study, const std::string& idempotency_key = "");
   std::vector<StudyRecord> list() const;
@@ -68,6 +70,7 @@ class StudyManager {
   void queue_runs(StudyRecord& study) const;  // queues each run not queued yet (idempotent per run)
 
   std::vector<StudyRecord> studies_;
+  std::set<std::string> keys_being_made_;  // of requests still checking and queueing their runs
   std::int64_t next_id_ = 1;
 };
 

@@ -105,6 +105,7 @@ std::string reword_protobuf_error(const std::string& message) {
   static const std::regex object_for_value(
       R"(^\(([^)]*)\): invalid value Starting an object on a scalar field for type (.+)$)");
   static const std::regex list_for_value(R"(^\(([^)]*)\) ?(.+?): Proto field is not repeating, cannot start list\.?$)");
+  static const std::regex list_for_value_top(R"(^([^(].*?): Proto field is not repeating, cannot start list\.?$)");
   static const std::regex bad_value(R"(^\(([^)]*)\): invalid value (.*) for type TYPE_([A-Z0-9]+)$)");
   static const std::regex bad_enum(R"(^\(([^)]*)\): invalid value (.*) for type type\.googleapis\.com/(.+)$)");
   std::smatch m;
@@ -115,6 +116,8 @@ std::string reword_protobuf_error(const std::string& message) {
     return field(m[1].str(), m[2].str()) + ": expected " + scalar_kind(m[1].str(), m[2].str()) + ", got an object";
   if (std::regex_match(message, m, list_for_value))
     return field(m[1].str(), m[2].str()) + ": expected " + scalar_kind(m[1].str(), m[2].str()) + ", got a list";
+  if (std::regex_match(message, m, list_for_value_top))
+    return m[1].str() + ": expected " + scalar_kind("", m[1].str()) + ", got a list";
   if (std::regex_match(message, m, bad_enum)) {
     if (google::protobuf::DescriptorPool::generated_pool()->FindMessageTypeByName(m[3].str()) != nullptr)
       return m[1].str() + ": expected an object, got " + m[2].str();

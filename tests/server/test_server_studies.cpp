@@ -292,6 +292,42 @@ TEST_F(ServerStudies, DemStudySubmitRunsTheStudyOnTheServerAndDownloadsItsTable)
   EXPECT_NE(again.output.find("already submitted with idempotency key bed-1: study 2: 2 jobs"), std::string::npos)
       << again.output;
   EXPECT_EQ(get("/api/studies")["studies"].size(), 2u);
+  // the folder is this command's from before the study is made: another dem study writing into it
+  // is refused, and nothing is sent to the server
+  fs::create_directories(dir_ / "held");
+  const CommandResult held =
+      run_command("flock " + shell_quoted(dir_ / "held" / ".dem-study.lock") + " " + shell_quoted(kDem) + " study " +
+                  shell_quoted(dir_ / "study.json") + " --submit --server " + server_->url() + " --out " +
+                  shell_quoted(dir_ / "held"));
+  EXPECT_EQ(held.exit_code, 1) << held.output;
+  EXPECT_NE(held.output.find("another dem study is writing into"), std::string::npos) << held.output;
+  EXPECT_EQ(get("/api/studies")["studies"].size(), 2u);
+  // a server that is not there: nothing was sent, so no key to ask again with
+  const CommandResult refused = run_command(shell_quoted(kDem) + " study " + shell_quoted(dir_ / "study.json") +
+                                            " --submit --server http://127.0.0.1:1 --out " + shell_quoted(dir_ / "no"));
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_EQ(refused.output.find("--idempotency-key"), std::string::npos) << refused.output;
+}
+
+// A retry with the key of a study still being made (its runs being checked: seconds for hundreds)
+// gets 409, not a second study: the key took effect only once the first was made, exactly when a
+// client that gave up waiting retries (an independent tester's second round).
+TEST_F(ServerStudies, AKeyIsTheStudysFromItsRequestsStart) {
+  start_server();
+  std::vector<double> radii;
+  for (int k = 0; k < 400; ++k) radii.push_back(0.012 + 1e-6 * k);
+  const nlohmann::json study = study_of(pouring_spec(0.015, 20, 10), "lattices[0].radius", radii);
+  const client::Headers key{{"Idempotency-Key", "slow-1"}};
+  client::Response first;
+  std::thread making([&] { first = client_->request("POST", "/api/studies", study.dump(), "application/json", key); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  client::HttpClient second(server_->url());
+  const client::Response again = second.request("POST", "/api/studies", study.dump(), "application/json", key);
+  making.join();
+  EXPECT_EQ(first.status, 201) << first.body;
+  EXPECT_TRUE(again.status == 409 || again.status == 200) << again.status << " " << again.body;
+  if (again.status == 409) EXPECT_NE(again.body.find("is still being made"), std::string::npos) << again.body;
+  EXPECT_EQ(get("/api/studies")["studies"].size(), 1u);
 }
 
 }  // namespace

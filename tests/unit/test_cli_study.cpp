@@ -216,6 +216,44 @@ TEST_F(CliStudy, AStudyWritesOverNoInputAndNoOtherStudysFolder) {
   EXPECT_NE(r.output.find("another dem study is writing into " + out.string()), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out / "run-001")) << "ran beside the other";
   EXPECT_EQ(run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(out) + " --quiet").exit_code, 0);
+
+  // nor over a file of that name that is not a study's table: another study file beside this one
+  // (--out .), or the user's study.json where --id downloads a table (both written over, silently:
+  // an independent tester's second round); nor into the run folder that holds an input
+  const fs::path other = write_spec("other.json", kStudy);
+  r = run_dem("study " + shell_quoted(other) + " --out " + shell_quoted(dir_));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("is there and is not a study's table or figure (a study file?)"), std::string::npos)
+      << r.output;
+  r = run_dem("study --id 1 --out " + shell_quoted(dir_) + " --server http://127.0.0.1:1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(read(study), kStudy);
+  fs::create_directories(out / "run-002");
+  const fs::path inside = write_spec("out/run-002/base.json", kBase);
+  write_spec("inside.json",
+             R"({"base": "out/run-002/base.json", "parameters": [{"path": "time.steps", "values": [10, 20]}]})");
+  r = run_dem("study " + shell_quoted(dir_ / "inside.json") + " --out " + shell_quoted(out) + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("a run's folder, which the study writes"), std::string::npos) << r.output;
+  EXPECT_EQ(read(inside), kBase);
+}
+
+// A key given twice in a study or its base is refused, naming it, as dem validate refuses it in a
+// spec (a study took the last one silently: an independent tester).
+TEST_F(CliStudy, AKeyGivenTwiceIsRefusedByName) {
+  write_spec("base.json", R"({"materials": [{"name": "glass", "density": 2500, "normalStiffness": 1e5,
+    "normalStiffness": 3e5}], "particles": [{"radius": 0.01, "material": "glass"}], "time": {"steps": 10}})");
+  const fs::path study = write_spec("study.json", kStudy);
+  CommandResult r = run_dem("study " + shell_quoted(study) + " --plan");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("base.json: materials[0].normalStiffness: is given twice in its object"), std::string::npos)
+      << r.output;
+  write_spec("base.json", kBase);
+  const fs::path twice = write_spec("twice.json", R"({"name": "a", "name": "b", "base": "base.json",
+    "parameters": [{"path": "time.steps", "values": [10]}]})");
+  r = run_dem("study " + shell_quoted(twice) + " --plan");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("twice.json: name: is given twice in its object"), std::string::npos) << r.output;
 }
 
 TEST_F(CliStudy, PlanListsTheRunsWithoutRunningThem) {

@@ -297,6 +297,7 @@ TEST(SpecLoader, AValueOfTheWrongShapeIsNamedInPlainWords) {
       {{R"("density": 2500)", R"("density": [1, 2])"}, "materials[0].density: expected a number, got a list"},
       {{R"("density": 2500)", R"("de/nsity": 2500)"}, "materials[0].de/nsity: unknown field"},
       {{R"("time": {"steps": 100})", R"("time": 5)"}, "time: expected an object, got 5"},
+      {{R"("time": {"steps": 100})", R"("time": [5])"}, "time: expected an object, got a list"},
   };
   for (const auto& [edit, said] : cases) {
     const auto problems = problems_of(good_with(edit.first, edit.second));
