@@ -160,8 +160,8 @@ std::string overwritten_input(const fs::path& out, const std::vector<fs::path>& 
         return (out / name).string() + " is " + (file == inputs.front() ? "the study file" : "its base spec") +
                " itself: the study's table would be written over it; give --out another folder";
     if (fs::exists(out / name, error) && !is_a_table(out / name))
-      return (out / name).string() + " is there and is not a study's table or figure (a study file?): the study's " +
-             "would be written over it; give --out another folder";
+      return (out / name).string() + " is there and is not a study's table or figure (a study file?): the " +
+             "study would write over it; give --out another folder";
   }
   std::error_code error;
   const fs::path folder = fs::weakly_canonical(out, error);
@@ -481,7 +481,7 @@ int study_command(const std::vector<std::string>& args) {
   const std::string& path = a.positional[0];
   try {
     const StudyInput in = read_study(path);
-    if (!out.empty())
+    if (!out.empty() && !plan_only && !a.flag("--detach"))  // those write nothing into DIR
       if (const std::string why = overwritten_input(out, in.files); !why.empty())
         return usage_error(kVerb, "--out " + why);
     const study::StudyPlan plan = study::plan_study(in.study, in.base);

@@ -103,26 +103,6 @@ const char* json_kind(const nlohmann::json& v) {
   }
 }
 
-// What one element of a repeated field is, in the words of the parser's own messages.
-std::string expected_item(const google::protobuf::FieldDescriptor& field) {
-  using google::protobuf::FieldDescriptor;
-  switch (field.cpp_type()) {
-    case FieldDescriptor::CPPTYPE_MESSAGE:
-      return "an object";
-    case FieldDescriptor::CPPTYPE_STRING:
-      return "a string";
-    case FieldDescriptor::CPPTYPE_DOUBLE:
-    case FieldDescriptor::CPPTYPE_FLOAT:
-      return "a number";
-    case FieldDescriptor::CPPTYPE_BOOL:
-      return "true or false";
-    case FieldDescriptor::CPPTYPE_ENUM:
-      return "a name";
-    default:
-      return "a whole number";
-  }
-}
-
 // The field a key names, by either spelling the parser accepts.
 const google::protobuf::FieldDescriptor* field_named(const google::protobuf::Descriptor& message,
                                                      const std::string& key) {
@@ -169,6 +149,25 @@ std::vector<std::string> repeated_keys(const std::string& json) {
   KeyWalker walker;
   nlohmann::json::sax_parse(json, &walker);
   return walker.repeated;
+}
+
+std::string expected_item(const google::protobuf::FieldDescriptor& field) {
+  using google::protobuf::FieldDescriptor;
+  switch (field.cpp_type()) {
+    case FieldDescriptor::CPPTYPE_MESSAGE:
+      return "an object";
+    case FieldDescriptor::CPPTYPE_STRING:
+      return "a string";
+    case FieldDescriptor::CPPTYPE_DOUBLE:
+    case FieldDescriptor::CPPTYPE_FLOAT:
+      return "a number";
+    case FieldDescriptor::CPPTYPE_BOOL:
+      return "true or false";
+    case FieldDescriptor::CPPTYPE_ENUM:
+      return "a name";
+    default:
+      return "a whole number";
+  }
 }
 
 }  // namespace dem::spec

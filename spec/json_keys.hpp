@@ -11,6 +11,10 @@
 
 namespace dem::spec {
 
+// What a value of `field` (one element of it, if it is repeated) is, in the words of the checks'
+// messages: "a number", "a whole number", "a string", "true or false", "a name", "an object".
+std::string expected_item(const google::protobuf::FieldDescriptor& field);
+
 // The paths ("interactions[0].restitution") of the keys repeated in their object, in the order met.
 // The text must be well-formed JSON (parse it for syntax first).
 std::vector<std::string> repeated_keys(const std::string& json);

@@ -70,26 +70,7 @@ std::string scalar_kind(const std::string& parent, const std::string& name) {
     d = f->message_type();
   }
   const FieldDescriptor* f = field_of(d, name);
-  if (f == nullptr) return "a single value";
-  switch (f->cpp_type()) {
-    case FieldDescriptor::CPPTYPE_DOUBLE:
-    case FieldDescriptor::CPPTYPE_FLOAT:
-      return "a number";
-    case FieldDescriptor::CPPTYPE_INT32:
-    case FieldDescriptor::CPPTYPE_INT64:
-    case FieldDescriptor::CPPTYPE_UINT32:
-    case FieldDescriptor::CPPTYPE_UINT64:
-      return "a whole number";
-    case FieldDescriptor::CPPTYPE_BOOL:
-      return "true or false";
-    case FieldDescriptor::CPPTYPE_STRING:
-      return "a string";
-    case FieldDescriptor::CPPTYPE_ENUM:
-      return "a name";
-    case FieldDescriptor::CPPTYPE_MESSAGE:
-      return "an object";
-  }
-  return "a single value";
+  return f == nullptr ? "a single value" : expected_item(*f);
 }
 
 }  // namespace
