@@ -103,13 +103,6 @@ const char* json_kind(const nlohmann::json& v) {
   }
 }
 
-// The field a key names, by either spelling the parser accepts.
-const google::protobuf::FieldDescriptor* field_named(const google::protobuf::Descriptor& message,
-                                                     const std::string& key) {
-  if (const auto* f = message.FindFieldByName(key)) return f;
-  return message.FindFieldByCamelcaseName(key);
-}
-
 void check_lists(const nlohmann::json& object, const google::protobuf::Descriptor& message, const std::string& at,
                  std::vector<std::string>& problems) {
   using google::protobuf::FieldDescriptor;
@@ -168,6 +161,12 @@ std::string expected_item(const google::protobuf::FieldDescriptor& field) {
     default:
       return "a whole number";
   }
+}
+
+const google::protobuf::FieldDescriptor* field_named(const google::protobuf::Descriptor& message,
+                                                     const std::string& key) {
+  if (const auto* f = message.FindFieldByName(key)) return f;
+  return message.FindFieldByCamelcaseName(key);
 }
 
 }  // namespace dem::spec

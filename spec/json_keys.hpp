@@ -11,6 +11,10 @@
 
 namespace dem::spec {
 
+// The field a key names, by either spelling the parser accepts (normal_stiffness, normalStiffness).
+const google::protobuf::FieldDescriptor* field_named(const google::protobuf::Descriptor& message,
+                                                     const std::string& key);
+
 // What a value of `field` (one element of it, if it is repeated) is, in the words of the checks'
 // messages: "a number", "a whole number", "a string", "true or false", "a name", "an object".
 std::string expected_item(const google::protobuf::FieldDescriptor& field);

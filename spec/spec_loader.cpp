@@ -57,10 +57,8 @@ void check_tags(const api::JobSpec& spec, Checker& check) {
 // number", "a string", ...; "a single value" where the path leads to no field.
 std::string scalar_kind(const std::string& parent, const std::string& name) {
   using google::protobuf::FieldDescriptor;
-  auto field_of = [](const google::protobuf::Descriptor* d, std::string n) -> const FieldDescriptor* {
-    n = n.substr(0, n.find('['));
-    const FieldDescriptor* f = d->FindFieldByName(n);
-    return f != nullptr ? f : d->FindFieldByCamelcaseName(n);
+  auto field_of = [](const google::protobuf::Descriptor* d, const std::string& n) {
+    return field_named(*d, n.substr(0, n.find('[')));  // "materials[0]": the field materials
   };
   const google::protobuf::Descriptor* d = api::JobSpec::descriptor();
   std::stringstream parts(parent);
