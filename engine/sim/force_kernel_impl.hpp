@@ -426,6 +426,11 @@ class ForceKernelImpl final : public ForceKernel {
       Vec3* __restrict w = p.w.data();
       const Vec3* __restrict x = p.x.data();
       const int* __restrict body = p.body.empty() ? nullptr : p.body.data();
+      const Vec3* __restrict external = p.external.empty() ? nullptr : p.external.data();
+      const int* __restrict wall_rows = s.wall_contacts.row_start.data();
+      const MeshContacts& mc = s.mesh_contacts;
+      const bool meshes_near = !s.meshes.empty() && !mc.none_near();
+      bool finite = true;
       for (int i = begin; i < end; ++i) {
         Vec3 f = as_vec3(sums[i].f), t = as_vec3(sums[i].t);
         sums[i] = BodySums{};  // zero for the next step's pair loop (while the line is in cache)
@@ -439,7 +444,7 @@ class ForceKernelImpl final : public ForceKernel {
           deferred[a] = BodySums{};  // zero for the next step's pair loop
         }
         if constexpr (kWalls) {
-          if (s.wall_contacts.row_start[i] != s.wall_contacts.row_start[i + 1]) {
+          if (wall_rows[i] != wall_rows[i + 1]) {
             Clock::time_point t0;
             if constexpr (kTimed) t0 = Clock::now();
             add_wall_forces(s, table, i, f, t);
@@ -450,8 +455,7 @@ class ForceKernelImpl final : public ForceKernel {
           }
           // a particle with no face within reach and no slot to clear is passed without a call; one
           // with only a slot to clear is not timed
-          const MeshContacts& mc = s.mesh_contacts;
-          if (!s.meshes.empty() && !mc.none_near() && (mc.row_start[i] != mc.row_start[i + 1] || mc.used[i])) {
+          if (meshes_near && (mc.row_start[i] != mc.row_start[i + 1] || mc.used[i])) {
             const bool timed = kTimed && mc.row_start[i] != mc.row_start[i + 1];
             Clock::time_point t0;
             if (timed) t0 = Clock::now();
@@ -463,7 +467,7 @@ class ForceKernelImpl final : public ForceKernel {
           }
         }
         f = f + mass[i] * g;
-        if (!p.external.empty()) f = f + p.external[i];
+        if (external) f = f + external[i];
         // local damping: each component loses alpha |F| against its velocity. A clump member's is
         // its body's, on the body's force and torque (kick_bodies): here it would take alpha of the
         // body's weight once per member (a stone of four spheres at alpha 0.3 floated).
@@ -477,8 +481,9 @@ class ForceKernelImpl final : public ForceKernel {
         v[i] = vi;
         w[i] = wi;
         // the end-of-step state, checked every step so that a blow-up is caught where it starts
-        out.bad = out.bad || !state_is_finite(x[i], vi, wi, mass[i]);
+        finite = finite & state_is_finite(x[i], vi, wi, mass[i]);
       }
+      out.bad = !finite;
       if constexpr (kTimed) out.times.range = seconds_since(range_start);
       return out;
     };

@@ -286,13 +286,13 @@ void Simulation::settle_walls(double t_new, double dt) {
     boundary_loads_[k].response.stiffness += kn;
     boundary_loads_[k].response.damping += cn;
   };
-  if (!wc.row_start.empty())
-    for (int i = 0; i < n; ++i)
-      for (int e = wc.row_start[i]; e < wc.row_start[i + 1]; ++e)
-        if (wc.touching[e] || !wc.force[e].isZero(0)) {
-          add(boundaries_.of_plane(wc.wall[e]), wc.force[e], wc.point[e], wc.touching[e] != 0);
-          respond(boundaries_.of_plane(wc.wall[e]), wc.kn[e], wc.cn[e]);
-        }
+  // the contacts are stored in particle order: one pass over them, not over every particle's row
+  const int wall_entries = wc.row_start.empty() ? 0 : wc.row_start[n];
+  for (int e = 0; e < wall_entries; ++e)
+    if (wc.touching[e] || !wc.force[e].isZero(0)) {
+      add(boundaries_.of_plane(wc.wall[e]), wc.force[e], wc.point[e], wc.touching[e] != 0);
+      respond(boundaries_.of_plane(wc.wall[e]), wc.kn[e], wc.cn[e]);
+    }
   MeshContacts& mc = state_.mesh_contacts;
   for (int i = 0; i < n && !mc.used.empty() && !mc.none_near(); ++i) {
     // only a particle with a face within reach has slots in use or a parting (add_mesh_forces): the
@@ -647,7 +647,7 @@ double Simulation::half_kick_and_drift() {
           if (q) q[i] = (rotation_by(dt * wi) * q[i]).normalized();
           if (external && inv_mass[i] > 0) out.external_work += dt * external[i].dot(vi);
           out.moved2 = std::max(out.moved2, (xi - x0[i]).squaredNorm());
-          out.too_fast = out.too_fast || vi.squaredNorm() > reach2_over_dt2 * radius[i] * radius[i];
+          out.too_fast = out.too_fast | (vi.squaredNorm() > reach2_over_dt2 * radius[i] * radius[i]);  // no branch
         }
         return out;
       },
