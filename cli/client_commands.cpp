@@ -16,6 +16,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/job_watch.hpp"
+#include "cli/output_folder.hpp"
 #include "cli/verb_args.hpp"
 #include "cli/server_api.hpp"
 #include "cli/terminal_text.hpp"
@@ -292,7 +293,7 @@ int fetch_command(const std::vector<std::string>& args) {
         return 1;
       }
     }
-    fs::create_directories(out);
+    make_output_folder(out);
     for (const std::string& name : names) {
       const fs::path path = out / name;
       client::Response response;

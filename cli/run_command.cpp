@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/output_folder.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/verb_args.hpp"
 #include "core/errors.hpp"
@@ -118,7 +119,7 @@ int run_scene(Scene scene, const std::string& label, const std::string& out, con
     StateIO::require_within_run(sim);
   }
   const std::int64_t first_step = sim.step_count();  // a continued run starts at its saved step
-  std::filesystem::create_directories(out);
+  make_output_folder(out);
   std::fprintf(info, "%s: %zu particles, %zu walls, %lld steps; %s\n", label.c_str(), sim.particles().size(),
                sim.scene().walls.size(), static_cast<long long>(sim.total_steps()), sim.time_step().describe().c_str());
   std::fflush(info);

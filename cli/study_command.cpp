@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "cli/commands.hpp"
+#include "cli/output_folder.hpp"
 #include "cli/verb_args.hpp"
 #include "core/errors.hpp"
 #include "results/results_json.hpp"
@@ -182,7 +183,7 @@ std::string overwritten_input(const fs::path& out, const std::vector<fs::path>& 
 class FolderLock {
  public:
   explicit FolderLock(const fs::path& out) {
-    fs::create_directories(out);
+    make_output_folder(out);
     const fs::path file = out / ".dem-study.lock";
     fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0) throw std::runtime_error("cannot open " + file.string() + ": " + std::strerror(errno));
@@ -386,7 +387,7 @@ int follow(const ServerApi& api, std::int64_t id, const fs::path& out, bool as_j
     if (study.value("finished", false)) break;
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
-  fs::create_directories(out);
+  make_output_folder(out);
   write_text(out / "study.json", api.send("GET", target + "/results.json").body);
   write_text(out / "study.csv", api.send("GET", target + "/results.csv").body);
   write_text(out / "study.svg", api.send("GET", target + "/figure.svg").body);

@@ -481,6 +481,25 @@ TEST_F(Cli, RunWithAnUnstableDtFailsAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// --out naming a file, or a folder inside one: the option and the file are named, not the
+// filesystem library's "cannot create directories: Not a directory [afile]"; the file is kept.
+TEST_F(Cli, RunWhoseOutIsAFileOrInsideOneNamesItAndKeepsTheFile) {
+  const fs::path file = dir_ / "notes.txt";
+  std::ofstream(file) << "kept\n";
+  const std::string spec = shell_quoted(write_spec("good.json", kGoodSpec));
+  for (const fs::path& out : {file, file / "run"}) {
+    const Result r = dem("run " + spec + " --out " + shell_quoted(out) + " --quiet");
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("--out " + out.string() + ": "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(file.string() + " is a file, not a folder"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("filesystem error"), std::string::npos) << r.output;
+  }
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "kept");
+}
+
 TEST_F(Cli, RunWithoutOutIsAUsageError) {
   const Result r = dem("run " + shell_quoted(write_spec("good.json", kGoodSpec)));
   EXPECT_EQ(r.exit_code, 2) << r.output;

@@ -208,6 +208,14 @@ TEST_F(CliStudy, AStudyWritesOverNoInputAndNoOtherStudysFolder) {
   EXPECT_NE(r.output.find("is its base spec itself"), std::string::npos) << r.output;
   EXPECT_EQ(read(base_named_as_table), kBase);
 
+  // --out a file: named, the file kept (it was the filesystem library's "Not a directory [FILE]")
+  const fs::path notes = write_spec("notes.txt", "kept");
+  r = run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(notes) + " --quiet");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find(notes.string() + " is a file, not a folder"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("filesystem error"), std::string::npos) << r.output;
+  EXPECT_EQ(read(notes), "kept");
+
   const fs::path out = dir_ / "out";
   fs::create_directories(out);
   r = run_command("flock " + shell_quoted(out / ".dem-study.lock") + " " + shell_quoted(kDem) + " study " +
