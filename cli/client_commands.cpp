@@ -83,7 +83,7 @@ int submit_command(const std::vector<std::string>& args) {
     spec::inline_files(spec, fs::path(path).parent_path().string());  // the server reads no files of ours
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "%s: invalid spec:\n", path.c_str());
-    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+    print_problems(e.problems());
     return 1;
   }
   return with_server(verb, a, [&](const ServerApi& api) {
@@ -96,7 +96,7 @@ int submit_command(const std::vector<std::string>& args) {
     } catch (const ApiError& e) {
       if (e.status() != 400 || e.problems().empty()) throw;
       std::fprintf(stderr, "%s: invalid spec (the server answered %s):\n", path.c_str(), describe(e).c_str());
-      for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+      print_problems(e.problems());
       return 1;
     }
     const nlohmann::json job = checked_job(api.json_of(response, "/api/v1/jobs"));

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/terminal_text.hpp"
 #include "cli/verb_args.hpp"
 #include "import/inpt_import.hpp"
 #include "legacy/inpt_file.hpp"
@@ -109,7 +110,7 @@ int import_command(const std::vector<std::string>& args) {
     summary = buf;
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "dem import: %s: the spec it makes does not validate (nothing written):\n", a.inpt.c_str());
-    for (const std::string& p : import::locate(imported, e.problems())) std::fprintf(stderr, "  %s\n", p.c_str());
+    print_problems(import::locate(imported, e.problems()));
     return 1;
   } catch (const SceneError& e) {
     std::fprintf(stderr, "dem import: %s: the spec it makes does not validate (nothing written):\n  %s\n",

@@ -11,6 +11,7 @@
 #include "cli/commands.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/progress_bar.hpp"
+#include "cli/terminal_text.hpp"
 #include "cli/verb_args.hpp"
 #include "core/errors.hpp"
 #include "output/legacy_output.hpp"
@@ -99,9 +100,9 @@ int validate_command(const std::vector<std::string>& arguments) {
     return 0;
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "%s: invalid spec:\n", args[0].c_str());
-    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+    print_problems(e.problems());
   } catch (const SceneError& e) {
-    std::fprintf(stderr, "%s: invalid spec:\n  %s\n", args[0].c_str(), e.what());
+    std::fprintf(stderr, "%s: invalid spec:\n  %s\n", args[0].c_str(), printable(e.what()).c_str());
   }
   return 1;
 }
@@ -209,7 +210,7 @@ int run_command(const std::vector<std::string>& args) {
     return run_scene(load(spec), spec, a.value("--out"), options);
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "%s: invalid spec:\n", spec.c_str());
-    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+    print_problems(e.problems());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dem run: %s\n", e.what());
   }

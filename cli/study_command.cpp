@@ -23,6 +23,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/output_folder.hpp"
+#include "cli/terminal_text.hpp"
 #include "cli/verb_args.hpp"
 #include "core/errors.hpp"
 #include "results/results_json.hpp"
@@ -532,10 +533,10 @@ int study_command(const std::vector<std::string>& args) {
     });
   } catch (const study::StudyError& e) {
     std::fprintf(stderr, "%s: invalid study:\n", path.c_str());
-    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+    print_problems(e.problems());
   } catch (const spec::SpecError& e) {
     std::fprintf(stderr, "%s: invalid base spec:\n", path.c_str());
-    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+    print_problems(e.problems());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "dem study: %s\n", e.what());
   }

@@ -47,4 +47,8 @@ std::string printable(std::string_view text) {
   return out;
 }
 
+void print_problems(const std::vector<std::string>& problems) {
+  for (const std::string& p : problems) std::fprintf(stderr, "  %s\n", printable(p).c_str());
+}
+
 }  // namespace dem::cli

@@ -6,9 +6,14 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace dem::cli {
 
 std::string printable(std::string_view text);
+
+// A spec's problems, each on its own indented line of stderr, as printable text: a problem names
+// the user's own field names and values, which may hold the same controls.
+void print_problems(const std::vector<std::string>& problems);
 
 }  // namespace dem::cli

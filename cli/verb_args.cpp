@@ -169,7 +169,7 @@ int with_server(const Verb& verb, const VerbArgs& a, const std::function<int(con
     return body(*api);
   } catch (const ApiError& e) {
     std::fprintf(stderr, "dem %s: %s\n", verb.name, describe(e).c_str());
-    for (const std::string& p : e.problems()) std::fprintf(stderr, "  %s\n", p.c_str());
+    print_problems(e.problems());
   } catch (const nlohmann::json::exception& e) {  // a field of the wrong type: not dem-server's answer
     std::fprintf(stderr, "dem %s: the server's answer is not of dem-server's form (%s)\n", verb.name,
                  printable(e.what()).c_str());

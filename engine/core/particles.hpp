@@ -63,8 +63,7 @@ struct Grain {
 // All three tests are made (`&`, not `&&`): the kick asks every particle every step, and a branch per
 // test was a quarter of a sparse pour's kick.
 inline bool state_is_finite(const Vec3& x, const Vec3& v, const Vec3& w, double mass) {
-  return std::isfinite(x.squaredNorm()) & std::isfinite(mass * v.squaredNorm()) &
-         std::isfinite(mass * w.squaredNorm());
+  return std::isfinite(x.squaredNorm()) & std::isfinite(mass * v.squaredNorm()) & std::isfinite(mass * w.squaredNorm());
 }
 
 // Applies new_to_old to one array (used for per-particle history kept outside Particles too).

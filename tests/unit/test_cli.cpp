@@ -74,6 +74,20 @@ TEST_F(Cli, ValidateNamesAnUnknownField) {
   EXPECT_NE(r.output.find("raduis"), std::string::npos) << r.output;
 }
 
+// A field name is the user's text: one holding ESC (a terminal's colour or screen-clearing
+// sequence) is named with the escape visible, as a server's text is, and no raw control byte is
+// printed (dem validate, dem run).
+TEST_F(Cli, AFieldNameWithControlCharactersIsNamedWithThemVisible) {
+  const std::string spec =
+      shell_quoted(write_spec("bad.json", good_with(R"("radius": 0.01)", R"("radius": 0.01, "bad\u001b[2Jkey": 1)")));
+  for (const std::string verb : {"validate ", "run "}) {
+    const Result r = dem(verb + spec + (verb == "run " ? " --out " + shell_quoted(dir_ / "out") : ""));
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("bad\\x1b[2Jkey: unknown field"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << verb << "printed a raw ESC";
+  }
+}
+
 TEST_F(Cli, ValidateNamesADtAboveTheStableLimit) {
   // The pair's contact time is about 0.75 ms: a 1 ms step is far above t_c / 10.
   const Result r = dem("validate " +
