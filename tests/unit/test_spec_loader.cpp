@@ -313,6 +313,21 @@ TEST(SpecLoader, MalformedJsonIsAnError) {
   EXPECT_NE(problems[0].find("line "), std::string::npos) << problems[0];  // where it broke
 }
 
+// A number past a double's range is named with its place, as a syntax error is (it was the JSON
+// library's "[json.exception.out_of_range.406] number overflow parsing '1e400'", with no place).
+TEST(SpecLoader, ANumberOutOfADoublesRangeIsNamedWithItsLineAndColumn) {
+  std::string text = good_with(R"("density": 2500)", R"("density": 2.5e400)");
+  const std::size_t at = text.find("2.5e400");
+  const std::size_t line_start = text.rfind('\n', at) + 1;
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  const std::string place = "line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1);
+  const auto problems = problems_of(text);
+  ASSERT_EQ(problems.size(), 1u) << listing(problems);
+  EXPECT_EQ(problems[0],
+            "spec: malformed JSON: " + place + ": the number 2.5e400 is out of a double's range (about ±1.8e308)")
+      << problems[0];
+}
+
 // ---------------------------------------------------------------------------------------------
 // Checker errors, one per rule
 
