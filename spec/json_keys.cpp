@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <limits>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -107,13 +109,28 @@ void check_lists(const nlohmann::json& object, const google::protobuf::Descripto
                  std::vector<std::string>& problems) {
   using google::protobuf::FieldDescriptor;
   for (const auto& [key, value] : object.items()) {
+    if (key.empty()) {  // the parser's own words: "Proto fields must have a name."
+      problems.push_back((at.empty() ? std::string("spec") : at) + ": a key is empty (\"\"): unknown field");
+      continue;
+    }
     const FieldDescriptor* field = field_named(message, key);
     if (field == nullptr || field->is_map()) continue;  // unknown: the parser names it
     const std::string path = at.empty() ? key : at + "." + key;
+    // an enum as a number: a value's number is taken as that value, any other number was read as
+    // the unset value (contact.normal 7: 'no normal model "" in this build')
+    auto check_enum = [&](const nlohmann::json& v, const std::string& where) {
+      if (field->type() != FieldDescriptor::TYPE_ENUM || !v.is_number()) return;
+      const std::int64_t n = v.is_number_integer() ? v.get<std::int64_t>() : std::int64_t{-1} << 40;
+      const bool known = n >= std::numeric_limits<int>::min() && n <= std::numeric_limits<int>::max() &&
+                         field->enum_type()->FindValueByNumber(static_cast<int>(n)) != nullptr;
+      if (!known)
+        problems.push_back(where + ": expected one of " + enum_names(*field->enum_type()) + ", got " + v.dump());
+    };
     const bool nested = field->type() == FieldDescriptor::TYPE_MESSAGE &&
                         field->message_type()->full_name().rfind("google.protobuf.", 0) != 0;
     if (!field->is_repeated()) {
       if (nested && value.is_object()) check_lists(value, *field->message_type(), path, problems);
+      check_enum(value, path);
       continue;
     }
     if (!value.is_array()) {
@@ -126,6 +143,8 @@ void check_lists(const nlohmann::json& object, const google::protobuf::Descripto
         problems.push_back(item + ": expected " + expected_item(*field) + ", got " + json_kind(value[k]));
       else if (nested && value[k].is_object())
         check_lists(value[k], *field->message_type(), item, problems);
+      else
+        check_enum(value[k], item);
     }
   }
 }
@@ -142,6 +161,16 @@ std::vector<std::string> repeated_keys(const std::string& json) {
   KeyWalker walker;
   nlohmann::json::sax_parse(json, &walker);
   return walker.repeated;
+}
+
+std::string enum_names(const google::protobuf::EnumDescriptor& type) {
+  std::string names;
+  for (int k = 0; k < type.value_count(); ++k) {
+    const std::string& name = type.value(k)->name();
+    if (name.find("UNSPECIFIED") != std::string::npos) continue;
+    names += (names.empty() ? "" : ", ") + name;
+  }
+  return names;
 }
 
 std::string expected_item(const google::protobuf::FieldDescriptor& field) {

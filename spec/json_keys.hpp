@@ -19,6 +19,9 @@ const google::protobuf::FieldDescriptor* field_named(const google::protobuf::Des
 // messages: "a number", "a whole number", "a string", "true or false", "a name", "an object".
 std::string expected_item(const google::protobuf::FieldDescriptor& field);
 
+// An enum's names as a spec gives them ("LINEAR, HERTZ"): every value but the UNSPECIFIED one.
+std::string enum_names(const google::protobuf::EnumDescriptor& type);
+
 // The paths ("interactions[0].restitution") of the keys repeated in their object, in the order met.
 // The text must be well-formed JSON (parse it for syntax first).
 std::vector<std::string> repeated_keys(const std::string& json);
@@ -26,7 +29,9 @@ std::vector<std::string> repeated_keys(const std::string& json);
 // The lists of a spec that are not lists: protobuf's JSON parser reads a single value given for a
 // repeated field ("tags": "a", "materials": {...}) as a list of one, flattens a list inside a
 // list, and drops a null element; each is a mistake to name ("tags: expected a list, got a
-// string"). `message` is the descriptor the document is read as.
+// string"). Also named here, where the parser's words would not say it: a key that is empty, and
+// an enum given as a number that is none of its values. `message` is the descriptor the document
+// is read as.
 std::vector<std::string> list_problems(const nlohmann::json& document, const google::protobuf::Descriptor& message);
 
 }  // namespace dem::spec

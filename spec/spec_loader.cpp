@@ -101,13 +101,8 @@ std::string reword_protobuf_error(const std::string& message) {
     if (google::protobuf::DescriptorPool::generated_pool()->FindMessageTypeByName(m[3].str()) != nullptr)
       return m[1].str() + ": expected an object, got " + m[2].str();
     std::string names;
-    if (const auto* e = google::protobuf::DescriptorPool::generated_pool()->FindEnumTypeByName(m[3].str())) {
-      for (int k = 0; k < e->value_count(); ++k) {
-        const std::string& name = e->value(k)->name();
-        if (name.find("UNSPECIFIED") != std::string::npos) continue;
-        names += (names.empty() ? "" : ", ") + name;
-      }
-    }
+    if (const auto* e = google::protobuf::DescriptorPool::generated_pool()->FindEnumTypeByName(m[3].str()))
+      names = enum_names(*e);
     return m[1].str() + ": expected one of " + (names.empty() ? m[3].str() : names) + ", got " + m[2].str();
   }
   if (std::regex_match(message, m, unknown)) return m[1].str() + "." + m[2].str() + ": unknown field";

@@ -293,6 +293,12 @@ TEST(SpecLoader, UnknownEnumValueIsAnError) {
 // a scalar field for type density": an independent tester).
 TEST(SpecLoader, AValueOfTheWrongShapeIsNamedInPlainWords) {
   const std::pair<std::pair<const char*, const char*>, const char*> cases[] = {
+      // an enum's number that is none of its values was read as the unset value ('no normal model
+      // "" in this build'); an empty key was protobuf's "Proto fields must have a name."
+      {{R"("normal": "LINEAR")", R"("normal": 7)"}, "contact.normal: expected one of LINEAR, HERTZ, got 7"},
+      {{R"("normal": "LINEAR")", R"("normal": 1.5)"}, "contact.normal: expected one of LINEAR, HERTZ, got 1.5"},
+      {{R"("contact": {)", R"("": 1, "contact": {)"}, "spec: a key is empty (\"\"): unknown field"},
+      {{R"("normal": "LINEAR")", R"("normal": "LINEAR", "": 1)"}, "contact: a key is empty (\"\"): unknown field"},
       {{R"("density": 2500)", R"("density": {"x": 1})"}, "materials[0].density: expected a number, got an object"},
       {{R"("density": 2500)", R"("density": [1, 2])"}, "materials[0].density: expected a number, got a list"},
       {{R"("density": 2500)", R"("de/nsity": 2500)"}, "materials[0].de/nsity: unknown field"},
