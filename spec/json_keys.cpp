@@ -8,16 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "spec/json_field_key.hpp"
+
 namespace dem::spec {
 namespace {
-
-// A key as the protobuf parser matches it: "normal_stiffness" and "normalStiffness" are one field.
-std::string field_of(const std::string& key) {
-  std::string out;
-  for (char c : key)
-    if (c != '_') out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 // Walks the document keeping the path to where it is and each open object's keys.
 class KeyWalker : public nlohmann::json_sax<nlohmann::json> {
@@ -27,7 +21,7 @@ class KeyWalker : public nlohmann::json_sax<nlohmann::json> {
   bool key(string_t& k) override {
     Level& level = levels_.back();
     level.key = k;
-    if (!level.fields.insert(field_of(k)).second) repeated.push_back(path());
+    if (!level.fields.insert(json_field_key(k)).second) repeated.push_back(path());
     return true;
   }
   bool start_object(std::size_t) override { return open(true); }

@@ -1,10 +1,12 @@
 #include "study/study_plan.hpp"
 
 #include <algorithm>
-#include <cctype>
-
 #include <cstdio>
 #include <set>
+#include <string>
+#include <vector>
+
+#include "spec/json_field_key.hpp"
 
 namespace dem::study {
 namespace {
@@ -52,34 +54,38 @@ const json* parent_of(const json& base, const json::json_pointer& pointer, std::
   return nullptr;
 }
 
-// A field's other spelling in a spec: protobuf's JSON takes its name (normal_stiffness) and its
-// JSON name (normalStiffness) alike.
-std::string other_spelling(const std::string& name) {
-  std::string other;
-  if (name.find('_') != std::string::npos) {
-    for (std::size_t k = 0; k < name.size(); ++k)
-      if (name[k] == '_' && k + 1 < name.size())
-        other += static_cast<char>(std::toupper(static_cast<unsigned char>(name[++k])));
-      else
-        other += name[k];
-  } else {
-    for (const char c : name)
-      if (std::isupper(static_cast<unsigned char>(c)))
-        (other += '_') += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      else
-        other += c;
+// The pointer to the field as the base spells it, segment by segment: protobuf takes a field by
+// any spelling (json_field_key), so a study's path in another spelling than the base's would have
+// set the field a second time (refused as given twice) or not found its parent. Past where the base
+// ends, the path's own names.
+json::json_pointer as_the_base_spells_it(const json& base, const json::json_pointer& pointer) {
+  std::vector<std::string> tokens;
+  for (json::json_pointer rest = pointer; !rest.empty(); rest.pop_back()) tokens.insert(tokens.begin(), rest.back());
+  json::json_pointer spelled;
+  const json* at = &base;
+  for (const std::string& token : tokens) {
+    std::string name = token;
+    const json* next = nullptr;
+    if (at != nullptr && at->is_object()) {
+      if (const auto found = at->find(token); found != at->end()) {
+        next = &*found;
+      } else {
+        for (auto it = at->begin(); it != at->end(); ++it)
+          if (spec::json_field_key(it.key()) == spec::json_field_key(token)) {
+            name = it.key();
+            next = &*it;
+            break;
+          }
+      }
+    } else if (at != nullptr && at->is_array() && !token.empty() &&
+               token.find_first_not_of("0123456789") == std::string::npos && token.size() < 10 &&
+               std::stoul(token) < at->size()) {
+      next = &(*at)[std::stoul(token)];
+    }
+    spelled /= name;
+    at = next;
   }
-  return other;
-}
-
-// The pointer to the field as the base's object `parent` spells it: a study's path in one spelling
-// and the base's field in the other set both, and the run's spec held the field twice (refused).
-std::string as_the_base_spells_it(const json& parent, const json::json_pointer& pointer) {
-  const std::string& last = pointer.back();
-  if (!parent.contains(last))
-    if (const std::string other = other_spelling(last); other != last && parent.contains(other))
-      return (pointer.parent_pointer() / other).to_string();
-  return pointer.to_string();
+  return spelled;
 }
 
 std::string cut_name(std::string name) {
@@ -235,9 +241,10 @@ StudyPlan plan_study(const json& study, const json& base_from_file) {
       try {
         std::string pointer_text = to_pointer(path);
         std::string why;
-        const json::json_pointer pointer(pointer_text);
+        const json::json_pointer pointer =
+            base ? as_the_base_spells_it(*base, json::json_pointer(pointer_text)) : json::json_pointer(pointer_text);
+        pointer_text = pointer.to_string();
         const json* parent = base && !pointer.empty() ? parent_of(*base, pointer, why) : nullptr;
-        if (parent != nullptr && parent->is_object()) pointer_text = as_the_base_spells_it(*parent, pointer);
         if (pointer.empty())
           problems.push_back(field + ": \"" + path + "\" is the whole spec, not a field of it");
         else if (base && parent == nullptr)

@@ -119,6 +119,27 @@ TEST(StudyPlan, AFieldNamedInTheOtherSpellingSetsTheBasesField) {
   EXPECT_EQ(plan.runs[0].spec["packings"][1]["seed"], 5);
 }
 
+// ... in any segment of the path, not only the last (particles[0].angular_velocity.z against a base's
+// angularVelocity: "the base spec has no /particles/0/angular_velocity"), and by any name protobuf
+// takes for the field (normalstiffness, as it matches case and underscores loosely: the run's spec
+// held normalStiffness and normalstiffness, "is given twice in its object"; independent testers).
+TEST(StudyPlan, EverySegmentOfAPathFindsTheBasesFieldByAnyNameTheParserTakes) {
+  const json base = json::parse(R"({"particles": [{"angularVelocity": {"z": 1}, "radius": 0.01}],
+                                    "materials": [{"normalStiffness": 1e5}]})");
+  const json study = {{"name", "s"},
+                      {"base", base},
+                      {"parameters",
+                       {{{"path", "particles[0].angular_velocity.z"}, {"values", {2}}},
+                        {{"path", "materials[0].normalstiffness"}, {"values", {3e5}}}}}};
+  const StudyPlan plan = plan_study(study, json());
+  ASSERT_EQ(plan.runs.size(), 1u);
+  const json& spec = plan.runs[0].spec;
+  EXPECT_EQ(spec["particles"][0]["angularVelocity"]["z"], 2) << spec.dump();
+  EXPECT_FALSE(spec["particles"][0].contains("angular_velocity")) << spec.dump();
+  EXPECT_EQ(spec["materials"][0]["normalStiffness"], 3e5) << spec.dump();
+  EXPECT_EQ(spec["materials"][0].size(), 1u) << spec.dump();
+}
+
 TEST(StudyPlan, EveryProblemIsNamedByItsField) {
   EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.x.y"}, {"values", {1}}}}), "parameters[0].path"));
   EXPECT_TRUE(has_problem(study_with({{{"path", "bonds.x.y"}, {"values", {1}}}}), "has no \"/bonds/x\""));
