@@ -119,25 +119,38 @@ std::string reword_protobuf_error(const std::string& message) {
   return "spec: " + message;
 }
 
-// The JSON library says "number overflow parsing '1e400'" with no place: the number's first
-// occurrence as a whole token of the text gives it (line and column as the library counts them).
-std::string overflow_problem(const std::string& text, const std::string& what) {
+std::string number_out_of_range(const std::string& text, const std::string& what) {
   static const std::regex literal(R"(number overflow parsing '([^']+)')");
   std::smatch m;
-  if (!std::regex_search(what, m, literal)) return "spec: malformed JSON: " + what;
+  if (!std::regex_search(what, m, literal)) return what;
   const std::string number = m[1].str();
+  const std::string problem = "the number " + number + " is out of a double's range (about ±1.8e308)";
   auto in_number = [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-';
   };
-  for (std::size_t at = text.find(number); at != std::string::npos; at = text.find(number, at + 1)) {
+  // the first occurrence outside a string (a name or key may hold the same characters), as a token
+  bool in_string = false;
+  for (std::size_t at = 0; at < text.size(); ++at) {
+    if (in_string) {
+      if (text[at] == '\\')
+        ++at;  // an escaped character, a quote too
+      else if (text[at] == '"')
+        in_string = false;
+      continue;
+    }
+    if (text[at] == '"') {
+      in_string = true;
+      continue;
+    }
     const std::size_t end = at + number.size();
-    if ((at > 0 && in_number(text[at - 1])) || (end < text.size() && in_number(text[end]))) continue;
+    if (text.compare(at, number.size(), number) != 0 || (at > 0 && in_number(text[at - 1])) ||
+        (end < text.size() && in_number(text[end])))
+      continue;
     const std::size_t line_start = at == 0 ? 0 : text.rfind('\n', at - 1) + 1;  // npos + 1 is 0
     const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
-    return "spec: malformed JSON: line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1) +
-           ": the number " + number + " is out of a double's range (about ±1.8e308)";
+    return "line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1) + ": " + problem;
   }
-  return "spec: malformed JSON: the number " + number + " is out of a double's range (about ±1.8e308)";
+  return problem;
 }
 
 api::JobSpec parse_json(const std::string& text) {
@@ -148,11 +161,16 @@ api::JobSpec parse_json(const std::string& text) {
   } catch (const nlohmann::json::parse_error& e) {
     throw SpecError({std::string("spec: malformed JSON: ") + e.what()});
   } catch (const nlohmann::json::exception& e) {  // a number too large for a double (1e999)
-    throw SpecError({overflow_problem(text, e.what())});
+    throw SpecError({"spec: malformed JSON: " + number_out_of_range(text, e.what())});
   }
   std::vector<std::string> repeated = repeated_keys(text);
   if (!repeated.empty()) {
-    for (std::string& path : repeated) path += ": is given twice in its object (the parser would keep the last one)";
+    for (std::string& path : repeated)
+      if (path.empty() || path.back() == '.')  // an empty key, given twice
+        path = (path.empty() ? std::string("spec") : path.substr(0, path.size() - 1)) +
+               ": a key is empty (\"\"), and given twice: unknown field";
+      else
+        path += ": is given twice in its object (the parser would keep the last one)";
     throw SpecError(repeated);
   }
   if (std::vector<std::string> lists = list_problems(document, *api::JobSpec::descriptor()); !lists.empty())

@@ -24,6 +24,9 @@ class SpecError : public std::runtime_error {
 
 // Parses the canonical JSON mapping; unknown fields and wrong types are errors.
 api::JobSpec parse_json(const std::string& text);
+// The JSON library's "number overflow parsing '1e400'" (`what`) with its place in `text`: "line 2,
+// column 19: the number 1e400 is out of a double's range (about ±1.8e308)"; another message as it is.
+std::string number_out_of_range(const std::string& text, const std::string& what);
 // The canonical JSON mapping of a spec (fields at their defaults left out).
 std::string to_json_text(const api::JobSpec& spec);
 // Parses protobuf wire bytes.

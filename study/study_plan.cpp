@@ -88,6 +88,14 @@ json::json_pointer as_the_base_spells_it(const json& base, const json::json_poin
   return spelled;
 }
 
+// The pointer with each name in its snake_case spelling: two spellings of one field are one field.
+std::string one_spelling(const json::json_pointer& pointer) {
+  std::string text;
+  for (json::json_pointer rest = pointer; !rest.empty(); rest.pop_back())
+    text.insert(0, "/" + spec::json_field_key(rest.back()));
+  return text;
+}
+
 std::string cut_name(std::string name) {
   if (name.size() <= 200) return name;
   name.resize(197);
@@ -249,17 +257,18 @@ StudyPlan plan_study(const json& study, const json& base_from_file) {
           problems.push_back(field + ": \"" + path + "\" is the whole spec, not a field of it");
         else if (base && parent == nullptr)
           problems.push_back(field + ": \"" + path + "\": " + why);
-        else if (!pointers.insert(pointer_text).second)
+        else if (!pointers.insert(one_spelling(pointer)).second)
           problems.push_back(field + ": \"" + path + "\" is varied twice");
         else
           for (const auto& [other, other_field] : varied) {
             // a field and one that holds it: the later would overwrite (part of) the earlier's value
-            const bool holds = other.rfind(pointer_text + "/", 0) == 0, held = pointer_text.rfind(other + "/", 0) == 0;
+            const std::string key = one_spelling(pointer);
+            const bool holds = other.rfind(key + "/", 0) == 0, held = key.rfind(other + "/", 0) == 0;
             if (holds || held)
               problems.push_back(field + ": \"" + path + "\" " + (holds ? "holds" : "is part of") + " a field " +
                                  other_field + " varies: vary one of them");
           }
-        varied.emplace_back(pointer_text, field);
+        varied.emplace_back(one_spelling(pointer), field);
         parameter.pointers.push_back(pointer_text);
       } catch (const std::exception& e) {
         problems.push_back(field + ": not a field's path: " + e.what());

@@ -299,6 +299,10 @@ TEST(SpecLoader, AValueOfTheWrongShapeIsNamedInPlainWords) {
       {{R"("normal": "LINEAR")", R"("normal": 1.5)"}, "contact.normal: expected one of LINEAR, HERTZ, got 1.5"},
       {{R"("contact": {)", R"("": 1, "contact": {)"}, "spec: a key is empty (\"\"): unknown field"},
       {{R"("normal": "LINEAR")", R"("normal": "LINEAR", "": 1)"}, "contact: a key is empty (\"\"): unknown field"},
+      {{R"("contact": {)", R"("": 1, "": 2, "contact": {)"}, "spec: a key is empty (\"\"), and given twice"},
+      // a spelling the parser does not take beside the field is an unknown field, not the field
+      // given twice (it was "materials[0].DENSITY: is given twice in its object")
+      {{R"("density": 2500)", R"("density": 2500, "DENSITY": 1)"}, "materials[0].DENSITY: unknown field"},
       {{R"("density": 2500)", R"("density": {"x": 1})"}, "materials[0].density: expected a number, got an object"},
       {{R"("density": 2500)", R"("density": [1, 2])"}, "materials[0].density: expected a number, got a list"},
       {{R"("density": 2500)", R"("de/nsity": 2500)"}, "materials[0].de/nsity: unknown field"},
@@ -321,9 +325,11 @@ TEST(SpecLoader, MalformedJsonIsAnError) {
 
 // A number past a double's range is named with its place, as a syntax error is (it was the JSON
 // library's "[json.exception.out_of_range.406] number overflow parsing '1e400'", with no place).
+// The same characters earlier in a name are not the number (an independent tester: the name's column).
 TEST(SpecLoader, ANumberOutOfADoublesRangeIsNamedWithItsLineAndColumn) {
   std::string text = good_with(R"("density": 2500)", R"("density": 2.5e400)");
-  const std::size_t at = text.find("2.5e400");
+  text.replace(text.find("two spheres"), 11, R"(2.5e400 \" 2.5e400)");
+  const std::size_t at = text.find("2.5e400", text.find("density"));
   const std::size_t line_start = text.rfind('\n', at) + 1;
   const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
   const std::string place = "line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1);
