@@ -87,7 +87,7 @@ int import_command(const std::vector<std::string>& args) {
   try {
     imported = import::import_inpt(text.str(), a.options);
   } catch (const legacy::InptError& e) {
-    std::fprintf(stderr, "dem import: %s: %s\n", a.inpt.c_str(), e.what());
+    std::fprintf(stderr, "dem import: %s: %s\n", a.inpt.c_str(), printable(e.what()).c_str());
     return 1;
   }
   const std::string json = imported.spec.dump(2) + "\n";
@@ -114,7 +114,7 @@ int import_command(const std::vector<std::string>& args) {
     return 1;
   } catch (const SceneError& e) {
     std::fprintf(stderr, "dem import: %s: the spec it makes does not validate (nothing written):\n  %s\n",
-                 a.inpt.c_str(), e.what());
+                 a.inpt.c_str(), printable(e.what()).c_str());
     return 1;
   }
   if (a.out.empty()) {

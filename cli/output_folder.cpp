@@ -13,6 +13,9 @@ void make_output_folder(const fs::path& folder, const std::string& option) {
   for (fs::path at = folder; !at.empty(); at = at.parent_path()) {
     std::error_code ec;
     const fs::file_status status = fs::status(at, ec);
+    if (std::error_code link_ec; fs::is_symlink(fs::symlink_status(at, link_ec)) && !fs::exists(status))
+      throw std::runtime_error(named + at.string() + " is a link to " + fs::read_symlink(at, link_ec).string() +
+                               ", which is not there");
     if (ec || !fs::exists(status)) {
       if (at == at.parent_path()) break;
       continue;

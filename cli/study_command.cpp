@@ -84,7 +84,8 @@ json read_json(const fs::path& path, const std::string& what) {
   try {
     j = json::parse(text.str());
   } catch (const json::exception& e) {  // where: "parse error at line 3, column 5: ..."; a number past a double
-    throw std::runtime_error(path.string() + ": the " + what + " is not JSON: " + e.what());
+    throw std::runtime_error(path.string() + ": the " + what +
+                             " is not JSON: " + spec::number_out_of_range(text.str(), e.what()));
   }
   // a key given twice would be taken last, silently, where dem validate refuses it
   if (const std::vector<std::string> twice = spec::repeated_keys(text.str()); !twice.empty())
@@ -288,11 +289,11 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
       const std::lock_guard<std::mutex> lock(shared);
       rows[k].state = "succeeded";
       rows[k].results = done;
-      std::printf("%s (done before, kept)\n", row_line(plan, rows[k]).c_str());
+      std::printf("%s (done before, kept)\n", printable(row_line(plan, rows[k])).c_str());
       write_table(out, plan, rows);  // a study of kept runs only still ends with their table
       return;
     }
-    fs::create_directories(folder);
+    make_output_folder(folder, "the run's folder");
     fs::remove(results);
     write_text(spec_file, specs[k].dump(2) + "\n");
     const fs::path log_file = folder / "run.log";
@@ -301,7 +302,7 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
       if (jobs > 1) (where += ", its lines in ") += log_file.string();
       const std::lock_guard<std::mutex> lock(shared);
       std::printf("run %d of %zu (%s) into %s\n", run.index, plan.runs.size(),
-                  study::describe_values(plan.parameters, run.values).c_str(), where.c_str());
+                  printable(study::describe_values(plan.parameters, run.values)).c_str(), where.c_str());
       std::fflush(stdout);
     }
     std::FILE* log = nullptr;
@@ -318,7 +319,7 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
                          folder.string(), options);
     } catch (const std::exception& e) {
       error = e.what();
-      if (log != nullptr) std::fprintf(log, "dem study: %s\n", e.what());
+      if (log != nullptr) std::fprintf(log, "dem study: %s\n", printable(e.what()).c_str());
     }
     if (log != nullptr) std::fclose(log);
     json found;
@@ -330,7 +331,7 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
     row.state = status == 0 ? "succeeded" : "failed";
     if (status != 0 && row.error.empty() && row.results.is_object()) row.error = row.results.value("error", "");
     failed += status != 0;
-    std::printf("%s\n", row_line(plan, row).c_str());
+    std::printf("%s\n", printable(row_line(plan, row)).c_str());
     std::fflush(stdout);
     write_table(out, plan, rows);
   };
@@ -363,10 +364,10 @@ int run_here(const study::StudyPlan& plan, const StudyInput& in, const fs::path&
                                  [&](const study::StudyRow& row) { return study::number_at(row, key).has_value(); });
     if (!any)
       std::printf("plot: no run has a number \"%s\" (results.json's dotted names: see study.csv's columns)\n",
-                  key.c_str());
+                  printable(key).c_str());
   }
-  std::printf("study \"%s\": %zu runs, %d failed; table %s, figure %s\n", plan.name.c_str(), plan.runs.size(), failed,
-              (out / "study.csv").c_str(), (out / "study.svg").c_str());
+  std::printf("study \"%s\": %zu runs, %d failed; table %s, figure %s\n", printable(plan.name).c_str(),
+              plan.runs.size(), failed, (out / "study.csv").c_str(), (out / "study.svg").c_str());
   return failed == 0 ? 0 : 1;
 }
 
@@ -489,10 +490,10 @@ int study_command(const std::vector<std::string>& args) {
     const study::StudyPlan plan = study::plan_study(in.study, in.base);
     if (plan_only) {
       check_runs(plan, in.base_dir);
-      std::printf("study \"%s\": %zu runs (%s), every spec valid\n", plan.name.c_str(), plan.runs.size(),
+      std::printf("study \"%s\": %zu runs (%s), every spec valid\n", printable(plan.name).c_str(), plan.runs.size(),
                   plan.grid ? "grid" : "zip");
       for (const study::StudyRun& run : plan.runs)
-        std::printf("run %d: %s\n", run.index, study::describe_values(plan.parameters, run.values).c_str());
+        std::printf("run %d: %s\n", run.index, printable(study::describe_values(plan.parameters, run.values)).c_str());
       return 0;
     }
     if (!a.flag("--submit")) return run_here(plan, in, out, threads, a.flag("--quiet"), jobs);
@@ -538,7 +539,7 @@ int study_command(const std::vector<std::string>& args) {
     std::fprintf(stderr, "%s: invalid base spec:\n", path.c_str());
     print_problems(e.problems());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "dem study: %s\n", e.what());
+    std::fprintf(stderr, "dem study: %s\n", printable(e.what()).c_str());
   }
   return 1;
 }

@@ -17,6 +17,17 @@ unsigned bidi_control_at(std::string_view text, std::size_t k) {
   return (b1 & 0xC0) == 0x80 && (b2 & 0xC0) == 0x80 && bidi ? code : 0;
 }
 
+// The length of the well-formed UTF-8 sequence of two to four bytes at `k`; 0 when the byte there
+// does not start one (a lone 0x9B, which an 8-bit terminal reads as CSI, or 0xFF).
+std::size_t utf8_sequence_at(std::string_view text, std::size_t k) {
+  const auto c = static_cast<unsigned char>(text[k]);
+  const std::size_t length = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+  if (length == 0 || k + length > text.size()) return 0;
+  for (std::size_t b = 1; b < length; ++b)
+    if ((static_cast<unsigned char>(text[k + b]) & 0xC0) != 0x80) return 0;
+  return length;
+}
+
 }  // namespace
 
 std::string printable(std::string_view text) {
@@ -40,6 +51,15 @@ std::string printable(std::string_view text) {
     } else if (c < 0x20 || c == 0x7F) {
       std::snprintf(escape, sizeof escape, "\\x%02x", c);
       out += escape;
+    } else if (c >= 0x80) {  // a whole UTF-8 character stays; a byte that is not one is escaped
+      const std::size_t length = utf8_sequence_at(text, k);
+      if (length == 0) {
+        std::snprintf(escape, sizeof escape, "\\x%02x", c);
+        out += escape;
+      } else {
+        out.append(text.substr(k, length));
+        k += length - 1;
+      }
     } else {
       out += static_cast<char>(c);
     }
@@ -48,7 +68,16 @@ std::string printable(std::string_view text) {
 }
 
 void print_problems(const std::vector<std::string>& problems) {
-  for (const std::string& p : problems) std::fprintf(stderr, "  %s\n", printable(p).c_str());
+  for (const std::string& problem : problems) {
+    // a problem of several lines (a file's problems, joined under its name) stays on several lines
+    std::size_t start = 0;
+    for (std::size_t end = problem.find('\n');; end = problem.find('\n', start)) {
+      const std::string line = problem.substr(start, end == std::string::npos ? std::string::npos : end - start);
+      std::fprintf(stderr, "  %s\n", printable(line).c_str());
+      if (end == std::string::npos) break;
+      start = end + 1;
+    }
+  }
 }
 
 }  // namespace dem::cli

@@ -87,12 +87,17 @@ std::optional<int> parse_verb_args(const Verb& verb, const std::vector<std::stri
     else  // one value per occurrence, never the next positional argument
       app.add_option(o.name, given[o.name])->expected(1)->allow_extra_args(false)->take_all();
   }
-  // a flag takes no value: CLI11 reads --wait=false as false and --wait=0 as a count
+  // a flag takes no value: CLI11 reads --wait=false as false and --wait=0 as a count; and an option
+  // given "=" and nothing: CLI11 took the next argument as its value (--out= --plan ran the study
+  // into a folder named --plan)
   for (const std::string& arg : args) {
     if (arg == "--") break;
-    for (const VerbOption& o : options)
+    for (const VerbOption& o : options) {
       if (o.value == nullptr && arg.rfind(std::string(o.name) + "=", 0) == 0)
         return usage_error(verb, std::string(o.name) + " takes no value (got \"" + arg + "\")");
+      if (o.value != nullptr && arg == std::string(o.name) + "=")
+        return usage_error(verb, std::string(o.name) + " is given an empty value");
+    }
   }
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 reads the arguments from the back
   try {

@@ -86,6 +86,19 @@ TEST_F(Cli, AFieldNameWithControlCharactersIsNamedWithThemVisible) {
     EXPECT_NE(r.output.find("bad\\x1b[2Jkey: unknown field"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << verb << "printed a raw ESC";
   }
+  // two problems of the file's JSON stay two lines (escaping the line break joined them with "\x0a")
+  std::string twice = good_with(R"("name": "cli test")", R"("name": "cli test", "": 2)");
+  twice.replace(twice.find(R"("radius": 0.01)"), 14, R"("radius": 0.01, "": 1)");
+  const Result r = dem("validate " + shell_quoted(write_spec("twice.json", twice)));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("spec: a key is empty (\"\"): unknown field\n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\n  particles[0]: a key is empty"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("\\x0a"), std::string::npos) << r.output;
+  // a byte that is not UTF-8 (a lone 0x9B, an 8-bit terminal's CSI) in the JSON parser's "last read"
+  const Result byte = dem("validate " + shell_quoted(write_spec("byte.json", good_with("cli test", "cli \x9b test"))));
+  EXPECT_EQ(byte.exit_code, 1) << byte.output;
+  EXPECT_NE(byte.output.find("\\x9b"), std::string::npos) << byte.output;
+  EXPECT_EQ(byte.output.find('\x9b'), std::string::npos) << "printed the raw byte";
 }
 
 TEST_F(Cli, ValidateNamesADtAboveTheStableLimit) {
@@ -512,6 +525,13 @@ TEST_F(Cli, RunWhoseOutIsAFileOrInsideOneNamesItAndKeepsTheFile) {
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line, "kept");
+  // a link to nothing: named as such (it was "cannot make the folder: File exists")
+  fs::create_symlink(dir_ / "nowhere", dir_ / "dangling");
+  const Result r = dem("run " + spec + " --out " + shell_quoted(dir_ / "dangling") + " --quiet");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("dangling is a link to " + (dir_ / "nowhere").string() + ", which is not there"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST_F(Cli, RunWithoutOutIsAUsageError) {

@@ -99,7 +99,10 @@ TEST_F(CliConventions, FlagsTakeNoValueAndNothingIsGivenTwiceOrEmpty) {
       {"run s.json --out o --quiet --quiet", "--quiet is given 2 times"},
       {"submit s.json --wait --wait", "--wait is given 2 times"},
       {"run s.json --out ''", "--out is given an empty value"},
-      {"fetch 1 --out=", "--out needs a value"},
+      {"fetch 1 --out=", "--out is given an empty value"},
+      // "=" and nothing took the next argument as the value: the study ran into a folder "--plan"
+      {"study s.json --out= --plan", "--out is given an empty value"},
+      {"run s.json --out= --quiet", "--out is given an empty value"},
       {"chains r --times '' --out f.svg", "--times is given an empty value"},
       {"status 1 --timeout 0x10", "--timeout is a number of seconds"},
       {"submit s.json --quiet --json", "--quiet and --json"},

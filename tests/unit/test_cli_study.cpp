@@ -208,6 +208,14 @@ TEST_F(CliStudy, AStudyWritesOverNoInputAndNoOtherStudysFolder) {
   EXPECT_NE(r.output.find("is its base spec itself"), std::string::npos) << r.output;
   EXPECT_EQ(read(base_named_as_table), kBase);
 
+  // a number past a double's range in the study file: named with its place, as dem validate does
+  const fs::path far = write_spec("far.json", R"({"base": "base.json",
+ "parameters": [{"path": "time.steps", "values": [10, 1e400]}]})");
+  r = run_dem("study " + shell_quoted(far) + " --out " + shell_quoted(dir_ / "far") + " --plan");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("line 2, column 55: the number 1e400 is out of a double's range"), std::string::npos)
+      << r.output;
+
   // --out a file: named, the file kept (it was the filesystem library's "Not a directory [FILE]")
   const fs::path notes = write_spec("notes.txt", "kept");
   r = run_dem("study " + shell_quoted(study) + " --out " + shell_quoted(notes) + " --quiet");
