@@ -60,10 +60,13 @@ struct Grain {
 
 // A particle's state is usable: its position, velocity and spin are finite and so are the squares
 // the energies and files take of them (a speed past ~1e154 m/s overflows m v^2 before it overflows).
-// All three tests are made (`&`, not `&&`): the kick asks every particle every step, and a branch per
-// test was a quarter of a sparse pour's kick.
+// All three tests are made, then combined (`&` of plain values, not `&&`): the kick asks every
+// particle every step, and a branch per test was a quarter of a sparse pour's kick.
 inline bool state_is_finite(const Vec3& x, const Vec3& v, const Vec3& w, double mass) {
-  return std::isfinite(x.squaredNorm()) & std::isfinite(mass * v.squaredNorm()) & std::isfinite(mass * w.squaredNorm());
+  const bool x_finite = std::isfinite(x.squaredNorm());
+  const bool v_finite = std::isfinite(mass * v.squaredNorm());
+  const bool w_finite = std::isfinite(mass * w.squaredNorm());
+  return x_finite & v_finite & w_finite;
 }
 
 // Applies new_to_old to one array (used for per-particle history kept outside Particles too).

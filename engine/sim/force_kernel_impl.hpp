@@ -481,7 +481,8 @@ class ForceKernelImpl final : public ForceKernel {
         v[i] = vi;
         w[i] = wi;
         // the end-of-step state, checked every step so that a blow-up is caught where it starts
-        finite = finite & state_is_finite(x[i], vi, wi, mass[i]);
+        const bool this_finite = state_is_finite(x[i], vi, wi, mass[i]);
+        finite = finite & this_finite;
       }
       out.bad = !finite;
       if constexpr (kTimed) out.times.range = seconds_since(range_start);

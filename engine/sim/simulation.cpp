@@ -647,7 +647,8 @@ double Simulation::half_kick_and_drift() {
           if (q) q[i] = (rotation_by(dt * wi) * q[i]).normalized();
           if (external && inv_mass[i] > 0) out.external_work += dt * external[i].dot(vi);
           out.moved2 = std::max(out.moved2, (xi - x0[i]).squaredNorm());
-          out.too_fast = out.too_fast | (vi.squaredNorm() > reach2_over_dt2 * radius[i] * radius[i]);  // no branch
+          const bool this_too_fast = vi.squaredNorm() > reach2_over_dt2 * radius[i] * radius[i];
+          out.too_fast = out.too_fast | this_too_fast;  // no branch
         }
         return out;
       },
