@@ -124,7 +124,7 @@ std::string number_out_of_range(const std::string& text, const std::string& what
   std::smatch m;
   if (!std::regex_search(what, m, literal)) return what;
   const std::string number = m[1].str();
-  const std::string problem = "the number " + number + " is out of a double's range (about ±1.8e308)";
+  std::string problem = "the number " + number + " is out of a double's range (about ±1.8e308)";
   auto in_number = [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-';
   };
