@@ -398,7 +398,7 @@ class ForceKernelImpl final : public ForceKernel {
     using Clock = PhaseProfile::Clock;
     auto seconds_since = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
     struct RangeOut {
-      bool bad = false;  // some particle's end-of-step state is not finite
+      bool bad = false;  // some particle's end-of-step state may not be finite (Simulation::step checks which)
       GatherTimes times;
     };
     Particles& p = s.particles;
@@ -408,6 +408,11 @@ class ForceKernelImpl final : public ForceKernel {
     const Vec3 g = s.gravity;
     const double alpha = s.local_damping;
     auto kick_range = [&](int begin, int end) {
+      // The scene's constants as locals: captured by reference, they were reloaded from memory at
+      // every particle.
+      const bool add_bonds = bonded;
+      const double h = half_dt, damping = alpha;
+      const Vec3 weight_per_mass = g;
       RangeOut out;
       Clock::time_point range_start;
       if constexpr (kTimed) range_start = Clock::now();
@@ -430,11 +435,15 @@ class ForceKernelImpl final : public ForceKernel {
       const int* __restrict wall_rows = s.wall_contacts.row_start.data();
       const MeshContacts& mc = s.mesh_contacts;
       const bool meshes_near = !s.meshes.empty() && !mc.none_near();
-      bool finite = true;
+      // Every particle's squared position, and speeds and spins weighted by mass, summed component by
+      // component: the terms are >= 0, so the sum is finite exactly when each is, but for a sum that
+      // overflows where no particle does, which Simulation::step's particle by particle check then
+      // clears. Three vertical sums instead of three squared norms and tests a particle.
+      Vec3 magnitudes = Vec3::Zero();
       for (int i = begin; i < end; ++i) {
         Vec3 f = as_vec3(sums[i].f), t = as_vec3(sums[i].t);
         sums[i] = BodySums{};  // zero for the next step's pair loop (while the line is in cache)
-        if (bonded) {
+        if (add_bonds) {
           f = f + f_next[i];
           t = t + torque[i];
         }
@@ -447,7 +456,10 @@ class ForceKernelImpl final : public ForceKernel {
           if (wall_rows[i] != wall_rows[i + 1]) {
             Clock::time_point t0;
             if constexpr (kTimed) t0 = Clock::now();
-            add_wall_forces(s, table, i, f, t);
+            Vec3 fw = f, tw = t;  // copies: f and t, whose addresses the call would take, stay in registers elsewhere
+            add_wall_forces(s, table, i, fw, tw);
+            f = fw;
+            t = tw;
             if constexpr (kTimed) {
               out.times.walls += seconds_since(t0);
               ++out.times.wall_intervals;
@@ -459,32 +471,35 @@ class ForceKernelImpl final : public ForceKernel {
             const bool timed = kTimed && mc.row_start[i] != mc.row_start[i + 1];
             Clock::time_point t0;
             if (timed) t0 = Clock::now();
-            add_mesh_forces(s, table, i, f, t);
+            Vec3 fm = f, tm = t;
+            add_mesh_forces(s, table, i, fm, tm);
+            f = fm;
+            t = tm;
             if (timed) {
               out.times.meshes += seconds_since(t0);
               ++out.times.mesh_intervals;
             }
           }
         }
-        f = f + mass[i] * g;
+        f = f + mass[i] * weight_per_mass;
         if (external) f = f + external[i];
         // local damping: each component loses alpha |F| against its velocity. A clump member's is
         // its body's, on the body's force and torque (kick_bodies): here it would take alpha of the
         // body's weight once per member (a stone of four spheres at alpha 0.3 floated).
-        if (alpha > 0 && (body == nullptr || body[i] < 0)) {
-          damp_locally(f, v[i], alpha);
-          damp_locally(t, w[i], alpha);
+        if (damping > 0 && (body == nullptr || body[i] < 0)) {
+          damp_locally(f, v[i], damping);
+          damp_locally(t, w[i], damping);
         }
         force[i] = f;
         torque[i] = t;
-        const Vec3 vi = v[i] + (half_dt * inv_mass[i]) * f, wi = w[i] + (half_dt * inv_inertia[i]) * t;
+        const Vec3 vi = v[i] + (h * inv_mass[i]) * f, wi = w[i] + (h * inv_inertia[i]) * t;
         v[i] = vi;
         w[i] = wi;
         // the end-of-step state, checked every step so that a blow-up is caught where it starts
-        const bool this_finite = state_is_finite(x[i], vi, wi, mass[i]);
-        finite = finite & this_finite;
+        const Vec3 xi = x[i];
+        magnitudes = magnitudes + (xi.cwiseProduct(xi) + mass[i] * (vi.cwiseProduct(vi) + wi.cwiseProduct(wi)));
       }
-      out.bad = !finite;
+      out.bad = !std::isfinite(magnitudes.sum());
       if constexpr (kTimed) out.times.range = seconds_since(range_start);
       return out;
     };

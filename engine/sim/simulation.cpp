@@ -508,7 +508,7 @@ void Simulation::step() {
     }
     first_too_fast_ = TooFast{step_, time(), p.id[worst], worst_ratio * p.radius[worst], p.radius[worst]};
   }
-  if (state_.non_finite && !first_non_finite_) {
+  if (state_.non_finite && !first_non_finite_) {  // the kick's sum of magnitudes is not finite: which particles?
     const Particles& p = state_.particles;
     NonFinite bad{step_, time(), -1, 0};
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -516,7 +516,7 @@ void Simulation::step() {
       ++bad.particles;
       if (bad.particle_id < 0 || p.id[i] < bad.particle_id) bad.particle_id = p.id[i];
     }
-    first_non_finite_ = bad;
+    if (bad.particles > 0) first_non_finite_ = bad;  // none: only the sum overflowed
   }
 }
 
@@ -618,6 +618,8 @@ double Simulation::half_kick_and_drift() {
       [&](int begin, int end) {
         // Raw pointers and whole-vector expressions: through the std::vectors the compiler kept
         // reloading their data pointers and called Eigen's assignment loops out of line (9% of a step).
+        // The step's constants as locals: captured by reference, they were reloaded at every particle.
+        const double step = dt, half_step = half_dt, too_fast2_over_r2 = reach2_over_dt2;
         Vec3* __restrict kick = state_.half_kick.data();
         Vec3* __restrict spin_kick = state_.spin_kick.data();
         Vec3* __restrict x = p.x.data();
@@ -631,26 +633,28 @@ double Simulation::half_kick_and_drift() {
         Quat* __restrict q = p.q.empty() ? nullptr : p.q.data();
         const Vec3* __restrict external = p.external.empty() ? nullptr : p.external.data();
         const double* __restrict radius = p.radius.data();
-        Drift out;
+        // the sums in locals, not in `out` (returned in the caller's memory: stored at every particle)
+        double moved2 = 0, external_work = 0;
+        bool too_fast = false;
         for (int i = begin; i < end; ++i) {
-          const Vec3 k = (half_dt * inv_mass[i]) * f[i];
+          const Vec3 k = (half_step * inv_mass[i]) * f[i];
           kick[i] = k;
           const Vec3 vi = v[i] + k;
           v[i] = vi;
-          const Vec3 sk = (half_dt * inv_inertia[i]) * t[i];
+          const Vec3 sk = (half_step * inv_inertia[i]) * t[i];
           spin_kick[i] = sk;
           const Vec3 wi = w[i] + sk;
           w[i] = wi;
-          const Vec3 xi = x[i] + dt * vi;
+          const Vec3 xi = x[i] + step * vi;
           x[i] = xi;
           // the orientation turns with the half-step spin, as the position moves with the half-step velocity
-          if (q) q[i] = (rotation_by(dt * wi) * q[i]).normalized();
-          if (external && inv_mass[i] > 0) out.external_work += dt * external[i].dot(vi);
-          out.moved2 = std::max(out.moved2, (xi - x0[i]).squaredNorm());
-          const bool this_too_fast = vi.squaredNorm() > reach2_over_dt2 * radius[i] * radius[i];
-          out.too_fast = out.too_fast | this_too_fast;  // no branch
+          if (q) q[i] = (rotation_by(step * wi) * q[i]).normalized();
+          if (external && inv_mass[i] > 0) external_work += step * external[i].dot(vi);
+          moved2 = std::max(moved2, (xi - x0[i]).squaredNorm());
+          const bool this_too_fast = vi.squaredNorm() > too_fast2_over_r2 * radius[i] * radius[i];
+          too_fast = too_fast | this_too_fast;  // no branch
         }
-        return out;
+        return Drift{moved2, external_work, too_fast};
       },
       [](const Drift& a, const Drift& b) {
         return Drift{std::max(a.moved2, b.moved2), a.external_work + b.external_work, a.too_fast || b.too_fast};

@@ -135,7 +135,7 @@ struct SimState {
   Vec3 gravity = Vec3::Zero();
   double dt = 0;
   bool record_contacts = true;  // keep per-contact forces in `pairs` (observers need them)
-  bool non_finite = false;      // some particle's position or velocity stopped being finite this step
+  bool non_finite = false;      // some particle's position or velocity may have stopped being finite this step
   // Some contact of this step overlaps by more than overlap_limit times the smaller radius (the
   // stability guard's limit), found in the force loop at the cost of a comparison per contact.
   double overlap_limit = 0.25;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "legacy/legacy_formats.hpp"
 #include "output/legacy_output.hpp"
@@ -109,6 +110,27 @@ TEST(StabilityGuard, NotANumberStopsTheRun) {
   ASSERT_FALSE(outcome.ok);
   EXPECT_NE(outcome.error.find("not a finite number"), std::string::npos) << outcome.error;
   EXPECT_NE(outcome.error.find("particle 1"), std::string::npos) << outcome.error;
+}
+
+// The kick sums every particle's squared position and mass-weighted squared speeds (a sum is finite
+// exactly when its terms are, but for an overflow of the sum itself): two spheres far apart, each
+// spinning with three quarters of the largest double of m w^2, are finite, though their sum is not;
+// no particle is named and the steps go on.
+TEST(StabilityGuard, LargeButFiniteStatesWhoseSumOverflowsAreNotABlowUp) {
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0.25, 1.0, 0.0, 1e4);
+  const double radius = 0.1, mass = sphere_mass(2500, radius);
+  ASSERT_GT(mass, 1.0) << "so that w^2 alone does not overflow where m w^2 does not";
+  const double spin = std::sqrt(0.75 * std::numeric_limits<double>::max() / mass);
+  s.particles.push_back(sphere({-1, 0, 0}, radius, Vec3::Zero(), {spin, 0, 0}));
+  s.particles.push_back(sphere({1, 0, 0}, radius, Vec3::Zero(), {spin, 0, 0}));
+  s.time.steps = 3;
+  Simulation sim(s);
+  for (int k = 0; k < 3; ++k) sim.step();
+  for (std::size_t i = 0; i < 2; ++i)
+    ASSERT_TRUE(
+        state_is_finite(sim.particles().x[i], sim.particles().v[i], sim.particles().w[i], sim.particles().mass[i]));
+  EXPECT_FALSE(sim.first_non_finite()) << "particle " << sim.first_non_finite()->particle_id + 1 << ", "
+                                       << sim.first_non_finite()->particles << " particles";
 }
 
 // A row of 12 touching spheres between two planes, the ninth pushed by a constant force, at ten
