@@ -609,10 +609,18 @@ double Simulation::half_kick_and_drift() {
   const double reach = 0.5 * scene_.numerics.max_overlap_fraction;
   const double reach2_over_dt2 = reach * reach / (dt * dt);
   struct Drift {
-    double moved2 = 0;         // the largest squared move since the neighbour build
-    double external_work = 0;  // of the constant external forces over this drift
+    double moved2 = 0;  // the largest squared move since the neighbour build
     bool too_fast = false;
   };
+  // The work of the constant external forces over this drift, summed block by block (kParticleBlock),
+  // then the blocks in order: the same bits on any number of threads, whose ranges are whole blocks.
+  // Summed per range, the ledger's external work (Energy.csv, results.json) changed in its last
+  // digits with the thread count.
+  double* __restrict work_of_block = nullptr;
+  if (!p.external.empty()) {
+    external_work_of_block_.assign((n + kParticleBlock - 1) / kParticleBlock, 0.0);
+    work_of_block = external_work_of_block_.data();
+  }
   const Drift d = reduce_ranges(
       n, kParallelMinParticles, Drift{},
       [&](int begin, int end) {
@@ -620,6 +628,7 @@ double Simulation::half_kick_and_drift() {
         // reloading their data pointers and called Eigen's assignment loops out of line (9% of a step).
         // The step's constants as locals: captured by reference, they were reloaded at every particle.
         const double step = dt, half_step = half_dt, too_fast2_over_r2 = reach2_over_dt2;
+        double* __restrict external_work = work_of_block;
         Vec3* __restrict kick = state_.half_kick.data();
         Vec3* __restrict spin_kick = state_.spin_kick.data();
         Vec3* __restrict x = p.x.data();
@@ -633,8 +642,8 @@ double Simulation::half_kick_and_drift() {
         Quat* __restrict q = p.q.empty() ? nullptr : p.q.data();
         const Vec3* __restrict external = p.external.empty() ? nullptr : p.external.data();
         const double* __restrict radius = p.radius.data();
-        // the sums in locals, not in `out` (returned in the caller's memory: stored at every particle)
-        double moved2 = 0, external_work = 0;
+        // the results in locals, not in `out` (returned in the caller's memory: stored at every particle)
+        double moved2 = 0;
         bool too_fast = false;
         for (int i = begin; i < end; ++i) {
           const Vec3 k = (half_step * inv_mass[i]) * f[i];
@@ -649,19 +658,23 @@ double Simulation::half_kick_and_drift() {
           x[i] = xi;
           // the orientation turns with the half-step spin, as the position moves with the half-step velocity
           if (q) q[i] = (rotation_by(step * wi) * q[i]).normalized();
-          if (external && inv_mass[i] > 0) external_work += step * external[i].dot(vi);
+          if (external && inv_mass[i] > 0) external_work[i / kParticleBlock] += step * external[i].dot(vi);
           moved2 = std::max(moved2, (xi - x0[i]).squaredNorm());
           const bool this_too_fast = vi.squaredNorm() > too_fast2_over_r2 * radius[i] * radius[i];
           too_fast = too_fast | this_too_fast;  // no branch
         }
-        return Drift{moved2, external_work, too_fast};
+        return Drift{moved2, too_fast};
       },
       [](const Drift& a, const Drift& b) {
-        return Drift{std::max(a.moved2, b.moved2), a.external_work + b.external_work, a.too_fast || b.too_fast};
+        return Drift{std::max(a.moved2, b.moved2), a.too_fast || b.too_fast};
       },
       kParticleBlock);
   moved_too_far_ = d.too_fast;
-  if (!p.external.empty()) add_work(ledger_.external, d.external_work);
+  if (!p.external.empty()) {
+    double external_work = 0;
+    for (const double work : external_work_of_block_) external_work += work;
+    add_work(ledger_.external, external_work);
+  }
   return d.moved2;
 }
 

@@ -218,6 +218,7 @@ class Simulation {
   TimeStepReport time_step_;
   std::unique_ptr<ForceKernel> kernel_;
   std::vector<Vec3> x_at_build_;
+  std::vector<double> external_work_of_block_;  // the drift's, per particle block (half_kick_and_drift)
   double skin_ = 0;
   std::int64_t step_ = 0;
   std::int64_t total_steps_ = 0;
