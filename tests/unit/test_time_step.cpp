@@ -139,6 +139,40 @@ TEST(TimeStep, ALoadedWallTooLightForTheStepIsRefused) {
   EXPECT_EQ(rejection(s), "");
 }
 
+// At the largest dtFraction, 0.1, the step gives the particles' contact with a wall held still
+// exactly 10 steps, and a loaded wall of any finite mass slightly fewer: a 40 kg sleeper on 2 g
+// spheres was refused, and a 2 kg plate on 0.1 g spheres was told to weigh "at least 1 kg" (an
+// independent check). A wall within 1e-3 of the held-still contact's time passes; a light one is still
+// refused, with a least mass that passes.
+TEST(TimeStep, AHeavyLoadedWallPassesAtTheLargestStepFraction) {
+  Scene s = sphere_and_rigid_material();
+  WallInit plate;
+  plate.material = 1;
+  plate.shape =
+      PlateShape{{Vec3(-0.1, -0.1, 0.02), Vec3(0.1, -0.1, 0.02), Vec3(0.1, 0.1, 0.02), Vec3(-0.1, 0.1, 0.02)}};
+  LoadControl load;
+  load.kind = LoadControl::Kind::Cyclic;
+  load.mass = 40;
+  load.direction = Vec3(0, 0, -1);
+  load.f_max = 1;
+  load.frequency = 5;
+  load.cycles = 1;
+  plate.load = load;
+  s.walls = {plate};
+  s.time.dt_fraction = 0.1;
+  EXPECT_EQ(rejection(s), "");
+  EXPECT_NEAR(choose(s).dt, kPi * 1e-4 / 10, 1e-15);  // the particles' own step
+  s.walls[0].load->mass = 2;
+  EXPECT_EQ(rejection(s), "");
+  s.walls[0].load->mass = 0.1;  // 50 times the sphere: 1% off the held-still contact's time
+  const std::string why = rejection(s);
+  EXPECT_NE(why.find("walls[0].load.mass: 0.1 kg is too light for the time step"), std::string::npos) << why;
+  // (m* / m)^(1/2) >= 1 - 1e-3 for the linear law: m M / (m + M) >= 0.998001 m, so M >= 0.99900 kg
+  EXPECT_NE(why.find("at least 0.999 kg"), std::string::npos) << why;
+  s.walls[0].load->mass = 1.0;
+  EXPECT_EQ(rejection(s), "");
+}
+
 TEST(TimeStep, LightestParticlesSetTheContactTime) {
   // Adding a sphere of half the radius (1/8 of the mass) shortens the shortest contact: small-small
   // with m* = m / 16 = 1.25e-4 kg.
