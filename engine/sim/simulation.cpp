@@ -468,6 +468,24 @@ void Simulation::step() {
     moved2 = std::max(moved2, drift_bodies(state_.bodies, state_.particles, x_at_build_, state_.dt, state_.half_kick,
                                            state_.spin_kick));
   }
+  // The particle that moved farthest for its size in this drift, with the velocity that moved it: after
+  // the step's second half kick its speed can be anything (at a step of 1e200 s a sphere resting on a
+  // plane was reported to have moved 0 m, and one whose speed overflowed -8e-3 m).
+  if (moved_too_far_ && !first_too_fast_) {
+    const Particles& p = state_.particles;
+    std::size_t worst = 0;
+    double worst_ratio = -1;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double ratio = state_.dt * p.v[i].norm() / p.radius[i];
+      const double key = std::isnan(ratio) ? std::numeric_limits<double>::infinity() : ratio;  // NaN: the worst
+      if (key > worst_ratio) {
+        worst_ratio = key;
+        worst = i;
+      }
+    }
+    first_too_fast_ = TooFast{step_ + 1, static_cast<double>(step_ + 1) * state_.dt, p.id[worst],
+                              state_.dt * p.v[worst].norm(), p.radius[worst]};
+  }
   double grown = 0;
   {
     const PhaseTimer timer(growth_profile, Phase::growth);
@@ -495,19 +513,6 @@ void Simulation::step() {
   }
   contacts_recorded_ = state_.record_contacts;
   ++step_;
-  if (moved_too_far_ && !first_too_fast_) {
-    const Particles& p = state_.particles;
-    std::size_t worst = 0;
-    double worst_ratio = -1;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const double ratio = state_.dt * p.v[i].norm() / p.radius[i];
-      if (ratio > worst_ratio) {
-        worst_ratio = ratio;
-        worst = i;
-      }
-    }
-    first_too_fast_ = TooFast{step_, time(), p.id[worst], worst_ratio * p.radius[worst], p.radius[worst]};
-  }
   if (state_.non_finite && !first_non_finite_) {  // the kick's sum of magnitudes is not finite: which particles?
     const Particles& p = state_.particles;
     NonFinite bad{step_, time(), -1, 0};

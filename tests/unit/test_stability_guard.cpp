@@ -243,6 +243,32 @@ TEST(StabilityGuard, SpheresFastEnoughToPassThroughEachOtherStopTheRun) {
   }
 }
 
+// The distance named is the one the drift moved the particle, dt times its half-step speed: a sphere
+// resting on a plane at a step of 1 s falls 4.905 m in its first drift. It was dt times the speed after
+// the step's second half kick, which the plane's push had made 5.3e6 m; at a step of 1e200 s a sphere
+// whose speed overflowed was said to have moved -8e-3 m (an independent check).
+TEST(StabilityGuard, TheDistanceNamedIsTheOneTheDriftMoved) {
+  Scene s = base_scene(LinearNormal::kName, 2500, 0, 0.25, 0.5, 0.0, 1e4);
+  s.particles.push_back(sphere({0, 0, 0.01}, 0.01));
+  s.walls.push_back(plane({0, 0, 0}, {0, 0, 1}, "floor"));
+  s.gravity = {0, 0, -9.81};
+  s.time.dt = 1;
+  s.time.allow_unstable_dt = true;
+  s.time.steps = 10;
+  {
+    Simulation sim(s);
+    const RunOutcome outcome = run(sim, {});
+    ASSERT_FALSE(outcome.ok);
+    EXPECT_NE(outcome.error.find("particle 1 moved 4.905e+00 m in one step at step 1 "), std::string::npos)
+        << outcome.error;
+  }
+  s.time.dt = 1e200;
+  Simulation sim(s);
+  const RunOutcome outcome = run(sim, {});
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_EQ(outcome.error.find("moved -"), std::string::npos) << outcome.error;
+}
+
 // A wall fast enough to pass through particles between two force evaluations. A plate pushed at
 // 1e4 m/s (5 cm a step) once went straight through two 5 mm spheres, which kept still, and the run
 // succeeded; a servo driving a plate the same way did too. A prescribed motion is refused at the
