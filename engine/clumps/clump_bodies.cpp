@@ -228,4 +228,10 @@ double bodies_rotational_energy(const ClumpBodies& bodies) {
   return e;
 }
 
+double bodies_translational_energy(const ClumpBodies& bodies) {
+  double e = 0;
+  for (std::size_t b = 0; b < bodies.size(); ++b) e += 0.5 * bodies.mass[b] * bodies.v[b].squaredNorm();
+  return e;
+}
+
 }  // namespace dem

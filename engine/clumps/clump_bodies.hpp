@@ -63,5 +63,6 @@ void kick_bodies(ClumpBodies& bodies, Particles& p, const Vec3& gravity, double 
 
 double bodies_kinetic_energy(const ClumpBodies& bodies);
 double bodies_rotational_energy(const ClumpBodies& bodies);
+double bodies_translational_energy(const ClumpBodies& bodies);
 
 }  // namespace dem

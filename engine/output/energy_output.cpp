@@ -17,8 +17,14 @@ std::vector<double> EnergyWriter::make_row(const Simulation& sim) {
   const EnergyLedger& in = sim.energy_input();
   const double dissipated = in.initial_energy + in.total() - (kinetic + contacts + bonds + gravity);
   const Vec3 p = sim.linear_momentum(), l = sim.angular_momentum();
-  return {sim.time(), kinetic - rotation, rotation, contacts, bonds, gravity, in.walls, in.external,
-          in.growth,  dissipated,         p.x(),    p.y(),    p.z(), l.x(),   l.y(),    l.z()};
+  return {sim.time(), sim.translational_energy(),
+          rotation,   contacts,
+          bonds,      gravity,
+          in.walls,   in.external,
+          in.growth,  dissipated,
+          p.x(),      p.y(),
+          p.z(),      l.x(),
+          l.y(),      l.z()};
 }
 
 void EnergyWriter::frame(const Simulation& sim) {

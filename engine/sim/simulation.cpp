@@ -895,6 +895,16 @@ double Simulation::rotational_energy() const {
   return e;
 }
 
+double Simulation::translational_energy() const {
+  const Particles& p = state_.particles;
+  double e = bodies_translational_energy(state_.bodies);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.body.empty() && p.body[i] >= 0) continue;  // counted with its body
+    e += 0.5 * p.mass[i] * p.v[i].squaredNorm();
+  }
+  return e;
+}
+
 double Simulation::gravitational_energy() const {
   const Particles& p = state_.particles;
   double e = 0;
