@@ -174,17 +174,23 @@ void StabilityGuard::check(const Simulation& sim) const {
   const double energy = mechanical_energy(sim, contacts);
   lowest_balance_ = std::min(lowest_balance_, energy - fed);
   if (energy - fed > lowest_balance_ + slack + 1e-300) {
-    // name the fastest particle: that is where the energy went
-    std::size_t fastest = 0;
+    // name the particle with the most kinetic energy, of translation and rotation: that is where the
+    // energy went (by speed alone, a still, fixed sphere was named beside one spinning up)
+    const double k = sim.scene().grain().inertia_factor();
+    auto kinetic = [&](std::size_t i) {
+      return p.mass[i] * (p.v[i].squaredNorm() + k * p.radius[i] * p.radius[i] * p.w[i].squaredNorm());
+    };
+    std::size_t liveliest = 0;
     for (std::size_t i = 1; i < p.size(); ++i)
-      if (p.v[i].squaredNorm() > p.v[fastest].squaredNorm()) fastest = i;
+      if (kinetic(i) > kinetic(liveliest)) liveliest = i;
     char buf[300];
     std::snprintf(buf, sizeof buf,
                   "unstable: mechanical energy grew from %.6e J to %.6e J, more than the %.6e J its sources fed in "
                   "(less that work it rose from its lowest, %.6e J, to %.6e J), ",
                   initial_energy_, energy, fed, lowest_balance_, energy - fed);
-    throw InstabilityError(buf + where(sim, static_cast<int>(fastest)) +
-                           " (the fastest); likely cause: the time step is too large for the contact stiffness (" +
+    throw InstabilityError(buf + where(sim, static_cast<int>(liveliest)) +
+                           " (the one with the most kinetic energy); likely cause: the time step is too large for the "
+                           "contact stiffness (" +
                            sim.time_step().describe() + ")");
   }
 }

@@ -10,6 +10,7 @@
 #include "output/legacy_output.hpp"
 #include "output/run_writers.hpp"
 #include "sim/stability_guard.hpp"
+#include "spec/spec_loader.hpp"
 #include "support/scenes.hpp"
 
 namespace dem::test {
@@ -267,6 +268,25 @@ TEST(StabilityGuard, TheDistanceNamedIsTheOneTheDriftMoved) {
   const RunOutcome outcome = run(sim, {});
   ASSERT_FALSE(outcome.ok);
   EXPECT_EQ(outcome.error.find("moved -"), std::string::npos) << outcome.error;
+}
+
+// Energy made by too large a step is blamed on the particle that holds it: a bonded pair, one sphere
+// fixed and the other spinning about the bond's axis, twisted at a step of 1 s. Named by speed alone,
+// the fixed sphere (still, the first) was "the fastest" (an independent check).
+TEST(StabilityGuard, EnergyGrowthNamesTheParticleWithTheMostKineticEnergy) {
+  const Scene s = spec::to_scene(spec::parse_json(R"({"name": "twist",
+      "materials": [{"name": "m", "density": 1000, "normalStiffness": 1e6, "poissonRatio": 0.3}],
+      "interactions": [{"a": "m", "b": "m", "restitution": 0.5, "friction": 0.5}],
+      "particles": [{"position": {}, "radius": 1, "material": "m", "fixed": true},
+                    {"position": {"x": 2}, "radius": 1, "material": "m", "angularVelocity": {"x": 1}}],
+      "bonds": {"youngsModulus": 1e6, "tensileStrength": 1e6, "shearStrength": 1e6},
+      "time": {"steps": 4, "dt": 1, "allowUnstableDt": true}})"));
+  Simulation sim(s);
+  const RunOutcome outcome = run(sim, {});
+  ASSERT_FALSE(outcome.ok);
+  EXPECT_NE(outcome.error.find("mechanical energy grew"), std::string::npos) << outcome.error;
+  EXPECT_NE(outcome.error.find("particle 2 (the one with the most kinetic energy)"), std::string::npos)
+      << outcome.error;
 }
 
 // A wall fast enough to pass through particles between two force evaluations. A plate pushed at
