@@ -107,11 +107,8 @@ TEST(TimeStep, ContactWithARigidWallCounts) {
   EXPECT_NEAR(choose(s).contact_time, kPi * 1e-4, 1e-15);
 }
 
-// A wall moved by its load (a cyclic load's mass M) is a body of its own: a contact with it moves
-// m* = m M / (m + M). A plate of 1e-6 kg on spheres of 2e-3 kg rang on their contacts faster than
-// the step resolves, and was stopped after 938 steps (an independent tester): a wall too light for
-// the step is refused, naming its mass and the least it needs; a heavy one keeps the particles' step.
-TEST(TimeStep, ALoadedWallTooLightForTheStepIsRefused) {
+// The sphere of 2e-3 kg under a plate of the rigid material, cyclically loaded, of mass `mass`.
+Scene sphere_under_loaded_plate(double mass) {
   Scene s = sphere_and_rigid_material();
   WallInit plate;
   plate.material = 1;
@@ -119,13 +116,22 @@ TEST(TimeStep, ALoadedWallTooLightForTheStepIsRefused) {
       PlateShape{{Vec3(-0.1, -0.1, 0.02), Vec3(0.1, -0.1, 0.02), Vec3(0.1, 0.1, 0.02), Vec3(-0.1, 0.1, 0.02)}};
   LoadControl load;
   load.kind = LoadControl::Kind::Cyclic;
-  load.mass = 1e-6;
+  load.mass = mass;
   load.direction = Vec3(0, 0, -1);
   load.f_max = 1;
   load.frequency = 5;
   load.cycles = 1;
   plate.load = load;
   s.walls = {plate};
+  return s;
+}
+
+// A wall moved by its load (a cyclic load's mass M) is a body of its own: a contact with it moves
+// m* = m M / (m + M). A plate of 1e-6 kg on spheres of 2e-3 kg rang on their contacts faster than
+// the step resolves, and was stopped after 938 steps (an independent tester): a wall too light for
+// the step is refused, naming its mass and the least it needs; a heavy one keeps the particles' step.
+TEST(TimeStep, ALoadedWallTooLightForTheStepIsRefused) {
+  Scene s = sphere_under_loaded_plate(1e-6);
   const std::string why = rejection(s);
   EXPECT_NE(why.find("walls[0].load.mass: 1e-06 kg is too light for the time step"), std::string::npos) << why;
   // the least mass it names passes: (m* / m)^(1/2) = 10 dt / t_c = 1/5 for the linear law, so m* = m / 25
@@ -145,20 +151,7 @@ TEST(TimeStep, ALoadedWallTooLightForTheStepIsRefused) {
 // independent check). A wall within 1e-3 of the held-still contact's time passes; a light one is still
 // refused, with a least mass that passes.
 TEST(TimeStep, AHeavyLoadedWallPassesAtTheLargestStepFraction) {
-  Scene s = sphere_and_rigid_material();
-  WallInit plate;
-  plate.material = 1;
-  plate.shape =
-      PlateShape{{Vec3(-0.1, -0.1, 0.02), Vec3(0.1, -0.1, 0.02), Vec3(0.1, 0.1, 0.02), Vec3(-0.1, 0.1, 0.02)}};
-  LoadControl load;
-  load.kind = LoadControl::Kind::Cyclic;
-  load.mass = 40;
-  load.direction = Vec3(0, 0, -1);
-  load.f_max = 1;
-  load.frequency = 5;
-  load.cycles = 1;
-  plate.load = load;
-  s.walls = {plate};
+  Scene s = sphere_under_loaded_plate(40);
   s.time.dt_fraction = 0.1;
   EXPECT_EQ(rejection(s), "");
   EXPECT_NEAR(choose(s).dt, kPi * 1e-4 / 10, 1e-15);  // the particles' own step
