@@ -153,6 +153,10 @@ void refuse_light_loaded_walls(const Scene& scene, const ForceKernel& kernel, co
   for (std::size_t k = 0; k < scene.walls.size(); ++k) {
     const WallInit& w = scene.walls[k];
     if (!w.load || w.load->kind != LoadControl::Kind::Cyclic || !(w.load->mass > 0)) continue;
+    // The least mass that resolves the contact with every material's smallest particle: named for the
+    // one that needs the most (named for the first that failed, it was refused again for the next).
+    int worst = -1;
+    double least_mass = 0;
     for (int a = 0; a < static_cast<int>(smallest.size()); ++a) {
       if (smallest[a].mass == kInf) continue;
       const double m = smallest[a].mass, rad = smallest[a].radius;
@@ -168,20 +172,29 @@ void refuse_light_loaded_walls(const Scene& scene, const ForceKernel& kernel, co
       if (time_with(w.load->mass) >= needed) continue;
       double lo = w.load->mass, hi = std::max(1.0, 1e3 * m);  // the lightest mass that passes
       for (int tries = 0; tries < 60 && time_with(hi) < needed; ++tries) hi *= 10;
-      while (hi / lo > 1.001) {
+      while (hi / lo > 1 + 1e-6) {
         const double mid = std::sqrt(lo * hi);
         (time_with(mid) >= needed ? hi : lo) = mid;
       }
-      char buf[600];
-      std::snprintf(buf, sizeof buf,
-                    "%s.load.mass: %.6g kg is too light for the time step: on a contact with a %.3g kg "
-                    "particle it moves %.3g kg, a contact of %.3e s, which the step of %.6e s does not resolve (10 "
-                    "steps at least, or as many as with the wall held still); give the wall a mass of at least %.3g "
-                    "kg, or a smaller time.dtFraction",
-                    w.where(k).c_str(), w.load->mass, m, m * w.load->mass / (m + w.load->mass), time_with(w.load->mass),
-                    r.dt, hi);
-      throw SceneError(buf);
+      if (hi > least_mass) least_mass = hi, worst = a;
     }
+    if (worst < 0) continue;
+    const double m = smallest[worst].mass;
+    const double m_star = m * w.load->mass / (m + w.load->mass);
+    const double t = kernel.contact_time(worst, w.material, m_star, smallest[worst].radius, r.reference_speed);
+    // rounded up to the three digits printed: the mass as printed passes (rounded to nearest, it was
+    // refused again when given)
+    const double unit = std::pow(10.0, std::floor(std::log10(least_mass)) - 2);
+    const double printed = std::ceil(least_mass / unit) * unit;
+    char buf[600];
+    std::snprintf(buf, sizeof buf,
+                  "%s.load.mass: %.6g kg is too light for the time step: on a contact with a %.3g kg "
+                  "particle it moves %.3g kg, a contact of %.3e s, which the step of %.6e s does not resolve (10 "
+                  "steps at least, or as many as with the wall held still); give the wall a mass of at least %.3g "
+                  "kg, or a smaller %s",
+                  w.where(k).c_str(), w.load->mass, m, m_star, t, r.dt, printed,
+                  scene.time.dt > 0 ? "time.dt" : "time.dtFraction");
+    throw SceneError(buf);
   }
 }
 

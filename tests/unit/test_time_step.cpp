@@ -10,6 +10,7 @@
 #include "sim/kernel_select.hpp"
 #include "core/errors.hpp"
 #include "sim/time_step.hpp"
+#include "spec/spec_loader.hpp"
 
 namespace dem {
 namespace {
@@ -164,6 +165,48 @@ TEST(TimeStep, AHeavyLoadedWallPassesAtTheLargestStepFraction) {
   EXPECT_NE(why.find("at least 0.999 kg"), std::string::npos) << why;
   s.walls[0].load->mass = 1.0;
   EXPECT_EQ(rejection(s), "");
+}
+
+// The least mass a refusal names passes when given, whatever the step and the law, and with
+// particles of two materials: it was rounded to the nearest of three digits (refused again when
+// given), and named for the first material whose particle it failed, so that the next refusal named
+// the other's (an independent check). With a given dt the advice is a smaller dt.
+TEST(TimeStep, TheLeastMassARefusalNamesPasses) {
+  auto scene = [](const std::string& law, const std::string& time) {
+    return spec::to_scene(spec::parse_json(R"({"materials": [
+        {"name": "g", "density": 2500, "normalStiffness": 1e5, "youngsModulus": 1e7, "poissonRatio": 0.25},
+        {"name": "steel", "rigid": true},
+        {"name": "h", "density": 7500, "normalStiffness": 4e5, "youngsModulus": 2e7, "poissonRatio": 0.2}],
+      "interactions": [{"a": "g", "b": "g", "restitution": 0.5, "friction": 0.3},
+                       {"a": "g", "b": "steel", "restitution": 0.5, "friction": 0.3},
+                       {"a": "h", "b": "h", "restitution": 0.7, "friction": 0.3},
+                       {"a": "g", "b": "h", "restitution": 0.6, "friction": 0.3},
+                       {"a": "h", "b": "steel", "restitution": 0.4, "friction": 0.3}],
+      "contact": {"normal": ")" + law + R"("},
+      "particles": [{"position": {"z": 0.005}, "radius": 0.005, "material": "g"},
+                    {"position": {"x": 0.02, "z": 0.005}, "radius": 0.005, "material": "h"}],
+      "walls": [{"name": "press", "material": "steel",
+                 "plate": {"c1": {"x": -0.01, "y": -0.01, "z": 0.0101}, "c2": {"x": 0.04, "y": -0.01, "z": 0.0101},
+                           "c3": {"x": 0.04, "y": 0.04, "z": 0.0101}, "c4": {"x": -0.01, "y": 0.04, "z": 0.0101}},
+                 "load": {"mass": 1, "cyclic": {"fMin": 0.1, "fMax": 1, "frequency": 50, "cycles": 2}}}],
+      "gravity": {"z": -9.81}, "time": )" + time +
+                                           "}"));
+  };
+  for (const std::string law : {"LINEAR", "HERTZ"})
+    for (const std::string time : {R"({"steps": 10, "dtFraction": 0.1})", R"({"steps": 10, "dtFraction": 0.09})",
+                                   R"({"steps": 10, "dtFraction": 0.05})", R"({"steps": 10, "dt": 2e-6})"}) {
+      Scene s = scene(law, time);
+      s.walls[0].load->mass = 1e-9;  // light enough for every case (1e-6 kg passes Hertz at dt 2e-6 s)
+      const std::string why = rejection(s);
+      const std::size_t at = why.find("give the wall a mass of at least ");
+      ASSERT_NE(at, std::string::npos) << law << " " << time << ": " << why;
+      const double least = std::stod(why.substr(at + 33));
+      EXPECT_NE(why.find(s.time.dt > 0 ? "or a smaller time.dt" : "or a smaller time.dtFraction"), std::string::npos)
+          << why;
+      EXPECT_EQ(why.find("time.dtFraction") != std::string::npos, s.time.dt == 0) << why;
+      s.walls[0].load->mass = least;
+      EXPECT_EQ(rejection(s), "") << law << " " << time << ": the " << least << " kg named is refused";
+    }
 }
 
 TEST(TimeStep, LightestParticlesSetTheContactTime) {
