@@ -116,10 +116,9 @@ class Simulation {
   bool wall_varies(int k) const { return boundaries_.varies(k); }
   bool any_wall_varies() const { return boundaries_.any_varies(); }
 
-  double kinetic_energy() const;     // translational + rotational, J
-  double rotational_energy() const;  // the rotational part, J
-  double translational_energy()
-      const;  // the translational part, J (summed on its own: not the round-off of the difference)
+  double kinetic_energy() const;        // translational + rotational, J
+  double rotational_energy() const;     // the rotational part, J
+  double translational_energy() const;  // the translational part, J, summed on its own
   double gravitational_energy() const;  // -sum m g.x, J
   const EnergyLedger& energy_input() const { return ledger_; }
   // Kinetic, gravitational, and elastic energy of the contacts and the bonds, J.
