@@ -456,10 +456,7 @@ class ForceKernelImpl final : public ForceKernel {
           if (wall_rows[i] != wall_rows[i + 1]) {
             Clock::time_point t0;
             if constexpr (kTimed) t0 = Clock::now();
-            Vec3 fw = f, tw = t;  // copies: f and t, whose addresses the call would take, stay in registers elsewhere
-            add_wall_forces(s, table, i, fw, tw);
-            f = fw;
-            t = tw;
+            add_wall_forces(s, table, i, f, t);
             if constexpr (kTimed) {
               out.times.walls += seconds_since(t0);
               ++out.times.wall_intervals;
@@ -471,10 +468,7 @@ class ForceKernelImpl final : public ForceKernel {
             const bool timed = kTimed && mc.row_start[i] != mc.row_start[i + 1];
             Clock::time_point t0;
             if (timed) t0 = Clock::now();
-            Vec3 fm = f, tm = t;
-            add_mesh_forces(s, table, i, fm, tm);
-            f = fm;
-            t = tm;
+            add_mesh_forces(s, table, i, f, t);
             if (timed) {
               out.times.meshes += seconds_since(t0);
               ++out.times.mesh_intervals;

@@ -876,12 +876,17 @@ void Simulation::build_mesh_contacts(const std::vector<int>& new_to_old) {
 double Simulation::kinetic_energy() const {
   const Particles& p = state_.particles;
   double e = bodies_kinetic_energy(state_.bodies);
-  const double k = scene_.grain().inertia_factor();
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.body.empty() && p.body[i] >= 0) continue;  // counted with its body
-    e += 0.5 * p.mass[i] * (p.v[i].squaredNorm() + k * p.radius[i] * p.radius[i] * p.w[i].squaredNorm());
+    e += particle_kinetic_energy(i);
   }
   return e;
+}
+
+double Simulation::particle_kinetic_energy(std::size_t i) const {
+  const Particles& p = state_.particles;
+  const double k = scene_.grain().inertia_factor();
+  return 0.5 * p.mass[i] * (p.v[i].squaredNorm() + k * p.radius[i] * p.radius[i] * p.w[i].squaredNorm());
 }
 
 double Simulation::rotational_energy() const {

@@ -120,6 +120,8 @@ class Simulation {
   double rotational_energy() const;     // the rotational part, J
   double translational_energy() const;  // the translational part, J, summed on its own
   double gravitational_energy() const;  // -sum m g.x, J
+  // Particle i's kinetic energy as a free sphere (a clump member's by its own motion), J.
+  double particle_kinetic_energy(std::size_t i) const;
   const EnergyLedger& energy_input() const { return ledger_; }
   // Kinetic, gravitational, and elastic energy of the contacts and the bonds, J.
   double mechanical_energy() const;

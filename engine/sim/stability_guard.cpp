@@ -176,13 +176,9 @@ void StabilityGuard::check(const Simulation& sim) const {
   if (energy - fed > lowest_balance_ + slack + 1e-300) {
     // name the particle with the most kinetic energy, of translation and rotation: that is where the
     // energy went (by speed alone, a still, fixed sphere was named beside one spinning up)
-    const double k = sim.scene().grain().inertia_factor();
-    auto kinetic = [&](std::size_t i) {
-      return p.mass[i] * (p.v[i].squaredNorm() + k * p.radius[i] * p.radius[i] * p.w[i].squaredNorm());
-    };
     std::size_t liveliest = 0;
     for (std::size_t i = 1; i < p.size(); ++i)
-      if (kinetic(i) > kinetic(liveliest)) liveliest = i;
+      if (sim.particle_kinetic_energy(i) > sim.particle_kinetic_energy(liveliest)) liveliest = i;
     char buf[300];
     std::snprintf(buf, sizeof buf,
                   "unstable: mechanical energy grew from %.6e J to %.6e J, more than the %.6e J its sources fed in "
