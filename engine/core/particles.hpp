@@ -60,8 +60,8 @@ struct Grain {
 
 // A particle's state is usable: its position, velocity and spin are finite and so are the squares
 // the energies and files take of them (a speed past ~1e154 m/s overflows m v^2 before it overflows).
-// All three tests are made, then combined (`&` of plain values, not `&&`): the kick asks every
-// particle every step, and a branch per test was a quarter of a sparse pour's kick.
+// The kick no longer asks it of every particle (it tests one sum a range, force_kernel_impl.hpp); the
+// guard and Simulation::step ask it particle by particle when that sum or a frame needs it.
 inline bool state_is_finite(const Vec3& x, const Vec3& v, const Vec3& w, double mass) {
   const bool x_finite = std::isfinite(x.squaredNorm());
   const bool v_finite = std::isfinite(mass * v.squaredNorm());
