@@ -215,13 +215,16 @@ json StudyManager::describe(const StudyRecord& study) const {
   json jobs = json::array();
   bool finished = true;
   double progress = 0;
-  for (const study::StudyRow& row : r) {
+  for (study::StudyRow row : r) {
+    // One snapshot of the job for its state, progress and finish: rows() read it a moment earlier,
+    // and a job ending in between made a study "finished" with a run still "running" in its counts.
+    const std::optional<JobRecord> job = jobs_.get(row.job);
+    if (job) row.state = to_string(job->state);
     ++counts[row.state];
     json values = json::object();
     for (std::size_t k = 0; k < p.parameters.size() && k < row.values.size(); ++k)
       values[p.parameters[k].path] = row.values[k];
     json j = {{"run", row.index}, {"job", row.job}, {"parameters", values}, {"state", row.state}};
-    const std::optional<JobRecord> job = jobs_.get(row.job);
     if (job) {
       j["progress"] = job->progress();
       progress += job->progress();
