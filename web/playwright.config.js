@@ -1,7 +1,8 @@
-// Browser tests of the viewer (web/tests/*.spec.js): Debian's headless chromium, driven by
+// Browser tests of the viewer (web/tests/*.spec.js): Debian's chromium-headless-shell, driven by
 // Playwright, against the real dem-server on loopback serving web/dist (see tests/global-setup.js).
 //   cd web && npx playwright test            (after scripts/build: needs build/dem, build/dem-server, web/dist)
-// Environment: DEM_BUILD_DIR (default ../build), DEM_CHROMIUM (default /usr/bin/chromium).
+// Environment: DEM_BUILD_DIR (default ../build), DEM_CHROMIUM (default /usr/bin/chromium-headless-shell,
+// Debian's Chromium without its browser UI; a full chromium works too, at about 4x the CPU a page).
 // Each test keeps screenshots in web/test-results/<test>/ (and attaches them to the report).
 import { defineConfig } from '@playwright/test';
 
@@ -28,7 +29,7 @@ export default defineConfig({
     screenshot: 'on',
     trace: 'retain-on-failure',
     launchOptions: {
-      executablePath: process.env.DEM_CHROMIUM || '/usr/bin/chromium',
+      executablePath: process.env.DEM_CHROMIUM || '/usr/bin/chromium-headless-shell',
       args: [
         '--no-sandbox',
         // WebGL without a GPU: SwiftShader, Chromium's software GL
