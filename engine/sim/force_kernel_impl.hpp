@@ -16,13 +16,15 @@
 
 namespace dem {
 
-template <class Law, bool kWalls>
+// `walls`: the scene has walls or meshes (at some stage). A run-time flag, not a template parameter: a
+// predictable branch a particle, where a second instantiation of every law doubled the kernels' compile time.
+template <class Law>
 class ForceKernelImpl final : public ForceKernel {
  public:
   using Pair = typename Law::Pair;
   using Normal = typename Law::NormalModel;
 
-  explicit ForceKernelImpl(const Scene& scene) : table_(scene, &Law::mix) {}
+  ForceKernelImpl(const Scene& scene, bool walls) : table_(scene, &Law::mix), walls_(walls) {}
 
   void compute_and_kick(SimState& s) override {
     s.deep_overlap.store(false, std::memory_order_relaxed);
@@ -41,7 +43,7 @@ class ForceKernelImpl final : public ForceKernel {
       s.bonds.step(s.particles, s.time, s.f_next, s.particles.t);
     }
     if (s.profile == nullptr) {
-      gather_and_kick<false>(s, table_, bonded);
+      gather_and_kick<false>(s, table_, bonded, walls_);
       return;
     }
     // The walls and meshes are timed inside the gather, per particle that has any, by each thread, in
@@ -49,10 +51,10 @@ class ForceKernelImpl final : public ForceKernel {
     // others' time is shared among walls, meshes and kick as the sampled ones' (PhaseProfile::close).
     const auto start = PhaseProfile::Clock::now();
     if (s.profile->sample_gather()) {
-      const GatherTimes times = gather_and_kick<true>(s, table_, bonded);
+      const GatherTimes times = gather_and_kick<true>(s, table_, bonded, walls_);
       s.profile->add_gather(std::chrono::duration<double>(PhaseProfile::Clock::now() - start).count(), times);
     } else {
-      gather_and_kick<false>(s, table_, bonded);
+      gather_and_kick<false>(s, table_, bonded, walls_);
       s.profile->add_unsampled_gather(std::chrono::duration<double>(PhaseProfile::Clock::now() - start).count());
     }
   }
@@ -100,7 +102,7 @@ class ForceKernelImpl final : public ForceKernel {
                                 Law::kRollingSpring ? s.neighbors.roll[k] : kNone),
              s.neighbors.sqrt_m_eff[k]);
       }
-      if constexpr (kWalls) {
+      if (walls_) {
         for (int e = s.wall_contacts.row_start[i]; e < s.wall_contacts.row_start[i + 1]; ++e) {
           const Wall& wall = s.walls[s.wall_contacts.wall[e]];
           Vec3 normal;
@@ -394,7 +396,7 @@ class ForceKernelImpl final : public ForceKernel {
   // bonded: bond forces and torques wait in f_next and particles.t. kTimed: time the walls and meshes
   // (PhaseProfile), whose clock is read only around the particles that touch or near one.
   template <bool kTimed>
-  static GatherTimes gather_and_kick(SimState& s, const PairTable<Pair>& table, bool bonded) {
+  static GatherTimes gather_and_kick(SimState& s, const PairTable<Pair>& table, bool bonded, bool walls) {
     using Clock = PhaseProfile::Clock;
     auto seconds_since = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
     struct RangeOut {
@@ -410,7 +412,7 @@ class ForceKernelImpl final : public ForceKernel {
     auto kick_range = [&](int begin, int end) {
       // The scene's constants as locals: captured by reference, they were reloaded from memory at
       // every particle.
-      const bool add_bonds = bonded;
+      const bool add_bonds = bonded, any_walls = walls;
       const double h = half_dt, damping = alpha;
       const Vec3 weight_per_mass = g;
       RangeOut out;
@@ -452,7 +454,7 @@ class ForceKernelImpl final : public ForceKernel {
           t = t + as_vec3(deferred[a].t);
           deferred[a] = BodySums{};  // zero for the next step's pair loop
         }
-        if constexpr (kWalls) {
+        if (any_walls) {
           if (wall_rows[i] != wall_rows[i + 1]) {
             Clock::time_point t0;
             if constexpr (kTimed) t0 = Clock::now();
@@ -724,6 +726,7 @@ class ForceKernelImpl final : public ForceKernel {
   }
 
   PairTable<Pair> table_;
+  bool walls_;  // the scene has walls or meshes: the survey and the gather visit their contacts
 };
 
 }  // namespace dem

@@ -14,18 +14,14 @@
 namespace dem {
 namespace kernels {
 
-template <class Law>
-std::unique_ptr<ForceKernel> with_walls(const Scene& scene, bool has_walls) {
-  if (has_walls) return std::make_unique<ForceKernelImpl<Law, true>>(scene);
-  return std::make_unique<ForceKernelImpl<Law, false>>(scene);
-}
-
 template <class Normal, bool NoTensile, class Tangential, class... Rollings>
 std::unique_ptr<ForceKernel> with_rolling(const Scene& scene, bool has_walls, std::string_view rolling,
                                           ModelList<Rollings...>) {
   std::unique_ptr<ForceKernel> kernel;
   (void)((Rollings::kName == rolling &&
-          (kernel = with_walls<ContactLaw<Normal, NoTensile, Tangential, Rollings>>(scene, has_walls), true)) ||
+          (kernel =
+               std::make_unique<ForceKernelImpl<ContactLaw<Normal, NoTensile, Tangential, Rollings>>>(scene, has_walls),
+           true)) ||
          ...);
   return kernel;
 }
