@@ -188,14 +188,21 @@ std::optional<StudyRecord> StudyManager::get(std::int64_t id) const {
 study::StudyPlan StudyManager::plan(const StudyRecord& study) const { return study::plan_study(study.study, json()); }
 
 std::vector<study::StudyRow> StudyManager::rows(const StudyRecord& study, const study::StudyPlan& plan) const {
+  return rows(study, plan, nullptr);
+}
+
+std::vector<study::StudyRow> StudyManager::rows(const StudyRecord& study, const study::StudyPlan& plan,
+                                                std::vector<std::optional<JobRecord>>* snapshots) const {
   std::vector<study::StudyRow> rows;
   for (std::size_t k = 0; k < plan.runs.size(); ++k) {
     study::StudyRow row = study::row_of(plan.runs[k]);
+    std::optional<JobRecord> job;
     if (k < study.jobs.size()) {
       row.job = study.jobs[k];
+      if (row.job >= 0) job = jobs_.get(row.job);
       if (row.job < 0) {
         row.state = "not queued";
-      } else if (const std::optional<JobRecord> job = jobs_.get(row.job)) {
+      } else if (job) {
         row.state = to_string(job->state);
         row.error = job->error;
         row.results = job->results;
@@ -204,22 +211,24 @@ std::vector<study::StudyRow> StudyManager::rows(const StudyRecord& study, const 
       }
     }
     rows.push_back(std::move(row));
+    if (snapshots) snapshots->push_back(std::move(job));
   }
   return rows;
 }
 
 json StudyManager::describe(const StudyRecord& study) const {
   const study::StudyPlan p = plan(study);
-  const std::vector<study::StudyRow> r = rows(study, p);
+  // One read of each job for its row's state and error and for its progress and finish: read again
+  // here, a job ending in between made a study "finished" with a run still "running" in its counts.
+  std::vector<std::optional<JobRecord>> snapshots;
+  const std::vector<study::StudyRow> r = rows(study, p, &snapshots);
   std::map<std::string, int> counts;
   json jobs = json::array();
   bool finished = true;
   double progress = 0;
-  for (study::StudyRow row : r) {
-    // One snapshot of the job for its state, progress and finish: rows() read it a moment earlier,
-    // and a job ending in between made a study "finished" with a run still "running" in its counts.
-    const std::optional<JobRecord> job = jobs_.get(row.job);
-    if (job) row.state = to_string(job->state);
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    const study::StudyRow& row = r[k];
+    const std::optional<JobRecord>& job = snapshots[k];
     ++counts[row.state];
     json values = json::object();
     for (std::size_t k = 0; k < p.parameters.size() && k < row.values.size(); ++k)

@@ -63,6 +63,9 @@ class StudyManager {
   std::vector<study::StudyRow> rows(const StudyRecord& study, const study::StudyPlan& plan) const;
 
  private:
+  // rows(), also keeping each row's job record as read for it (nullopt where there is none).
+  std::vector<study::StudyRow> rows(const StudyRecord& study, const study::StudyPlan& plan,
+                                    std::vector<std::optional<JobRecord>>* snapshots) const;
   std::filesystem::path folder_;  // DATA/studies
   JobManager& jobs_;
   mutable std::mutex mutex_;
