@@ -177,8 +177,9 @@ void StabilityGuard::check(const Simulation& sim) const {
     // name the particle with the most kinetic energy, of translation and rotation: that is where the
     // energy went (by speed alone, a still, fixed sphere was named beside one spinning up)
     std::size_t liveliest = 0;
+    double most = sim.particle_kinetic_energy(0);
     for (std::size_t i = 1; i < p.size(); ++i)
-      if (sim.particle_kinetic_energy(i) > sim.particle_kinetic_energy(liveliest)) liveliest = i;
+      if (const double e = sim.particle_kinetic_energy(i); e > most) most = e, liveliest = i;
     char buf[300];
     std::snprintf(buf, sizeof buf,
                   "unstable: mechanical energy grew from %.6e J to %.6e J, more than the %.6e J its sources fed in "

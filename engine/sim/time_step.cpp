@@ -157,31 +157,33 @@ void refuse_light_loaded_walls(const Scene& scene, const ForceKernel& kernel, co
     // one that needs the most (named for the first that failed, it was refused again for the next).
     int worst = -1;
     double least_mass = 0;
+    // the contact time of material a's smallest particle on the wall given the mass `mass`
+    auto time_with = [&](int a, double mass) {
+      const double m = smallest[a].mass;
+      return kernel.contact_time(a, w.material, m * mass / (m + mass), smallest[a].radius, r.reference_speed);
+    };
     for (int a = 0; a < static_cast<int>(smallest.size()); ++a) {
       if (smallest[a].mass == kInf) continue;
       const double m = smallest[a].mass, rad = smallest[a].radius;
-      auto time_with = [&](double mass) {
-        return kernel.contact_time(a, w.material, m * mass / (m + mass), rad, r.reference_speed);
-      };
       // Resolved: 10 steps in its contact (the stable limit's rule), or as many, within 1e-3, as the
       // particles' contact with the same wall held still (part of the step's choice): at the largest
       // dtFraction, 0.1, that contact has exactly 10 steps, and a wall of any finite mass fell short
       // of them (a 2 kg plate on 0.1 g spheres was refused, "give the wall at least 1 kg").
       const double held_still = kernel.contact_time(a, w.material, m, rad, r.reference_speed);
       const double needed = std::min(10 * r.dt / (1 + 1e-6), (1 - 1e-3) * held_still);
-      if (time_with(w.load->mass) >= needed) continue;
+      if (time_with(a, w.load->mass) >= needed) continue;
       double lo = w.load->mass, hi = std::max(1.0, 1e3 * m);  // the lightest mass that passes
-      for (int tries = 0; tries < 60 && time_with(hi) < needed; ++tries) hi *= 10;
+      for (int tries = 0; tries < 60 && time_with(a, hi) < needed; ++tries) hi *= 10;
       while (hi / lo > 1 + 1e-6) {
         const double mid = std::sqrt(lo * hi);
-        (time_with(mid) >= needed ? hi : lo) = mid;
+        (time_with(a, mid) >= needed ? hi : lo) = mid;
       }
       if (hi > least_mass) least_mass = hi, worst = a;
     }
     if (worst < 0) continue;
     const double m = smallest[worst].mass;
     const double m_star = m * w.load->mass / (m + w.load->mass);
-    const double t = kernel.contact_time(worst, w.material, m_star, smallest[worst].radius, r.reference_speed);
+    const double t = time_with(worst, w.load->mass);
     // rounded up to the three digits printed: the mass as printed passes (rounded to nearest, it was
     // refused again when given)
     const double unit = std::pow(10.0, std::floor(std::log10(least_mass)) - 2);
