@@ -27,8 +27,21 @@ constexpr double kPlateMass = 10;  // kg
 constexpr double kFMin = 100, kFMax = 1000, kFrequency = 3;
 constexpr double kG = 9.81;
 
+// The tracks of one test process, in one folder that goes when the process ends.
+struct TrackFolder {
+  std::filesystem::path path = std::filesystem::temp_directory_path() / ("dem_results_" + std::to_string(::getpid()));
+  TrackFolder() = default;
+  TrackFolder(const TrackFolder&) = delete;
+  TrackFolder& operator=(const TrackFolder&) = delete;
+  ~TrackFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+};
+
 std::string track_path(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("dem_results_" + name + std::to_string(::getpid()));
+  static const TrackFolder folder;
+  const auto dir = folder.path / name;
   std::filesystem::create_directories(dir);
   return (dir / ResultsRecorder::kTrackName).string();
 }
