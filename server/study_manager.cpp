@@ -226,9 +226,9 @@ json StudyManager::describe(const StudyRecord& study) const {
   json jobs = json::array();
   bool finished = true;
   double progress = 0;
-  for (std::size_t k = 0; k < r.size(); ++k) {
-    const study::StudyRow& row = r[k];
-    const std::optional<JobRecord>& job = snapshots[k];
+  for (std::size_t run = 0; run < r.size(); ++run) {
+    const study::StudyRow& row = r[run];
+    const std::optional<JobRecord>& job = snapshots[run];
     ++counts[row.state];
     json values = json::object();
     for (std::size_t k = 0; k < p.parameters.size() && k < row.values.size(); ++k)

@@ -157,10 +157,10 @@ void refuse_light_loaded_walls(const Scene& scene, const ForceKernel& kernel, co
     // one that needs the most (named for the first that failed, it was refused again for the next).
     int worst = -1;
     double least_mass = 0;
-    // the contact time of material a's smallest particle on the wall given the mass `mass`
+    // the reduced mass, and the contact time, of material a's smallest particle on the wall of mass `mass`
+    auto reduced_mass = [&](int a, double mass) { return smallest[a].mass * mass / (smallest[a].mass + mass); };
     auto time_with = [&](int a, double mass) {
-      const double m = smallest[a].mass;
-      return kernel.contact_time(a, w.material, m * mass / (m + mass), smallest[a].radius, r.reference_speed);
+      return kernel.contact_time(a, w.material, reduced_mass(a, mass), smallest[a].radius, r.reference_speed);
     };
     for (int a = 0; a < static_cast<int>(smallest.size()); ++a) {
       if (smallest[a].mass == kInf) continue;
@@ -182,7 +182,7 @@ void refuse_light_loaded_walls(const Scene& scene, const ForceKernel& kernel, co
     }
     if (worst < 0) continue;
     const double m = smallest[worst].mass;
-    const double m_star = m * w.load->mass / (m + w.load->mass);
+    const double m_star = reduced_mass(worst, w.load->mass);
     const double t = time_with(worst, w.load->mass);
     // rounded up to the three digits printed: the mass as printed passes (rounded to nearest, it was
     // refused again when given)
